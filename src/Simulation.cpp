@@ -1,0 +1,310 @@
+#include "Simulation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "core/Errors.hpp"
+#include "core/Integrator.hpp"
+#include "core/SceneBuilder.hpp"
+#include "physics/Restitution.hpp"
+
+namespace rondel {
+
+namespace fs = std::filesystem;
+
+namespace {
+std::string fmt(double v, int precision = 6) {
+  std::ostringstream s;
+  s.precision(precision);
+  s << v;
+  return s.str();
+}
+}  // namespace
+
+Simulation::Simulation(Config config, const Communicator& comm, bool write_files)
+    : config_(std::move(config)), comm_(comm), write_files_(write_files), neighbours_(0.0) {
+  if (comm_.size() > 1)
+    throw ConfigError("this build runs on 1 MPI rank (the domain decomposition is not in yet); start it with "
+                      "'mpirun -n 1' or without mpirun");
+  laws_.tangential = config_.tangential_law == "coulomb" ? TangentialLaw::coulomb : TangentialLaw::none;
+  kernel_ = select_kernel(laws_);
+  pairs_ = make_contact_table(laws_);
+  wall_rows_ = make_contact_table(laws_);
+  walls_ = config_.walls;
+  for (ContactParams* p : {&config_.params.pair(0, 0), &config_.params.wall(0)})
+    if (p->e_n > 0.0) p->zeta_n = zeta_from_restitution(p->e_n);
+  build_discs();
+  resolve_time_step();
+  check_initial_state();
+  if (write_files_) prepare_output();
+  rebuild();
+  // Forces at t = 0 for the first half kick: the kernel at the initial state with a zero increment, so
+  // no spring moves and no work is booked.
+  LedgerStep initial;
+  kernel_(KernelContext{discs_, config_.domain, walls_, config_.params, 0.0}, pairs_, wall_rows_, initial);
+  assembly_.assemble(discs_, config_.gravity, pairs_, wall_rows_);
+  ledger_.start(kinetic_energy());
+}
+
+void Simulation::build_discs() {
+  const std::string dir = config_.source_file.empty() ? "" : fs::path(config_.source_file).parent_path().string();
+  const auto scene = build_scene(config_.scene, config_.domain, dir);
+  if (scene.empty()) throw InputError("the scene has no discs (scene.type = " + config_.scene.type + ")");
+  discs_.reserve(scene.size());
+  for (const auto& d : scene) {
+    Vec2 x = d.x;
+    config_.domain.wrap(x);
+    if (!config_.domain.contains(x))
+      throw InputError("disc " + std::to_string(d.gid) + " at (" + fmt(d.x.x) + ", " + fmt(d.x.y) +
+                       ") lies outside the domain [" + fmt(config_.domain.xlo) + ", " + fmt(config_.domain.xhi) +
+                       "] x [" + fmt(config_.domain.ylo) + ", " + fmt(config_.domain.yhi) + "]");
+    discs_.add(d.gid, 0, d.radius, config_.density, config_.thickness, x, d.v, d.omega);
+  }
+  double R_min = INFINITY, R_max = 0.0, R_sum = 0.0;
+  for (double R : discs_.radius) R_min = std::min(R_min, R), R_max = std::max(R_max, R), R_sum += R;
+  const double skin = config_.skin > 0.0 ? config_.skin : 0.25 * R_sum / discs_.size();
+  neighbours_ = NeighbourList(skin);
+  const double range = neighbours_.range(R_max);
+  const Domain& d = config_.domain;
+  if (d.periodic_x && d.length_x() < 2.0 * range)
+    throw ConfigError("domain.xhi - domain.xlo = " + fmt(d.length_x()) + " is below twice the interaction range " +
+                      fmt(range) + " (2 x largest radius + skin): a periodic length must be at least " + fmt(2 * range));
+  if (d.periodic_y && d.length_y() < 2.0 * range)
+    throw ConfigError("domain.yhi - domain.ylo = " + fmt(d.length_y()) + " is below twice the interaction range " +
+                      fmt(range) + " (2 x largest radius + skin): a periodic length must be at least " + fmt(2 * range));
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+    for (std::size_t i = 0; i < discs_.n_owned(); ++i)
+      if (walls_[w].kind == Wall::Kind::line && walls_[w].proximity(discs_.position[i]).dist < 0.0)
+        throw InputError("disc " + std::to_string(discs_.gid[i]) + " lies behind wall " + std::to_string(w) +
+                         " (its centre is on the far side of the line)");
+}
+
+void Simulation::resolve_time_step() {
+  double R_min = INFINITY, R_max = 0.0;
+  for (double R : discs_.radius) R_min = std::min(R_min, R), R_max = std::max(R_max, R);
+  const std::vector<MaterialInfo> mats{{config_.density, config_.thickness, R_min, R_max}};
+  critical_ = critical_time_step(laws_, config_.params, mats, !walls_.empty());
+  if (config_.dt == 0.0) {
+    dt_ = config_.safety * critical_.dt;
+  } else {
+    dt_ = config_.dt;
+    if (dt_ > critical_.dt && !config_.force_dt)
+      throw ConfigError("run.dt = " + fmt(dt_) + " s is above the critical time step " + fmt(critical_.dt) +
+                        " s (" + critical_.mode + " mode, " + critical_.pair +
+                        "); lower it, leave run.dt = 0 for " + fmt(config_.safety) +
+                        " x critical, or set run.force_dt = true");
+  }
+}
+
+void Simulation::check_initial_state() {
+  ContactTable pairs = make_contact_table(laws_), walls = make_contact_table(laws_);
+  NeighbourList probe(neighbours_.skin());
+  probe.build(discs_, config_.domain, walls_, config_.params, pairs, pairs, walls, walls);
+  std::int64_t count = 0;
+  double worst = 0.0;
+  std::string where;
+  auto consider = [&](double u_n, double R, const std::string& what) {
+    const double ratio = u_n / R;
+    if (ratio <= config_.scene.max_initial_overlap) return;
+    ++count;
+    if (ratio > worst) worst = ratio, where = what;
+  };
+  for (std::size_t r = 0; r < pairs.size(); ++r) {
+    const auto i = static_cast<std::size_t>(pairs.i1[r]), j = static_cast<std::size_t>(pairs.i2[r]);
+    const Vec2 d = config_.domain.separation(discs_.position[i], discs_.position[j]);
+    consider(discs_.radius[i] + discs_.radius[j] - std::sqrt(dot(d, d)), std::min(discs_.radius[i], discs_.radius[j]),
+             "discs " + std::to_string(discs_.gid[i]) + " and " + std::to_string(discs_.gid[j]));
+  }
+  for (std::size_t r = 0; r < walls.size(); ++r) {
+    const auto i = static_cast<std::size_t>(walls.i1[r]);
+    consider(discs_.radius[i] - walls_[walls.i2[r]].proximity(discs_.position[i]).dist, discs_.radius[i],
+             "disc " + std::to_string(discs_.gid[i]) + " and wall " + std::to_string(walls.i2[r]));
+  }
+  if (count > 0)
+    throw InputError(std::to_string(count) + " initial overlaps exceed scene.max_initial_overlap = " +
+                     fmt(config_.scene.max_initial_overlap) + " of the smaller radius; the worst is " + fmt(worst) +
+                     " between " + where);
+}
+
+void Simulation::prepare_output() {
+  const fs::path dir(config_.output);
+  bool exists = false;
+  if (comm_.root()) {
+    exists = fs::exists(dir) && !(fs::is_directory(dir) && fs::is_empty(dir));
+  }
+  if (comm_.any(exists) && !config_.overwrite)
+    throw ConfigError("run.output = '" + config_.output +
+                      "' already exists and is not empty; choose another directory or set run.overwrite = true");
+  if (!comm_.root()) return;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  for (const char* stale : {"final.csv", "summary.txt"}) fs::remove(dir / stale, ec);
+  std::ofstream cfg(dir / "config.ini");
+  if (!cfg) throw ConfigError("run.output = '" + config_.output + "' cannot be written");
+  cfg << "# resolved configuration of this run (every key, defaults included)\n" << config_.resolved_text;
+  log_.open(dir / "log.txt");
+  diag_.open((dir / "diagnostics.csv").string());
+}
+
+void Simulation::log(const std::string& line) {
+  if (!comm_.root()) return;
+  if (write_files_) std::cout << line << '\n';
+  if (log_.is_open()) log_ << line << '\n' << std::flush;
+}
+
+void Simulation::rebuild() {
+  const ContactTable old_pairs = pairs_, old_walls = wall_rows_;
+  neighbours_.build(discs_, config_.domain, walls_, config_.params, old_pairs, pairs_, old_walls, wall_rows_);
+  assembly_.build(discs_, pairs_, wall_rows_);
+}
+
+void Simulation::step() {
+  // 1. Half kick and drift of owned discs (wrapping into the periodic box).
+  const double W_g = Integrator::half_kick_drift(discs_, config_.domain, dt_, config_.gravity);
+  // 2. Move walls.
+  for (auto& w : walls_) w.move(dt_);
+  // 3. Rebuild the neighbour list when a disc (global max) has moved more than half the skin.
+  const double disp = comm_.max(neighbours_.max_displacement(discs_, config_.domain));
+  if (neighbours_.needs_rebuild(disp, walls_)) rebuild();
+  // 4-6. Contact kernel over every row, then per-disc sums in ascending partner gid (gravity first).
+  LedgerStep work;
+  kernel_(KernelContext{discs_, config_.domain, walls_, config_.params, dt_}, pairs_, wall_rows_, work);
+  assembly_.assemble(discs_, config_.gravity, pairs_, wall_rows_);
+  // 7. Second half kick.
+  Integrator::half_kick(discs_, dt_);
+  ledger_.add(work, W_g);
+  ++step_;
+  time_ += dt_;
+}
+
+double Simulation::kinetic_energy() const {
+  double ke = 0.0;
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i)
+    ke += 0.5 * discs_.mass[i] * dot(discs_.velocity[i], discs_.velocity[i]) +
+          0.5 * discs_.inertia[i] * discs_.omega[i] * discs_.omega[i];
+  return comm_.sum(ke);
+}
+
+DiagnosticsRow Simulation::diagnostics() {
+  DiagnosticsRow row;
+  row.step = step_;
+  row.time = time_;
+  double ke_t = 0.0, ke_r = 0.0;
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
+    ke_t += 0.5 * discs_.mass[i] * dot(discs_.velocity[i], discs_.velocity[i]);
+    ke_r += 0.5 * discs_.inertia[i] * discs_.omega[i] * discs_.omega[i];
+  }
+  row.ke_trans = comm_.sum(ke_t);
+  row.ke_rot = comm_.sum(ke_r);
+  std::int64_t contacts = 0, wall_contacts = 0;
+  double worst = 0.0;
+  for (std::size_t r = 0; r < pairs_.size(); ++r) {
+    if (!(pairs_.F_n[r] > 0.0) || static_cast<std::size_t>(pairs_.i1[r]) >= discs_.n_owned()) continue;
+    ++contacts;
+    const auto i = static_cast<std::size_t>(pairs_.i1[r]), j = static_cast<std::size_t>(pairs_.i2[r]);
+    const Vec2 d = config_.domain.separation(discs_.position[i], discs_.position[j]);
+    const double u = discs_.radius[i] + discs_.radius[j] - std::sqrt(dot(d, d));
+    worst = std::max(worst, u / std::min(discs_.radius[i], discs_.radius[j]));
+  }
+  for (std::size_t r = 0; r < wall_rows_.size(); ++r) {
+    if (!(wall_rows_.F_n[r] > 0.0)) continue;
+    ++wall_contacts;
+    const auto i = static_cast<std::size_t>(wall_rows_.i1[r]);
+    worst = std::max(worst, (discs_.radius[i] - walls_[wall_rows_.i2[r]].proximity(discs_.position[i]).dist) / discs_.radius[i]);
+  }
+  row.contacts = comm_.sum(contacts);
+  row.wall_contacts = comm_.sum(wall_contacts);
+  const std::int64_t n = comm_.sum(static_cast<std::int64_t>(discs_.n_owned()));
+  row.coordination = n > 0 ? 2.0 * row.contacts / n : 0.0;
+  row.max_overlap = comm_.max(worst);
+  row.W_g = ledger_.W_g;
+  row.W_w = ledger_.W_w;
+  row.W_n = ledger_.W_n;
+  row.W_t = ledger_.W_t;
+  row.W_r = ledger_.W_r;
+  row.residual = ledger_.relative_residual(row.ke_trans + row.ke_rot);
+  return row;
+}
+
+void Simulation::check_stability(const DiagnosticsRow& row) const {
+  if (!std::isfinite(row.ke_trans + row.ke_rot))
+    throw InstabilityError("step " + std::to_string(row.step) + ": the kinetic energy is not finite");
+  if (row.max_overlap > config_.max_overlap)
+    throw InstabilityError("step " + std::to_string(row.step) + ": an overlap reached " + fmt(row.max_overlap) +
+                           " of the smaller radius (run.max_overlap = " + fmt(config_.max_overlap) +
+                           "); lower run.dt or run.safety, or stiffen the contacts");
+}
+
+std::string Simulation::state_text() const {
+  std::vector<std::size_t> order(discs_.n_owned());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return discs_.gid[a] < discs_.gid[b]; });
+  std::string out = "gid,x,y,vx,vy,theta,omega\n";
+  char buf[512];
+  for (std::size_t i : order) {
+    std::snprintf(buf, sizeof buf, "%lld,%a,%a,%a,%a,%a,%a\n", static_cast<long long>(discs_.gid[i]),
+                  discs_.position[i].x, discs_.position[i].y, discs_.velocity[i].x, discs_.velocity[i].y,
+                  discs_.theta[i], discs_.omega[i]);
+    out += buf;
+  }
+  return out;
+}
+
+RunSummary Simulation::run() {
+  log("Rondel: " + std::to_string(discs_.n_owned()) + " discs, " + std::to_string(walls_.size()) + " walls, " +
+      std::to_string(comm_.size()) + " rank(s); laws: normal " + config_.normal_law + ", tangential " +
+      config_.tangential_law + ", rolling " + config_.rolling_law);
+  log("time step " + fmt(dt_) + " s = " + fmt(dt_ / critical_.dt, 4) + " x critical " + fmt(critical_.dt) +
+      " s, limited by the " + critical_.mode + " mode (" + critical_.pair + ")");
+  log("neighbour skin " + fmt(neighbours_.skin()) + " m; output in " + (write_files_ ? config_.output : "(none)"));
+  log("resolved configuration:\n" + config_.resolved_text);
+  ProgressLine progress(config_.steps, static_cast<std::int64_t>(discs_.n_owned()),
+                        write_files_ && config_.progress && comm_.root());
+  const auto start = std::chrono::steady_clock::now();
+  auto record = [&]() {
+    const DiagnosticsRow row = diagnostics();
+    if (comm_.root()) diag_.write(row);
+    check_stability(row);
+  };
+  try {
+    record();
+    for (std::int64_t s = 0; s < config_.steps; ++s) {
+      step();
+      if (step_ % config_.diag_every == 0 || s + 1 == config_.steps) record();
+      progress.update(s + 1);
+    }
+  } catch (const InstabilityError& e) {
+    progress.finish();
+    log(std::string("FAILED: ") + e.what());
+    throw;
+  }
+  progress.finish();
+  RunSummary sum;
+  sum.steps = config_.steps;
+  sum.discs = comm_.sum(static_cast<std::int64_t>(discs_.n_owned()));
+  sum.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  sum.disc_steps_per_second = sum.wall_seconds > 0 ? sum.discs * sum.steps / sum.wall_seconds : 0.0;
+  sum.dt = dt_;
+  sum.critical = critical_;
+  sum.ledger_residual = ledger_.relative_residual(kinetic_energy());
+  sum.neighbour_builds = neighbours_.builds();
+  std::ostringstream s;
+  s << "summary: " << sum.steps << " steps of " << sum.discs << " discs in " << fmt(sum.wall_seconds, 4)
+    << " s wall, " << fmt(sum.disc_steps_per_second, 4) << " disc-steps/s; dt " << fmt(dt_) << " s ("
+    << fmt(dt_ / critical_.dt, 4) << " x critical, " << critical_.mode << " mode); ledger residual "
+    << fmt(sum.ledger_residual, 3) << "; " << sum.neighbour_builds << " neighbour builds";
+  log(s.str());
+  if (write_files_ && comm_.root()) {
+    std::ofstream(fs::path(config_.output) / "final.csv") << state_text();
+    std::ofstream(fs::path(config_.output) / "summary.txt") << s.str() << "\nstatus: complete\n";
+    log("results in " + config_.output + "/ (config.ini, log.txt, diagnostics.csv, final.csv, summary.txt)");
+  }
+  return sum;
+}
+
+}  // namespace rondel

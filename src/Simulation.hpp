@@ -1,0 +1,86 @@
+#pragma once
+#include <cstdint>
+#include <fstream>
+#include <string>
+
+#include "core/Config.hpp"
+#include "core/ContactTable.hpp"
+#include "core/Diagnostics.hpp"
+#include "core/DiscStore.hpp"
+#include "core/ForceAssembly.hpp"
+#include "core/NeighbourList.hpp"
+#include "parallel/Communicator.hpp"
+#include "physics/CriticalTimeStep.hpp"
+#include "physics/EnergyLedger.hpp"
+#include "physics/LawRegistry.hpp"
+
+namespace rondel {
+
+struct RunSummary {
+  std::int64_t steps = 0;
+  std::int64_t discs = 0;
+  double wall_seconds = 0.0;
+  double disc_steps_per_second = 0.0;
+  double dt = 0.0;
+  CriticalStep critical;
+  double ledger_residual = 0.0;
+  std::size_t neighbour_builds = 0;
+};
+
+// The composition root: builds the objects from the configuration and runs the time loop of DESIGN.md
+// section 4. All set-up checks happen in the constructor, before any file is written.
+class Simulation {
+ public:
+  Simulation(Config config, const Communicator& comm, bool write_files = true);
+
+  // Runs config.steps steps with diagnostics and output; returns the summary (also logged).
+  RunSummary run();
+  // One time step (DESIGN.md section 4).
+  void step();
+
+  const Config& config() const { return config_; }
+  const DiscStore& discs() const { return discs_; }
+  DiscStore& discs() { return discs_; }
+  const ContactTable& pairs() const { return pairs_; }
+  const ContactTable& wall_rows() const { return wall_rows_; }
+  const WallSet& walls() const { return walls_; }
+  const EnergyLedger& ledger() const { return ledger_; }
+  const CriticalStep& critical() const { return critical_; }
+  double dt() const { return dt_; }
+  double time() const { return time_; }
+  std::int64_t step_count() const { return step_; }
+  std::size_t neighbour_builds() const { return neighbours_.builds(); }
+  double kinetic_energy() const;
+  DiagnosticsRow diagnostics();
+  // Owned discs as "gid,x,y,vx,vy,theta,omega" in hexadecimal floats, ascending gid (bit-exact).
+  std::string state_text() const;
+
+ private:
+  void build_discs();
+  void resolve_time_step();
+  void check_initial_state();
+  void rebuild();
+  void log(const std::string& line);
+  void prepare_output();
+  void check_stability(const DiagnosticsRow& row) const;
+
+  Config config_;
+  const Communicator& comm_;
+  bool write_files_;
+  LawSelection laws_;
+  KernelFn kernel_ = nullptr;
+  DiscStore discs_;
+  WallSet walls_;
+  ContactTable pairs_, wall_rows_;
+  NeighbourList neighbours_;
+  ForceAssembly assembly_;
+  EnergyLedger ledger_;
+  CriticalStep critical_;
+  double dt_ = 0.0;
+  double time_ = 0.0;
+  std::int64_t step_ = 0;
+  std::ofstream log_;
+  DiagnosticsWriter diag_;
+};
+
+}  // namespace rondel

@@ -1,0 +1,107 @@
+// rondel_bench: the standard speed benchmark (../shared/bench/README.md). Loads the jammed periodic
+// packing of 10,000 discs, or its exact periodic copies (40,000 = 2 x 2, 160,000 = 4 x 4), runs the
+// warm-up and the timed steps with linear contacts and friction, and prints disc-steps per second,
+// contacts per disc and memory per disc.
+//   rondel_bench [--discs 10000|40000|160000] [--steps 5000] [--warmup 1000] [--file PATH]
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+#include "Simulation.hpp"
+#include "core/Errors.hpp"
+#include "parallel/Communicator.hpp"
+
+namespace {
+
+struct Options {
+  long discs = 10000, steps = 5000, warmup = 1000;
+  std::string file = "../shared/bench/jammed10k.csv";
+};
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string k = argv[i], v = argv[i + 1];
+    if (k == "--discs") o.discs = std::stol(v);
+    else if (k == "--steps") o.steps = std::stol(v);
+    else if (k == "--warmup") o.warmup = std::stol(v);
+    else if (k == "--file") o.file = v;
+    else throw rondel::ConfigError("rondel_bench: unknown option '" + k + "' (--discs, --steps, --warmup, --file)");
+  }
+  if (argc % 2 == 0) throw rondel::ConfigError("rondel_bench: option '" + std::string(argv[argc - 1]) + "' needs a value");
+  if (o.discs != 10000 && o.discs != 40000 && o.discs != 160000)
+    throw rondel::ConfigError("rondel_bench: --discs must be 10000, 40000 or 160000 (copies of the 10k packing)");
+  return o;
+}
+
+// The periodic box from the file's comment line "Periodic box x, y in [lo, hi]".
+void box_of(const std::string& file, double& lo, double& hi) {
+  std::ifstream in(file);
+  if (!in) throw rondel::InputError("rondel_bench: cannot read '" + file + "' (use --file PATH)");
+  std::string line;
+  while (std::getline(in, line) && line.rfind('#', 0) == 0) {
+    const auto box = line.find("Periodic box");
+    const auto p = box == std::string::npos ? box : line.find("in [", box);
+    if (p != std::string::npos && std::sscanf(line.c_str() + p, "in [%lf, %lf]", &lo, &hi) == 2) return;
+  }
+  throw rondel::InputError("rondel_bench: '" + file + "' has no 'Periodic box x, y in [lo, hi]' comment");
+}
+
+long peak_rss_kib() {
+  std::ifstream in("/proc/self/status");
+  std::string key;
+  long value = 0;
+  while (in >> key) {
+    if (key == "VmHWM:") {
+      in >> value;
+      return value;
+    }
+    std::getline(in, key);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  rondel::MpiEnvironment mpi(&argc, &argv);
+  rondel::Communicator comm;
+  try {
+    const Options o = parse(argc, argv);
+    double lo = 0, hi = 0;
+    box_of(o.file, lo, hi);
+    const int copies = static_cast<int>(std::lround(std::sqrt(o.discs / 10000.0)));
+    const double L = hi - lo;
+    char ini[2048];
+    std::snprintf(ini, sizeof ini,
+                  "[run]\ndt = 3e-4\nsteps = 0\n[domain]\nxlo = %.17g\nxhi = %.17g\nylo = %.17g\nyhi = %.17g\n"
+                  "periodic_x = true\nperiodic_y = true\n[material]\ndensity = 1\n[linear]\nk_n = 1e5\nzeta = 0.3\n"
+                  "[coulomb]\nk_s = 28571.43\nmu = 0.5\n[scene]\ntype = csv\nfile = %s\nreplicate_x = %d\n"
+                  "replicate_y = %d\nmax_initial_overlap = 0.2\n",
+                  lo, lo + copies * L, lo, lo + copies * L, o.file.c_str(), copies, copies);
+    rondel::Simulation sim(rondel::parse_config_text(ini), comm, false);
+    for (long s = 0; s < o.warmup; ++s) sim.step();
+    const std::size_t builds0 = sim.neighbour_builds();
+    const auto t0 = std::chrono::steady_clock::now();
+    for (long s = 0; s < o.steps; ++s) sim.step();
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    long contacts = 0;
+    for (double f : sim.pairs().F_n) contacts += f > 0.0 ? 1 : 0;
+    const double n = static_cast<double>(sim.discs().n_owned());
+    const double store = sim.discs().memory_bytes() + sim.pairs().memory_bytes() + sim.wall_rows().memory_bytes();
+    if (comm.root())
+      std::printf("rondel_bench: %ld discs, %ld timed steps (after %ld warm-up), dt %.3g s, %d rank(s)\n"
+                  "  wall time            %.3f s\n  disc-steps per second %.4g\n  contacts per disc     %.3f (coordination %.3f)\n"
+                  "  candidate rows/disc  %.3f\n  neighbour builds     %zu\n"
+                  "  memory per disc      %.0f B in discs and contact rows, %.0f B peak RSS\n",
+                  o.discs, o.steps, o.warmup, sim.dt(), comm.size(), secs, n * o.steps / secs, contacts / n, 2.0 * contacts / n,
+                  sim.pairs().size() / n, sim.neighbour_builds() - builds0, store / n, peak_rss_kib() * 1024.0 / n);
+    return 0;
+  } catch (const std::exception& e) {
+    if (comm.root()) std::cerr << e.what() << '\n';
+    return 1;
+  }
+}

@@ -1,0 +1,78 @@
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/ContactParams.hpp"
+#include "core/Domain.hpp"
+#include "core/Vec2.hpp"
+#include "core/Wall.hpp"
+
+namespace rondel {
+
+struct SceneConfig {
+  std::string type;  // lattice_square, lattice_hex, random, csv
+  // lattice
+  int nx = 0, ny = 0;
+  double radius = 0.0, spacing = 0.0, x0 = 0.0, y0 = 0.0;
+  // random
+  std::int64_t count = 0;
+  double region[4] = {0, 0, 0, 0};  // xlo xhi ylo yhi
+  std::string distribution;          // uniform_radius, uniform_area, list
+  double radius_min = 0.0, radius_max = 0.0;
+  std::vector<double> sizes, fractions;
+  std::uint64_t seed = 1;
+  std::int64_t max_attempts = 0;
+  // csv
+  std::string file;
+  int replicate_x = 1, replicate_y = 1;
+  // every scene
+  Vec2 velocity;
+  double omega = 0.0;
+  double max_initial_overlap = 0.0;  // fraction of the smaller radius
+};
+
+struct Config {
+  // [run]
+  std::int64_t steps = 0;
+  double dt = 0.0;  // 0: automatic
+  double safety = 0.2;
+  bool force_dt = false;
+  std::string output;
+  bool overwrite = false;
+  bool progress = true;
+  double max_overlap = 0.5;
+  // [diagnostics]
+  std::int64_t diag_every = 100;
+  // [domain], [gravity], [material]
+  Domain domain;
+  Vec2 gravity;
+  double density = 0.0, thickness = 1.0;
+  // [contact] and law blocks
+  std::string normal_law, tangential_law, rolling_law;
+  ContactParamTable params;
+  // [neighbour]
+  double skin = 0.0;  // 0: automatic
+  // [walls]
+  WallSet walls;
+  std::vector<std::string> box_walls;
+  SceneConfig scene;
+
+  std::string source_file;    // the INI file ("" when none)
+  std::string resolved_text;  // every key with its value, in INI form
+};
+
+// Thrown for --help: the text to print.
+struct HelpRequested {
+  std::string text;
+};
+
+// Parses `rondel [FILE.ini] [--section.key=value ...]`. Throws ConfigError naming the key on bad input,
+// HelpRequested for --help.
+Config parse_config(int argc, const char* const* argv);
+// The same from an INI text (tests): `overrides` are command-line style ("--run.steps=10").
+Config parse_config_text(const std::string& ini, const std::vector<std::string>& overrides = {});
+// The reference of every key (rondel --help).
+std::string config_help();
+
+}  // namespace rondel

@@ -1,0 +1,55 @@
+#pragma once
+#include <cstddef>
+#include <vector>
+
+namespace rondel {
+
+// Contact-law parameters of one material pair (or of a material against the walls). Each law reads only
+// its own fields; the config layer fills only the fields of the selected laws.
+struct ContactParams {
+  // linear normal
+  double k_n = 0.0;
+  double zeta_n = 0.0;      // normal damping ratio, used when c_n_fixed < 0
+  double c_n_fixed = -1.0;  // a user-given normal dashpot [N s/m]; < 0 means "from zeta_n"
+  double e_n = -1.0;        // a user-given restitution; > 0 means zeta_n is derived from it at set-up
+  // coulomb tangential
+  double k_s = 0.0;
+  double zeta_t = 0.0;
+  double mu = 0.0;
+  // rolling laws (PHYSICS.md section 3)
+  double delta = 0.0;        // jiang_*: contact width B = delta r
+  double k_r = 0.0;          // wang
+  double mu_r = 0.0;         // wang, force_proportional, constant_torque, displacement_damping
+  double c_r = 0.0;          // wang rolling dashpot
+  double K_r = 0.0;          // iwashita_oda
+  double C_r = 0.0;          // iwashita_oda
+  double eta = 0.0;          // iwashita_oda
+  double f_lim = 0.08;       // constant_torque moment limiter
+  double theta_rmax = 0.035; // displacement_damping
+  double nu = 0.0;           // displacement_damping viscous part
+  double f_visc = 1.0;       // displacement_damping viscous factor at the limit
+};
+
+// Parameters for every (material, material) pair and every (material, wall) pair.
+class ContactParamTable {
+ public:
+  ContactParamTable() = default;
+  explicit ContactParamTable(std::size_t n_materials)
+      : n_(n_materials), pairs_(n_materials * n_materials), walls_(n_materials) {}
+
+  std::size_t n_materials() const { return n_; }
+  std::size_t pair_index(std::size_t a, std::size_t b) const { return a * n_ + b; }
+  ContactParams& pair(std::size_t a, std::size_t b) { return pairs_[pair_index(a, b)]; }
+  const ContactParams& pair(std::size_t a, std::size_t b) const { return pairs_[pair_index(a, b)]; }
+  ContactParams& wall(std::size_t a) { return walls_[a]; }
+  const ContactParams& wall(std::size_t a) const { return walls_[a]; }
+  const std::vector<ContactParams>& pairs() const { return pairs_; }
+  const std::vector<ContactParams>& walls() const { return walls_; }
+
+ private:
+  std::size_t n_ = 0;
+  std::vector<ContactParams> pairs_;
+  std::vector<ContactParams> walls_;
+};
+
+}  // namespace rondel

@@ -1,0 +1,55 @@
+#include "core/Diagnostics.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <sstream>
+
+namespace rondel {
+
+std::string DiagnosticsWriter::header() {
+  return "step,time,ke_trans,ke_rot,contacts,wall_contacts,coordination,max_overlap_ratio,W_gravity,W_walls,"
+         "W_normal,W_tangential,W_rolling,ledger_residual";
+}
+
+std::string DiagnosticsWriter::format(const DiagnosticsRow& r) {
+  std::ostringstream s;
+  s.precision(10);
+  s << r.step << ',' << r.time << ',' << r.ke_trans << ',' << r.ke_rot << ',' << r.contacts << ','
+    << r.wall_contacts << ',' << r.coordination << ',' << r.max_overlap << ',' << r.W_g << ',' << r.W_w << ','
+    << r.W_n << ',' << r.W_t << ',' << r.W_r << ',' << r.residual;
+  return s.str();
+}
+
+void DiagnosticsWriter::open(const std::string& path) {
+  out_.open(path);
+  out_ << header() << '\n';
+}
+
+void DiagnosticsWriter::write(const DiagnosticsRow& row) {
+  if (out_.is_open()) out_ << format(row) << '\n' << std::flush;
+}
+
+ProgressLine::ProgressLine(std::int64_t total_steps, std::int64_t n_discs, bool enabled)
+    : total_(total_steps), discs_(n_discs), enabled_(enabled), tty_(isatty(STDOUT_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()) {}
+
+void ProgressLine::update(std::int64_t step) {
+  if (!enabled_ || total_ <= 0) return;
+  if (!tty_ && step < next_plain_) return;
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (tty_ && step % 50 != 0 && step != total_) return;
+  const double rate = elapsed > 0 ? step / elapsed : 0.0;
+  const double eta = rate > 0 ? (total_ - step) / rate : 0.0;
+  std::printf("%sstep %lld/%lld (%3.0f%%)  %.3g steps/s  %.3g disc-steps/s  ETA %.0f s%s", tty_ ? "\r" : "",
+              static_cast<long long>(step), static_cast<long long>(total_), 100.0 * step / total_, rate,
+              rate * discs_, eta, tty_ ? "   " : "\n");
+  std::fflush(stdout);
+  next_plain_ = step + std::max<std::int64_t>(1, total_ / 10);
+}
+
+void ProgressLine::finish() {
+  if (enabled_ && tty_) std::printf("\n");
+}
+
+}  // namespace rondel

@@ -1,0 +1,47 @@
+#pragma once
+#include <chrono>
+#include <cstdint>
+#include <fstream>
+#include <string>
+
+namespace rondel {
+
+struct DiagnosticsRow {
+  std::int64_t step = 0;
+  double time = 0.0;
+  double ke_trans = 0.0, ke_rot = 0.0;
+  std::int64_t contacts = 0, wall_contacts = 0;
+  double coordination = 0.0;   // 2 x disc-disc contacts / discs
+  double max_overlap = 0.0;    // largest u_n / smaller radius
+  double W_g = 0.0, W_w = 0.0, W_n = 0.0, W_t = 0.0, W_r = 0.0;
+  double residual = 0.0;       // relative ledger residual
+};
+
+// diagnostics.csv: one header, one row per diagnostics step (rank 0 only).
+class DiagnosticsWriter {
+ public:
+  void open(const std::string& path);
+  void write(const DiagnosticsRow& row);
+  static std::string header();
+  static std::string format(const DiagnosticsRow& row);
+
+ private:
+  std::ofstream out_;
+};
+
+// A progress line with rate and ETA: rewritten in place on a terminal, a plain line every tenth of the run
+// otherwise.
+class ProgressLine {
+ public:
+  ProgressLine(std::int64_t total_steps, std::int64_t n_discs, bool enabled);
+  void update(std::int64_t step);
+  void finish();
+
+ private:
+  std::int64_t total_, discs_;
+  bool enabled_, tty_;
+  std::int64_t next_plain_ = 0;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace rondel

@@ -1,0 +1,61 @@
+#include "core/DiscStore.hpp"
+
+#include <algorithm>
+#include <numbers>
+#include <numeric>
+#include <stdexcept>
+
+namespace rondel {
+
+std::size_t DiscStore::add(std::int64_t id, std::int32_t mat, double R, double density, double thickness,
+                           Vec2 x, Vec2 v, double w) {
+  if (n_ghost() != 0) throw std::logic_error("DiscStore::add with ghosts present");
+  const double m = density * std::numbers::pi * R * R * thickness;
+  gid.push_back(id);
+  material.push_back(mat);
+  radius.push_back(R);
+  mass.push_back(m);
+  inertia.push_back(0.5 * m * R * R);
+  position.push_back(x);
+  velocity.push_back(v);
+  theta.push_back(0.0);
+  omega.push_back(w);
+  force.push_back({});
+  torque.push_back(0.0);
+  flags.push_back(0u);
+  return n_owned_++;
+}
+
+void DiscStore::reserve(std::size_t n) {
+  for_each_field([n](const char*, unsigned, auto& field) { field.reserve(n); });
+}
+
+void DiscStore::clear() {
+  for_each_field([](const char*, unsigned, auto& field) { field.clear(); });
+  n_owned_ = 0;
+}
+
+void DiscStore::truncate_to_owned() {
+  const std::size_t n = n_owned_;
+  for_each_field([n](const char*, unsigned, auto& field) { field.resize(n); });
+}
+
+void DiscStore::sort_owned_by_gid() {
+  truncate_to_owned();
+  std::vector<std::size_t> order(n_owned_);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [this](std::size_t a, std::size_t b) { return gid[a] < gid[b]; });
+  for_each_field([&order](const char*, unsigned, auto& field) {
+    auto copy = field;
+    for (std::size_t i = 0; i < order.size(); ++i) field[i] = copy[order[i]];
+  });
+}
+
+std::size_t DiscStore::memory_bytes() const {
+  std::size_t bytes = 0;
+  const_cast<DiscStore*>(this)->for_each_field(
+      [&bytes](const char*, unsigned, auto& field) { bytes += field.capacity() * sizeof(field[0]); });
+  return bytes;
+}
+
+}  // namespace rondel

@@ -1,0 +1,71 @@
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/Vec2.hpp"
+
+namespace rondel {
+
+// What each disc field is used for. Ghost packing, migration and checkpoints loop over this table
+// (DESIGN.md section 2) instead of naming fields one by one.
+enum DiscFieldUse : unsigned {
+  kGhostCreate = 1u,  // copied when a ghost is created
+  kGhostStep = 2u,    // refreshed on ghosts every step between rebuilds
+  kMigrate = 4u,      // travels with a disc to its new owner
+  kCheckpoint = 8u,   // written to checkpoints
+};
+
+enum DiscFlag : std::uint32_t {
+  kFlagFixed = 1u,  // not integrated (a prescribed, immobile disc)
+};
+
+// Structure of arrays: owned discs first (indices [0, n_owned)), then ghosts.
+class DiscStore {
+ public:
+  std::vector<std::int64_t> gid;
+  std::vector<std::int32_t> material;
+  std::vector<double> radius, mass, inertia;
+  std::vector<Vec2> position, velocity;
+  std::vector<double> theta, omega;
+  std::vector<Vec2> force;
+  std::vector<double> torque;
+  std::vector<std::uint32_t> flags;
+
+  std::size_t size() const { return gid.size(); }
+  std::size_t n_owned() const { return n_owned_; }
+  std::size_t n_ghost() const { return size() - n_owned_; }
+
+  // Appends an owned disc (only while there are no ghosts). Mass and inertia follow PHYSICS.md section 1.
+  std::size_t add(std::int64_t id, std::int32_t mat, double R, double density, double thickness, Vec2 x,
+                  Vec2 v = {}, double w = 0.0);
+  void reserve(std::size_t n);
+  void clear();
+  // Drops ghosts (everything past n_owned).
+  void truncate_to_owned();
+  // Reorders owned discs by ascending gid (canonical order for output and deterministic builds).
+  void sort_owned_by_gid();
+  std::size_t memory_bytes() const;
+
+  // Visits every field with its name, its uses and its vector.
+  template <class Visitor>
+  void for_each_field(Visitor&& visit) {
+    visit("gid", kGhostCreate | kMigrate | kCheckpoint, gid);
+    visit("material", kGhostCreate | kMigrate | kCheckpoint, material);
+    visit("radius", kGhostCreate | kMigrate | kCheckpoint, radius);
+    visit("mass", kGhostCreate | kMigrate | kCheckpoint, mass);
+    visit("inertia", kGhostCreate | kMigrate | kCheckpoint, inertia);
+    visit("position", kGhostCreate | kGhostStep | kMigrate | kCheckpoint, position);
+    visit("velocity", kGhostCreate | kGhostStep | kMigrate | kCheckpoint, velocity);
+    visit("theta", kMigrate | kCheckpoint, theta);
+    visit("omega", kGhostCreate | kGhostStep | kMigrate | kCheckpoint, omega);
+    visit("force", kMigrate | kCheckpoint, force);
+    visit("torque", kMigrate | kCheckpoint, torque);
+    visit("flags", kGhostCreate | kMigrate | kCheckpoint, flags);
+  }
+
+ private:
+  std::size_t n_owned_ = 0;
+};
+
+}  // namespace rondel

@@ -1,0 +1,22 @@
+#pragma once
+#include <stdexcept>
+#include <string>
+
+namespace rondel {
+
+// A user's mistake in the configuration (a key, a value): main reports it once and exits non-zero.
+struct ConfigError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A problem with an input file or with the scene it describes.
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The run became unphysical (an overlap or an energy that blew up).
+struct InstabilityError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace rondel

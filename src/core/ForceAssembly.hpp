@@ -1,0 +1,27 @@
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/ContactTable.hpp"
+#include "core/DiscStore.hpp"
+#include "core/Vec2.hpp"
+
+namespace rondel {
+
+// Sums each owned disc's contact contributions in a fixed order: ascending partner gid, then walls by
+// wall id (DESIGN.md section 4, step 6). The order is built once per neighbour-list build, so the sum does
+// not depend on storage order, rank count or when the list was rebuilt.
+class ForceAssembly {
+ public:
+  void build(const DiscStore& discs, const ContactTable& pairs, const ContactTable& wall_rows);
+  // force = m g + sum of contributions; torque = sum of contributions. Fixed discs get zero.
+  void assemble(DiscStore& discs, Vec2 gravity, const ContactTable& pairs, const ContactTable& wall_rows) const;
+
+ private:
+  enum Side : std::uint8_t { kAsDisc1 = 0, kAsDisc2 = 1, kWall = 2 };
+  std::vector<std::uint32_t> start_;
+  std::vector<std::uint32_t> row_;
+  std::vector<std::uint8_t> side_;
+};
+
+}  // namespace rondel

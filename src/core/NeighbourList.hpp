@@ -1,0 +1,51 @@
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include "core/ContactParams.hpp"
+#include "core/ContactTable.hpp"
+#include "core/DiscStore.hpp"
+#include "core/Domain.hpp"
+#include "core/Wall.hpp"
+
+namespace rondel {
+
+// Cell grid plus Verlet list with a skin. A pair is a candidate when its gap is below the skin; the list
+// is rebuilt when the largest disc displacement since the last build passes half the skin (or a disc and a
+// wall together close more than the skin). Cells have side >= 2 R_max + skin, so polydisperse radii are
+// found by the 3 x 3 stencil; discs outside a non-periodic box are clamped into the edge cells.
+class NeighbourList {
+ public:
+  explicit NeighbourList(double skin) : skin_(skin) {}
+
+  double skin() const { return skin_; }
+  // Interaction range for a largest radius: the cell side must be at least this.
+  double range(double R_max) const { return 2.0 * R_max + skin_; }
+
+  // Fills `pairs` and `wall_rows` (cleared first, history carried over from `old_*` by key) from the
+  // discs (owned and ghosts). Rows whose two discs are both ghosts are left out.
+  void build(const DiscStore& discs, const Domain& domain, WallSet& walls, const ContactParamTable& params,
+             const ContactTable& old_pairs, ContactTable& pairs, const ContactTable& old_walls,
+             ContactTable& wall_rows);
+
+  // Largest displacement of an owned disc since the last build (minimum image).
+  double max_displacement(const DiscStore& discs, const Domain& domain) const;
+  // True when the local discs and walls have moved enough to need a new list.
+  bool needs_rebuild(double max_disc_disp, const WallSet& walls) const;
+
+  std::size_t builds() const { return builds_; }
+
+ private:
+  void bin(const DiscStore& discs, const Domain& domain, double R_max);
+  std::size_t cell_of(Vec2 x, const Domain& domain) const;
+  std::vector<std::size_t> neighbour_cells(std::size_t cell, const Domain& domain) const;
+
+  double skin_;
+  int nx_ = 1, ny_ = 1;
+  double cell_x_ = 1.0, cell_y_ = 1.0;
+  std::vector<std::size_t> cell_start_, cell_items_;
+  std::vector<Vec2> position_at_build_;
+  std::size_t builds_ = 0;
+};
+
+}  // namespace rondel

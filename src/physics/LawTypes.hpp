@@ -1,0 +1,52 @@
+#pragma once
+// What a contact law sees besides the kinematics: the masses and inertias of the two bodies (a wall:
+// m2 = I2 = inf), the time step, and its parameters. Laws are stateless functions on these plain structs.
+#include <cmath>
+#include <string>
+
+namespace rondel {
+
+struct ContactBodies {
+  double m1 = 0.0, m2 = 0.0, I1 = 0.0, I2 = 0.0;
+  double m_eff = 0.0;  // m1 m2/(m1 + m2), = m1 at a wall
+};
+
+inline ContactBodies disc_disc_bodies(double m1, double m2, double I1, double I2) {
+  return {m1, m2, I1, I2, m1 * m2 / (m1 + m2)};
+}
+inline ContactBodies disc_wall_bodies(double m1, double I1) { return {m1, INFINITY, I1, INFINITY, m1}; }
+
+inline double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }  // sign(0) = 0
+
+// The capping rule of PHYSICS.md section 1 for a spring-slider: given the trial value (spring + dashpot),
+// returns the force (or couple) and resets the spring so that the spring alone equals it when capped.
+// `spring` is the displacement-like state, `stiffness` its stiffness (value = -stiffness * spring + ...).
+struct CapResult {
+  double value;
+  bool capped;
+};
+inline CapResult cap_spring_slider(double trial, double cap, double stiffness, double& spring) {
+  if (std::fabs(trial) > cap) {
+    const double value = cap * sign(trial);
+    spring = -value / stiffness;
+    return {value, true};
+  }
+  return {trial, false};
+}
+
+// Rolling couples on disc 1 and disc 2. Objective laws give M2 = -M1; force_proportional gives each disc
+// its own couple from its own spin.
+struct RollingCouple {
+  double M1 = 0.0;
+  double M2 = 0.0;
+};
+
+enum class NormalLaw { linear };
+enum class TangentialLaw { none, coulomb };
+enum class RollingLaw { none };
+
+std::string to_string(NormalLaw law);
+std::string to_string(TangentialLaw law);
+std::string to_string(RollingLaw law);
+
+}  // namespace rondel

@@ -1,0 +1,23 @@
+#pragma once
+// The `none` rolling law: no history column, no rolling arithmetic (the kernel drops every rolling term
+// at compile time when kActive is false).
+#include <array>
+
+#include "core/ContactParams.hpp"
+#include "physics/ContactKinematics.hpp"
+#include "physics/LawTypes.hpp"
+
+namespace rondel {
+
+struct RollingNone {
+  static constexpr const char* name = "none";
+  static constexpr bool kActive = false;
+  static constexpr std::array<const char*, 0> slots{};
+  static RollingCouple moment(const ContactParams&, const ContactBodies&, const ContactKinematics&,
+                              double /*F_n*/, double /*dt*/, double /*w1*/, double /*w2*/, double* const*,
+                              std::size_t) {
+    return {};
+  }
+};
+
+}  // namespace rondel

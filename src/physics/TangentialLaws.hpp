@@ -1,0 +1,38 @@
+#pragma once
+// Tangential laws (PHYSICS.md section 2), in the canonical frame: F_t acts on disc 1 along t.
+//  - none: frictionless, no history.
+//  - coulomb (Cundall & Strack 1979): xi += V_s dt; trial F_t = -k_s xi - c_t V_s,
+//    c_t = 2 zeta_t sqrt(m_eff k_s); cap mu F_n by the capping rule (F_t = mu F_n sign(trial), xi = -F_t/k_s).
+//    Units: xi [m], k_s [N/m], F_t [N] (per thickness). History slot: "xi".
+#include <array>
+#include <cmath>
+
+#include "core/ContactParams.hpp"
+#include "physics/ContactKinematics.hpp"
+#include "physics/LawTypes.hpp"
+
+namespace rondel {
+
+struct TangentialNone {
+  static constexpr const char* name = "none";
+  static constexpr std::array<const char*, 0> slots{};
+  static double force(const ContactParams&, const ContactBodies&, const ContactKinematics&, double, double,
+                      double* const*, std::size_t) {
+    return 0.0;
+  }
+};
+
+struct TangentialCoulomb {
+  static constexpr const char* name = "coulomb";
+  static constexpr std::array<const char*, 1> slots{"xi"};
+  static double force(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double F_n,
+                      double dt, double* const* hist, std::size_t row) {
+    double& xi = hist[0][row];
+    xi += k.V_s * dt;
+    const double c_t = p.zeta_t > 0.0 ? 2.0 * p.zeta_t * std::sqrt(b.m_eff * p.k_s) : 0.0;
+    const double trial = -p.k_s * xi - c_t * k.V_s;
+    return cap_spring_slider(trial, p.mu * F_n, p.k_s, xi).value;
+  }
+};
+
+}  // namespace rondel
