@@ -32,6 +32,8 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
     throw ConfigError("this build runs on 1 MPI rank (the domain decomposition is not in yet); start it with "
                       "'mpirun -n 1' or without mpirun");
   laws_.tangential = config_.tangential_law == "coulomb" ? TangentialLaw::coulomb : TangentialLaw::none;
+  if (!parse_rolling_law(config_.rolling_law, laws_.rolling))
+    throw ConfigError("contact.rolling = " + config_.rolling_law + " is not one of " + rolling_law_names());
   kernel_ = select_kernel(laws_);
   pairs_ = make_contact_table(laws_);
   wall_rows_ = make_contact_table(laws_);
@@ -46,7 +48,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
   // Forces at t = 0 for the first half kick: the kernel at the initial state with a zero increment, so
   // no spring moves and no work is booked.
   LedgerStep initial;
-  kernel_(KernelContext{discs_, config_.domain, walls_, config_.params, 0.0}, pairs_, wall_rows_, initial);
+  kernel_.run(KernelContext{discs_, config_.domain, walls_, config_.params, 0.0}, pairs_, wall_rows_, initial);
   assembly_.assemble(discs_, config_.gravity, pairs_, wall_rows_);
   ledger_.start(kinetic_energy());
 }
@@ -173,7 +175,7 @@ void Simulation::step() {
   if (neighbours_.needs_rebuild(disp, walls_)) rebuild();
   // 4-6. Contact kernel over every row, then per-disc sums in ascending partner gid (gravity first).
   LedgerStep work;
-  kernel_(KernelContext{discs_, config_.domain, walls_, config_.params, dt_}, pairs_, wall_rows_, work);
+  kernel_.run(KernelContext{discs_, config_.domain, walls_, config_.params, dt_}, pairs_, wall_rows_, work);
   assembly_.assemble(discs_, config_.gravity, pairs_, wall_rows_);
   // 7. Second half kick.
   Integrator::half_kick(discs_, dt_);
@@ -227,6 +229,14 @@ DiagnosticsRow Simulation::diagnostics() {
   row.W_n = ledger_.W_n;
   row.W_t = ledger_.W_t;
   row.W_r = ledger_.W_r;
+  const StoredEnergy stored =
+      kernel_.stored(KernelContext{discs_, config_.domain, walls_, config_.params, dt_}, pairs_, wall_rows_);
+  row.E_stored = comm_.sum(stored.total());
+  row.D_slip = ledger_.D_slip;
+  row.D_r_plastic = ledger_.D_r_plastic;
+  row.D_r_dashpot = ledger_.D_r_dashpot;
+  row.E_r_break = ledger_.E_r_break;
+  row.D_other = -ledger_.W_c() - row.E_stored - row.D_slip - row.D_r_plastic - row.D_r_dashpot - row.E_r_break;
   row.residual = ledger_.relative_residual(row.ke_trans + row.ke_rot);
   return row;
 }

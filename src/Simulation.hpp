@@ -68,7 +68,7 @@ class Simulation {
   const Communicator& comm_;
   bool write_files_;
   LawSelection laws_;
-  KernelFn kernel_ = nullptr;
+  KernelOps kernel_;
   DiscStore discs_;
   WallSet walls_;
   ContactTable pairs_, wall_rows_;

@@ -142,17 +142,68 @@ void read_walls(const Reader& r, Config& c) {
   }
 }
 
+double required_non_negative(const Reader& r, const std::string& key, const std::string& law) {
+  const double v = r.required(key, " (required with contact.rolling = " + law + ")");
+  non_negative(v, key);
+  return v;
+}
+double required_positive(const Reader& r, const std::string& key, const std::string& law) {
+  r.required(key, " (required with contact.rolling = " + law + ")");
+  positive(r, key);
+  return r.get<double>(key);
+}
+
+void read_rolling(const Reader& r, const std::string& law, ContactParams& p) {
+  if (law == "jiang_plastic" || law == "jiang_brittle") {
+    p.delta = required_positive(r, "jiang.delta", law);
+  } else if (law == "wang") {
+    p.k_r = required_positive(r, "wang.k_r", law);
+    p.mu_r = required_non_negative(r, "wang.mu_r", law);
+    non_negative(p.c_r = r.get<double>("wang.c_r"), "wang.c_r");
+  } else if (law == "iwashita_oda") {
+    p.K_r = required_positive(r, "iwashita_oda.K_r", law);
+    p.C_r = required_non_negative(r, "iwashita_oda.C_r", law);
+    p.eta = required_non_negative(r, "iwashita_oda.eta", law);
+  } else if (law == "force_proportional") {
+    p.mu_r = required_non_negative(r, "force_proportional.mu_r", law);
+  } else if (law == "constant_torque") {
+    p.mu_r = required_non_negative(r, "constant_torque.mu_r", law);
+    non_negative(p.f_lim = r.get<double>("constant_torque.f_lim"), "constant_torque.f_lim");
+  } else if (law == "displacement_damping") {
+    p.mu_r = required_non_negative(r, "displacement_damping.mu_r", law);
+    positive(r, "displacement_damping.theta_rmax");
+    p.theta_rmax = r.get<double>("displacement_damping.theta_rmax");
+    non_negative(p.nu = r.get<double>("displacement_damping.nu"), "displacement_damping.nu");
+    non_negative(p.f_visc = r.get<double>("displacement_damping.f"), "displacement_damping.f");
+  }
+}
+
 void read_contact(const Reader& r, Config& c) {
   c.normal_law = r.get<std::string>("contact.normal");
   c.tangential_law = r.get<std::string>("contact.tangential");
   c.rolling_law = r.get<std::string>("contact.rolling");
   check(c.normal_law == "linear", "contact.normal", "linear", c.normal_law);
   check(c.tangential_law == "coulomb" || c.tangential_law == "none", "contact.tangential", "coulomb | none", c.tangential_law);
-  check(c.rolling_law == "none", "contact.rolling", "none", c.rolling_law);
-  if (c.tangential_law != "coulomb") {
-    for (const char* k : {"coulomb.k_s", "coulomb.mu", "coulomb.zeta_t"})
-      if (r.given(k))
-        throw ConfigError(std::string("key '") + k + "' belongs to the [coulomb] block, but contact.tangential = " + c.tangential_law);
+  const std::string rolling_laws = "none | jiang_plastic | jiang_brittle | wang | iwashita_oda | force_proportional | "
+                                   "constant_torque | displacement_damping";
+  check((" | " + rolling_laws + " | ").find(" | " + c.rolling_law + " | ") != std::string::npos, "contact.rolling",
+        rolling_laws, c.rolling_law);
+  // A parameter block for a law that is not selected is a mistake (a typo in the law, or a stale block).
+  const std::map<std::string, std::pair<std::string, std::string>> blocks = {
+      {"coulomb", {c.tangential_law, " coulomb "}},
+      {"jiang", {c.rolling_law, " jiang_plastic jiang_brittle "}},
+      {"wang", {c.rolling_law, " wang "}},
+      {"iwashita_oda", {c.rolling_law, " iwashita_oda "}},
+      {"force_proportional", {c.rolling_law, " force_proportional "}},
+      {"constant_torque", {c.rolling_law, " constant_torque "}},
+      {"displacement_damping", {c.rolling_law, " displacement_damping "}}};
+  for (const auto& [key, value] : r.vm) {
+    const auto it = blocks.find(key.substr(0, key.find('.')));
+    if (it == blocks.end() || value.defaulted()) continue;
+    const auto& [selected, users] = it->second;
+    if (users.find(" " + selected + " ") == std::string::npos)
+      throw ConfigError("key '" + key + "' belongs to the [" + it->first + "] block, but that law is not selected (" +
+                        (it->first == "coulomb" ? "contact.tangential = " : "contact.rolling = ") + selected + ")");
   }
   ContactParams p;
   p.k_n = r.required("linear.k_n", " (the normal stiffness of the linear law)");
@@ -174,7 +225,9 @@ void read_contact(const Reader& r, Config& c) {
     non_negative(p.mu, "coulomb.mu");
     non_negative(p.zeta_t = r.get<double>("coulomb.zeta_t"), "coulomb.zeta_t");
   }
+  read_rolling(r, c.rolling_law, p);
   ContactParams w = p;
+  w.rolling = r.get<bool>("wall_contact.rolling");
   if (r.vm.count("wall_contact.k_n")) positive(r, "wall_contact.k_n"), w.k_n = r.get<double>("wall_contact.k_n");
   if (r.vm.count("wall_contact.zeta") && r.vm.count("wall_contact.e"))
     throw ConfigError("keys 'wall_contact.zeta' and 'wall_contact.e': give at most one");

@@ -50,7 +50,8 @@ po::options_description config_schema() {
   contact.add_options()
       ("contact.normal", def("linear"), "[-] normal law: linear")
       ("contact.tangential", def("coulomb"), "[-] tangential law: coulomb | none")
-      ("contact.rolling", def("none"), "[-] rolling law: none");
+      ("contact.rolling", def("none"), "[-] rolling law: none | jiang_plastic | jiang_brittle | wang | "
+                                        "iwashita_oda | force_proportional | constant_torque | displacement_damping");
   po::options_description linear("[linear] normal spring-dashpot, no tension");
   linear.add_options()
       ("linear.k_n", opt<double>(), "[N/m] normal stiffness (required)")
@@ -62,13 +63,38 @@ po::options_description config_schema() {
       ("coulomb.k_s", opt<double>(), "[N/m] tangential stiffness (required with coulomb)")
       ("coulomb.mu", opt<double>(), "[-] friction coefficient >= 0 (required with coulomb)")
       ("coulomb.zeta_t", def(0.0), "[-] tangential damping ratio >= 0");
+  po::options_description jiang("[jiang] Jiang, Yu & Harris 2005 (jiang_plastic, jiang_brittle)");
+  jiang.add_options()("jiang.delta", opt<double>(), "[-] shape parameter: contact width B = delta r (required), > 0");
+  po::options_description wang("[wang] Wang et al. 2015 spring-slider on the objective rolling displacement");
+  wang.add_options()
+      ("wang.k_r", opt<double>(), "[N/m] rolling stiffness (required), > 0")
+      ("wang.mu_r", opt<double>(), "[-] rolling friction: cap mu_r F_n on T_r (required), >= 0")
+      ("wang.c_r", def(0.0), "[N s/m] rolling dashpot, >= 0");
+  po::options_description io("[iwashita_oda] Iwashita & Oda 1998 (legacy rolling measure, for comparison)");
+  io.add_options()
+      ("iwashita_oda.K_r", opt<double>(), "[N m/rad] rolling stiffness (required), > 0")
+      ("iwashita_oda.C_r", opt<double>(), "[N m s/rad] rolling dashpot (required), >= 0")
+      ("iwashita_oda.eta", opt<double>(), "[m] couple cap eta F_n (required), >= 0");
+  po::options_description fp("[force_proportional] commercial manual Eq. 3275 (not objective)");
+  fp.add_options()("force_proportional.mu_r", opt<double>(), "[-] rolling friction (required), >= 0");
+  po::options_description ct("[constant_torque] commercial manual Eq. 3276 with moment limiter");
+  ct.add_options()
+      ("constant_torque.mu_r", opt<double>(), "[-] rolling friction (required), >= 0")
+      ("constant_torque.f_lim", def(0.08), "[-] moment limiter fraction; 0 switches the limiter off");
+  po::options_description dd("[displacement_damping] commercial manual Eqs. 3277-3278");
+  dd.add_options()
+      ("displacement_damping.mu_r", opt<double>(), "[-] rolling friction (required), >= 0")
+      ("displacement_damping.theta_rmax", def(0.035), "[rad] rotation at which the couple reaches its cap, > 0")
+      ("displacement_damping.nu", def(0.0), "[-] viscous damping factor (0 = off), >= 0")
+      ("displacement_damping.f", def(1.0), "[-] viscous damping multiplier at the limit, >= 0");
   po::options_description wallc("[wall_contact] disc-wall parameters (default: the disc-disc ones)");
   wallc.add_options()
       ("wall_contact.k_n", opt<double>(), "[N/m] normal stiffness at walls")
       ("wall_contact.zeta", opt<double>(), "[-] normal damping ratio at walls")
       ("wall_contact.e", opt<double>(), "[-] restitution at walls, in (0, 1]")
       ("wall_contact.k_s", opt<double>(), "[N/m] tangential stiffness at walls")
-      ("wall_contact.mu", opt<double>(), "[-] friction at walls >= 0");
+      ("wall_contact.mu", opt<double>(), "[-] friction at walls >= 0")
+      ("wall_contact.rolling", def(true), "[-] rolling resistance at walls (same law and parameters as discs)");
   po::options_description neigh("[neighbour]");
   neigh.add_options()("neighbour.skin", def(0.0), "[m] Verlet skin; 0 = a quarter of the mean radius");
   po::options_description walls("[walls]");
@@ -102,7 +128,8 @@ po::options_description config_schema() {
       ("scene.omega", def(0.0), "[rad/s] initial angular velocity")
       ("scene.max_initial_overlap", def(0.01), "[-] largest initial overlap allowed, / smaller radius");
   po::options_description all;
-  all.add(run).add(diag).add(domain).add(grav).add(mat).add(contact).add(linear).add(coulomb).add(wallc)
+  all.add(run).add(diag).add(domain).add(grav).add(mat).add(contact).add(linear).add(coulomb).add(jiang).add(wang)
+      .add(io).add(fp).add(ct).add(dd).add(wallc)
       .add(neigh).add(walls).add(scene);
   return all;
 }

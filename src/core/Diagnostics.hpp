@@ -14,6 +14,9 @@ struct DiagnosticsRow {
   double coordination = 0.0;   // 2 x disc-disc contacts / discs
   double max_overlap = 0.0;    // largest u_n / smaller radius
   double W_g = 0.0, W_w = 0.0, W_n = 0.0, W_t = 0.0, W_r = 0.0;
+  double E_stored = 0.0;  // energy in the contact springs now
+  double D_slip = 0.0, D_r_plastic = 0.0, D_r_dashpot = 0.0, E_r_break = 0.0;
+  double D_other = 0.0;   // -W_c - E_stored - the dissipation above: dashpots and integration error
   double residual = 0.0;       // relative ledger residual
 };
 

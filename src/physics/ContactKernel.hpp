@@ -7,8 +7,9 @@
 // Energy ledger (PHYSICS.md section 5): the work of each contact on the relative motion is integrated
 // with the half-step velocities and the trapezoid of last and this step's force,
 //   dW_n = (F_n' + F_n)/2 v_n dt,  dW_t = (F_t' + F_t)/2 V_s dt,  dW_r = sum_i (M_i' + M_i)/2 omega_i dt,
-// and a moving wall's work on a disc is (f' + f)/2 . v_wall dt. A row is booked by the rank that owns
-// its disc 1, so a border pair computed on two ranks counts once.
+// and a moving wall's work on a disc is (f' + f)/2 . v_wall dt. The laws report Coulomb slip, rolling
+// plastic and dashpot work and brittle-break releases. A row is booked by the rank that owns its disc 1,
+// so a border pair computed on two ranks counts once.
 #include <array>
 #include <cstddef>
 #include <string>
@@ -26,6 +27,13 @@ namespace rondel {
 
 struct LedgerStep {
   double W_n = 0.0, W_t = 0.0, W_r = 0.0, W_w = 0.0;
+  double D_slip = 0.0, D_r_plastic = 0.0, D_r_dashpot = 0.0, E_r_break = 0.0;
+};
+
+// Energy held by the contact springs now [J per thickness].
+struct StoredEnergy {
+  double normal = 0.0, tangential = 0.0, rolling = 0.0;
+  double total() const { return normal + tangential + rolling; }
 };
 
 struct KernelContext {
@@ -46,10 +54,64 @@ struct ContactKernel {
     run_rows<true>(c, wall_rows, ledger);
   }
 
+  static StoredEnergy stored_energy(const KernelContext& c, ContactTable& pairs, ContactTable& wall_rows) {
+    StoredEnergy e;
+    stored_rows<false>(c, pairs, e);
+    stored_rows<true>(c, wall_rows, e);
+    return e;
+  }
+
  private:
-  static void open_row(ContactTable& tab, std::size_t r, double* const* th, double* const* rh) {
-    for (std::size_t s = 0; s < kTSlots; ++s) th[s][r] = 0.0;
-    for (std::size_t s = 0; s < kRSlots; ++s) rh[s][r] = 0.0;
+  struct Slots {
+    std::array<double*, kTSlots + 1> t{};
+    std::array<double*, kRSlots + 1> r{};
+    explicit Slots(ContactTable& tab) {
+      for (std::size_t s = 0; s < kTSlots; ++s) t[s] = tab.slot[s].data();
+      for (std::size_t s = 0; s < kRSlots; ++s) r[s] = tab.slot[kTSlots + s].data();
+    }
+  };
+
+  struct Row {
+    ContactKinematics k;
+    ContactBodies b;
+    double w1 = 0.0, w2 = 0.0;
+    Vec2 v_wall;
+  };
+
+  // Kinematics of row r; false when the discs are apart and the row carries no force (nothing to do).
+  template <bool kWall>
+  static bool kinematics(const KernelContext& c, const ContactTable& tab, std::size_t r, Row& row) {
+    const DiscStore& D = c.discs;
+    const auto i = static_cast<std::size_t>(tab.i1[r]);
+    const auto j = static_cast<std::size_t>(tab.i2[r]);
+    const bool loaded = tab.F_n[r] != 0.0 || tab.F_t[r] != 0.0;
+    row.w1 = D.omega[i];
+    if constexpr (kWall) {
+      const Wall& w = c.walls[j];
+      const Wall::Proximity prox = w.proximity(D.position[i]);
+      if (prox.dist >= D.radius[i] && !loaded) return false;
+      row.v_wall = w.velocity;
+      row.k = disc_wall_kinematics(prox.n, prox.dist, D.radius[i], D.velocity[i], w.velocity, row.w1);
+      row.b = disc_wall_bodies(D.mass[i], D.inertia[i]);
+    } else {
+      const Vec2 d = c.domain.separation(D.position[i], D.position[j]);
+      const double dist2 = dot(d, d);
+      const double Rs = D.radius[i] + D.radius[j];
+      if (dist2 >= Rs * Rs && !loaded) return false;
+      if (dist2 == 0.0)
+        throw InstabilityError("discs " + std::to_string(D.gid[i]) + " and " + std::to_string(D.gid[j]) +
+                               " have coincident centres");
+      row.w2 = D.omega[j];
+      row.k = disc_disc_kinematics(d, std::sqrt(dist2), D.radius[i], D.radius[j], D.velocity[i], D.velocity[j],
+                                   row.w1, row.w2);
+      row.b = disc_disc_bodies(D.mass[i], D.mass[j], D.inertia[i], D.inertia[j]);
+    }
+    return true;
+  }
+
+  static void open_row(ContactTable& tab, std::size_t r, const Slots& h) {
+    for (std::size_t s = 0; s < kTSlots; ++s) h.t[s][r] = 0.0;
+    for (std::size_t s = 0; s < kRSlots; ++s) h.r[s][r] = 0.0;
     tab.F_n[r] = 0.0;
     tab.F_t[r] = 0.0;
     if constexpr (Rolling::kActive) {
@@ -63,92 +125,86 @@ struct ContactKernel {
 
   template <bool kWall>
   static void run_rows(const KernelContext& c, ContactTable& tab, LedgerStep& ledger) {
-    const DiscStore& D = c.discs;
-    const std::size_t n_owned = D.n_owned();
+    const std::size_t n_owned = c.discs.n_owned();
     const double dt = c.dt;
-    std::array<double*, kTSlots + 1> th{};
-    std::array<double*, kRSlots + 1> rh{};
-    for (std::size_t s = 0; s < kTSlots; ++s) th[s] = tab.slot[s].data();
-    for (std::size_t s = 0; s < kRSlots; ++s) rh[s] = tab.slot[kTSlots + s].data();
+    const Slots h(tab);
     const std::vector<ContactParams>& params = kWall ? c.params.walls() : c.params.pairs();
     LedgerStep L;
-
+    Row row;
     for (std::size_t r = 0; r < tab.size(); ++r) {
-      const std::size_t i = static_cast<std::size_t>(tab.i1[r]);
-      const std::size_t j = static_cast<std::size_t>(tab.i2[r]);
-      ContactKinematics k;
-      ContactBodies b;
-      double w2 = 0.0;
-      Vec2 v_wall;
-      if constexpr (kWall) {
-        const Wall& w = c.walls[j];
-        const Wall::Proximity prox = w.proximity(D.position[i]);
-        if (prox.dist >= D.radius[i] && tab.F_n[r] == 0.0 && tab.F_t[r] == 0.0) {
-          open_row(tab, r, th.data(), rh.data());
-          continue;
-        }
-        v_wall = w.velocity;
-        k = disc_wall_kinematics(prox.n, prox.dist, D.radius[i], D.velocity[i], v_wall, D.omega[i]);
-        b = disc_wall_bodies(D.mass[i], D.inertia[i]);
-      } else {
-        const Vec2 d = c.domain.separation(D.position[i], D.position[j]);
-        const double dist2 = dot(d, d);
-        const double Rs = D.radius[i] + D.radius[j];
-        if (dist2 >= Rs * Rs && tab.F_n[r] == 0.0 && tab.F_t[r] == 0.0) {
-          open_row(tab, r, th.data(), rh.data());
-          continue;
-        }
-        if (dist2 == 0.0)
-          throw InstabilityError("discs " + std::to_string(D.gid[i]) + " and " + std::to_string(D.gid[j]) +
-                                 " have coincident centres");
-        w2 = D.omega[j];
-        k = disc_disc_kinematics(d, std::sqrt(dist2), D.radius[i], D.radius[j], D.velocity[i], D.velocity[j],
-                                 D.omega[i], w2);
-        b = disc_disc_bodies(D.mass[i], D.mass[j], D.inertia[i], D.inertia[j]);
+      if (!kinematics<kWall>(c, tab, r, row)) {
+        open_row(tab, r, h);
+        continue;
       }
-      const bool book = i < n_owned;
-      const double w1 = D.omega[i];
-
+      const ContactKinematics& k = row.k;
+      const bool book = static_cast<std::size_t>(tab.i1[r]) < n_owned;
       if (k.u_n <= 0.0) {
         // The contact opened this step: book the last half of the trapezoid, then forget its history.
         if (book) {
           L.W_n += 0.5 * tab.F_n[r] * k.v_n * dt;
           L.W_t += 0.5 * tab.F_t[r] * k.V_s * dt;
-          if constexpr (Rolling::kActive) L.W_r += 0.5 * (tab.M1[r] * w1 + tab.M2[r] * w2) * dt;
-          if constexpr (kWall) L.W_w += 0.5 * dot(tab.f1[r], v_wall) * dt;
+          if constexpr (Rolling::kActive) L.W_r += 0.5 * (tab.M1[r] * row.w1 + tab.M2[r] * row.w2) * dt;
+          if constexpr (kWall) L.W_w += 0.5 * dot(tab.f1[r], row.v_wall) * dt;
         }
-        open_row(tab, r, th.data(), rh.data());
+        open_row(tab, r, h);
         continue;
       }
 
       const ContactParams& p = params[static_cast<std::size_t>(tab.param[r])];
-      const double F_n = Normal::force(p, b, k);
-      const double F_t = Tangential::force(p, b, k, F_n, dt, th.data(), r);
+      const double F_n = Normal::force(p, row.b, k);
+      const TangentialForce T = Tangential::force(p, row.b, k, F_n, dt, h.t.data(), r);
       RollingCouple M;
-      if constexpr (Rolling::kActive) M = Rolling::moment(p, b, k, F_n, dt, w1, w2, rh.data(), r);
-
-      const Vec2 f1 = F_t * k.t - F_n * k.n;
+      if constexpr (Rolling::kActive) {
+        if (p.rolling) M = Rolling::moment(p, row.b, k, F_n, dt, row.w1, row.w2, h.r.data(), r);
+      }
+      const Vec2 f1 = T.F_t * k.t - F_n * k.n;
       if (book) {
         L.W_n += 0.5 * (tab.F_n[r] + F_n) * k.v_n * dt;
-        L.W_t += 0.5 * (tab.F_t[r] + F_t) * k.V_s * dt;
-        if constexpr (Rolling::kActive)
-          L.W_r += 0.5 * ((tab.M1[r] + M.M1) * w1 + (tab.M2[r] + M.M2) * w2) * dt;
-        if constexpr (kWall) L.W_w += 0.5 * dot(tab.f1[r] + f1, v_wall) * dt;
+        L.W_t += 0.5 * (tab.F_t[r] + T.F_t) * k.V_s * dt;
+        L.D_slip += T.slip;
+        if constexpr (Rolling::kActive) {
+          L.W_r += 0.5 * ((tab.M1[r] + M.M1) * row.w1 + (tab.M2[r] + M.M2) * row.w2) * dt;
+          L.D_r_plastic += M.plastic;
+          L.D_r_dashpot += M.dashpot;
+          L.E_r_break += M.released;
+        }
+        if constexpr (kWall) L.W_w += 0.5 * dot(tab.f1[r] + f1, row.v_wall) * dt;
       }
       tab.F_n[r] = F_n;
-      tab.F_t[r] = F_t;
+      tab.F_t[r] = T.F_t;
       if constexpr (Rolling::kActive) {
         tab.M1[r] = M.M1;
         tab.M2[r] = M.M2;
       }
       tab.f1[r] = f1;
-      tab.tq1[r] = k.a1 * F_t + M.M1;
-      if constexpr (!kWall) tab.tq2[r] = k.a2 * F_t + M.M2;
+      tab.tq1[r] = k.a1 * T.F_t + M.M1;
+      if constexpr (!kWall) tab.tq2[r] = k.a2 * T.F_t + M.M2;
     }
     ledger.W_n += L.W_n;
     ledger.W_t += L.W_t;
     ledger.W_r += L.W_r;
     ledger.W_w += L.W_w;
+    ledger.D_slip += L.D_slip;
+    ledger.D_r_plastic += L.D_r_plastic;
+    ledger.D_r_dashpot += L.D_r_dashpot;
+    ledger.E_r_break += L.E_r_break;
+  }
+
+  template <bool kWall>
+  static void stored_rows(const KernelContext& c, ContactTable& tab, StoredEnergy& e) {
+    const Slots h(tab);
+    const std::vector<ContactParams>& params = kWall ? c.params.walls() : c.params.pairs();
+    Row row;
+    for (std::size_t r = 0; r < tab.size(); ++r) {
+      if (static_cast<std::size_t>(tab.i1[r]) >= c.discs.n_owned()) continue;
+      if (!kinematics<kWall>(c, tab, r, row) || row.k.u_n <= 0.0) continue;
+      const ContactParams& p = params[static_cast<std::size_t>(tab.param[r])];
+      e.normal += 0.5 * p.k_n * row.k.u_n * row.k.u_n;
+      e.tangential += Tangential::stored(p, h.t.data(), r);
+      if constexpr (Rolling::kActive) {
+        if (p.rolling) e.rolling += Rolling::stored(p, row.b, row.k, tab.F_n[r], h.r.data(), r);
+      }
+    }
   }
 };
 

@@ -1,5 +1,6 @@
 #include "physics/CriticalTimeStep.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -14,55 +15,106 @@ double mode_limit(double omega, double zeta) {
 
 namespace {
 
-struct Body {
-  double m, I, R;  // a wall: m = I = R = inf
-  std::string label;
+struct Rolling {
+  double K = 0.0;  // rolling stiffness [N m/rad]; 0 = no rolling spring
+  double C = 0.0;  // rolling dashpot [N m s/rad]
 };
 
-Body disc_body(const MaterialInfo& mat, std::size_t index, double R) {
-  const double m = mat.density * std::numbers::pi * R * R * mat.thickness;
-  std::ostringstream s;
-  s << "material " << index << " R=" << R;
-  return {m, 0.5 * m * R * R, R, s.str()};
-}
-
-void consider(CriticalStep& best, double dt, const char* mode, const Body& a, const Body& b) {
-  if (dt < best.dt) best = {dt, mode, a.label + " / " + b.label};
-}
-
-void pair_limits(CriticalStep& best, const LawSelection& laws, const ContactParams& p, const Body& a,
-                 const Body& b) {
+Rolling rolling_spring(const LawSelection& laws, const ContactParams& p, const ContactBodies& bodies,
+                       const ContactBody& a, const ContactBody& b) {
+  if (!p.rolling) return {};
   const bool wall = std::isinf(b.m);
-  const double m_eff = wall ? a.m : a.m * b.m / (a.m + b.m);
+  const double R_star = wall ? a.R : a.R * b.R / (a.R + b.R);
+  switch (laws.rolling) {
+    case RollingLaw::jiang_plastic:
+    case RollingLaw::jiang_brittle: {
+      const double B = p.delta * 2.0 * R_star;  // r = 2 R1 R2/(R1 + R2) = 2 R*
+      return {p.k_n * B * B / 12.0, NormalLinear::c_n(p, bodies) * B * B / 12.0};
+    }
+    case RollingLaw::wang:
+      return {p.k_r * R_star * R_star, p.c_r * R_star * R_star};
+    case RollingLaw::iwashita_oda:
+      return {p.K_r, p.C_r};
+    default:
+      return {};
+  }
+}
+
+struct Best {
+  double dt = INFINITY;
+  const char* mode = "";
+  void consider(double limit, const char* name) {
+    if (limit < dt) dt = limit, mode = name;
+  }
+};
+
+}  // namespace
+
+double contact_critical_step(const LawSelection& laws, const ContactParams& p, const ContactBody& a,
+                             const ContactBody& b, std::string* mode) {
+  const bool wall = std::isinf(b.m);
   const ContactBodies bodies = wall ? disc_wall_bodies(a.m, a.I) : disc_disc_bodies(a.m, b.m, a.I, b.I);
+  const double m_eff = bodies.m_eff;
+  Best best;
   const double w_n = std::sqrt(p.k_n / m_eff);
-  const double zeta_n = NormalLinear::c_n(p, bodies) / (2.0 * std::sqrt(m_eff * p.k_n));
-  consider(best, mode_limit(w_n, zeta_n), "normal", a, b);
+  best.consider(mode_limit(w_n, NormalLinear::c_n(p, bodies) / (2.0 * std::sqrt(m_eff * p.k_n))), "normal");
+
+  double w2_t = 0.0, zeta_t = 0.0;
   if (laws.tangential == TangentialLaw::coulomb) {
     double inv_mt = 1.0 / a.m + a.R * a.R / a.I;
     if (!wall) inv_mt += 1.0 / b.m + b.R * b.R / b.I;
     const double m_t = 1.0 / inv_mt;
-    const double w_t = std::sqrt(p.k_s / m_t);
-    const double zeta_t = p.zeta_t * std::sqrt(m_eff / m_t);
-    consider(best, mode_limit(w_t, zeta_t), "tangential", a, b);
+    w2_t = p.k_s / m_t;
+    zeta_t = p.zeta_t * std::sqrt(m_eff / m_t);
+    best.consider(mode_limit(std::sqrt(w2_t), zeta_t), "tangential");
   }
+  const Rolling roll = rolling_spring(laws, p, bodies, a, b);
+  if (roll.K > 0.0) {
+    const double I_red = wall ? a.I : a.I * b.I / (a.I + b.I);
+    const double w2_r = roll.K / I_red;
+    const double zeta_r = roll.C / (2.0 * std::sqrt(roll.K * I_red));
+    if (w2_t > 0.0) best.consider(mode_limit(std::sqrt(w2_t + w2_r), std::max(zeta_t, zeta_r)), "tangential+rolling");
+    else best.consider(mode_limit(std::sqrt(w2_r), zeta_r), "rolling");
+  }
+  if (mode) *mode = best.mode;
+  return best.dt;
 }
-
-}  // namespace
 
 CriticalStep critical_time_step(const LawSelection& laws, const ContactParamTable& params,
                                 const std::vector<MaterialInfo>& materials, bool has_walls) {
   CriticalStep best{INFINITY, "", ""};
-  const Body wall{INFINITY, INFINITY, INFINITY, "wall"};
+  auto radii = [](const MaterialInfo& m) {
+    std::vector<double> out{m.R_min};
+    constexpr int kSamples = 8;
+    for (int s = 1; s <= kSamples && m.R_max > m.R_min; ++s)
+      out.push_back(m.R_min * std::pow(m.R_max / m.R_min, static_cast<double>(s) / kSamples));
+    return out;
+  };
+  auto body = [](const MaterialInfo& mat, double R) {
+    const double m = mat.density * std::numbers::pi * R * R * mat.thickness;
+    return ContactBody{m, 0.5 * m * R * R, R};
+  };
+  auto label = [](std::size_t index, double R) {
+    std::ostringstream s;
+    s << "material " << index << " R=" << R;
+    return s.str();
+  };
+  const ContactBody wall{INFINITY, INFINITY, INFINITY};
   for (std::size_t a = 0; a < materials.size(); ++a) {
     if (materials[a].R_max <= 0.0) continue;  // no disc of this material in the scene
-    for (double Ra : {materials[a].R_min, materials[a].R_max}) {
-      const Body A = disc_body(materials[a], a, Ra);
-      if (has_walls) pair_limits(best, laws, params.wall(a), A, wall);
+    for (double Ra : radii(materials[a])) {
+      const ContactBody A = body(materials[a], Ra);
+      std::string mode;
+      if (has_walls) {
+        const double dt = contact_critical_step(laws, params.wall(a), A, wall, &mode);
+        if (dt < best.dt) best = {dt, mode, label(a, Ra) + " / wall"};
+      }
       for (std::size_t b = 0; b < materials.size(); ++b) {
         if (materials[b].R_max <= 0.0) continue;
-        for (double Rb : {materials[b].R_min, materials[b].R_max})
-          pair_limits(best, laws, params.pair(a, b), A, disc_body(materials[b], b, Rb));
+        for (double Rb : radii(materials[b])) {
+          const double dt = contact_critical_step(laws, params.pair(a, b), A, body(materials[b], Rb), &mode);
+          if (dt < best.dt) best = {dt, mode, label(a, Ra) + " / " + label(b, Rb)};
+        }
       }
     }
   }

@@ -1,10 +1,14 @@
 #pragma once
 // Critical time step of velocity Verlet (PHYSICS.md section 4): for each contact mode of angular
 // frequency w and damping ratio zeta, dt < (2/w)(sqrt(1 + zeta^2) - zeta). Modes:
-//   normal                   w^2 = k_n/m_eff
-//   tangential with rotation w^2 = k_s/m_t,  1/m_t = 1/m1 + 1/m2 + R1^2/I1 + R2^2/I2
-// (rolling modes join with the rolling laws). dt_crit is the smallest limit over every material pair and
-// radius pair that can occur, walls included.
+//   normal                 w^2 = k_n/m_eff
+//   tangential (rotation)  w^2 = k_s/m_t,  1/m_t = 1/m1 + 1/m2 + R1^2/I1 + R2^2/I2
+//   rolling                w^2 = K/I_red,  I_red = I1 I2/(I1 + I2) (a wall: I1), K the rolling stiffness
+//                          (jiang_*: k_n B^2/12; wang: k_r R*^2; iwashita_oda: K_r)
+//   tangential and rolling together: w^2 <= k_s/m_t + K/I_red (conservative, within about 10 %)
+// displacement_damping's stiffness grows with F_n and is not known in advance; force_proportional and
+// constant_torque have no spring. dt_crit is the smallest limit over every material pair and radius pair
+// that can occur (radii sampled geometrically between the smallest and the largest), walls included.
 #include <string>
 #include <vector>
 
@@ -22,12 +26,21 @@ struct MaterialInfo {
 
 struct CriticalStep {
   double dt = 0.0;
-  std::string mode;  // "normal", "tangential"
+  std::string mode;  // "normal", "tangential", "rolling", "tangential+rolling"
   std::string pair;  // which bodies, e.g. "material 0 R=0.005 / material 0 R=0.005" or "... / wall"
 };
 
-// Stability limit of one undamped-or-damped mode.
+// A body of a contact: a disc, or a wall (m = I = R = inf).
+struct ContactBody {
+  double m, I, R;
+};
+
+// Stability limit of one mode.
 double mode_limit(double omega, double zeta);
+
+// The critical step of one contact (its most limiting mode); `mode` receives the mode's name.
+double contact_critical_step(const LawSelection& laws, const ContactParams& p, const ContactBody& a,
+                             const ContactBody& b, std::string* mode = nullptr);
 
 CriticalStep critical_time_step(const LawSelection& laws, const ContactParamTable& params,
                                 const std::vector<MaterialInfo>& materials, bool has_walls);

@@ -13,6 +13,10 @@ namespace rondel {
 struct EnergyLedger {
   double KE0 = 0.0;
   double W_g = 0.0, W_w = 0.0, W_n = 0.0, W_t = 0.0, W_r = 0.0;
+  // Dissipation by mechanism (>= 0): Coulomb slip, rolling plastic work, rolling dashpots, and the stored
+  // rolling energy released when brittle contacts break. -W_c = stored + these + the rest (dashpots of
+  // the normal and tangential springs, and the integration error).
+  double D_slip = 0.0, D_r_plastic = 0.0, D_r_dashpot = 0.0, E_r_break = 0.0;
   double scale = 0.0;  // largest of KE, |W_g|, |W_w| seen at the diagnostics so far
 
   void start(double KE) {
@@ -25,6 +29,10 @@ struct EnergyLedger {
     W_n += s.W_n;
     W_t += s.W_t;
     W_r += s.W_r;
+    D_slip += s.D_slip;
+    D_r_plastic += s.D_r_plastic;
+    D_r_dashpot += s.D_r_dashpot;
+    E_r_break += s.E_r_break;
   }
   double W_c() const { return W_n + W_t + W_r; }
   double absolute_residual(double KE) const { return std::fabs(KE - KE0 - W_g - W_w - W_c()); }

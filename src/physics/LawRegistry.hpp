@@ -14,13 +14,22 @@ struct LawSelection {
   RollingLaw rolling = RollingLaw::none;
 };
 
-using KernelFn = void (*)(const KernelContext&, ContactTable&, ContactTable&, LedgerStep&);
+// The kernel and the stored-energy pass instantiated for the selected laws, chosen once at set-up (no
+// per-contact dispatch).
+struct KernelOps {
+  void (*run)(const KernelContext&, ContactTable&, ContactTable&, LedgerStep&) = nullptr;
+  StoredEnergy (*stored)(const KernelContext&, ContactTable&, ContactTable&) = nullptr;
+};
 
-// The kernel instantiated for the selected laws, chosen once at set-up (no per-contact dispatch).
-KernelFn select_kernel(const LawSelection& laws);
+KernelOps select_kernel(const LawSelection& laws);
 // History slot names of the selected laws, in kernel order (tangential, then rolling).
 std::vector<std::string> history_slots(const LawSelection& laws);
 // An empty contact table with exactly the columns the selected laws need.
 ContactTable make_contact_table(const LawSelection& laws);
+
+// Keyword <-> law. parse_* return false for an unknown keyword.
+bool parse_rolling_law(const std::string& name, RollingLaw& out);
+// Every rolling keyword, "none" first, separated by " | " (for messages and --help).
+std::string rolling_law_names();
 
 }  // namespace rondel

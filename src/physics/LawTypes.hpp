@@ -34,16 +34,35 @@ inline CapResult cap_spring_slider(double trial, double cap, double stiffness, d
   return {trial, false};
 }
 
-// Rolling couples on disc 1 and disc 2. Objective laws give M2 = -M1; force_proportional gives each disc
-// its own couple from its own spin.
+// Rolling couples on disc 1 and disc 2 (objective laws give M2 = -M1; force_proportional gives each disc
+// its own couple from its own spin), with this step's energy terms for the ledger [J per thickness]:
+// plastic work of a capped spring-slider, rolling dashpot work, stored energy released by a brittle break.
 struct RollingCouple {
   double M1 = 0.0;
   double M2 = 0.0;
+  double plastic = 0.0;
+  double dashpot = 0.0;
+  double released = 0.0;
+};
+
+// Tangential force on disc 1 along t, with the work dissipated by Coulomb slip this step.
+struct TangentialForce {
+  double F_t = 0.0;
+  double slip = 0.0;
 };
 
 enum class NormalLaw { linear };
 enum class TangentialLaw { none, coulomb };
-enum class RollingLaw { none };
+enum class RollingLaw {
+  none,
+  jiang_plastic,
+  jiang_brittle,
+  wang,
+  iwashita_oda,
+  force_proportional,
+  constant_torque,
+  displacement_damping
+};
 
 std::string to_string(NormalLaw law);
 std::string to_string(TangentialLaw law);

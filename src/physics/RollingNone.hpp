@@ -18,6 +18,10 @@ struct RollingNone {
                               std::size_t) {
     return {};
   }
+  static double stored(const ContactParams&, const ContactBodies&, const ContactKinematics&, double,
+                       double* const*, std::size_t) {
+    return 0.0;
+  }
 };
 
 }  // namespace rondel

@@ -16,22 +16,29 @@ namespace rondel {
 struct TangentialNone {
   static constexpr const char* name = "none";
   static constexpr std::array<const char*, 0> slots{};
-  static double force(const ContactParams&, const ContactBodies&, const ContactKinematics&, double, double,
-                      double* const*, std::size_t) {
-    return 0.0;
+  static TangentialForce force(const ContactParams&, const ContactBodies&, const ContactKinematics&, double,
+                               double, double* const*, std::size_t) {
+    return {};
   }
+  static double stored(const ContactParams&, double* const*, std::size_t) { return 0.0; }
 };
 
 struct TangentialCoulomb {
   static constexpr const char* name = "coulomb";
   static constexpr std::array<const char*, 1> slots{"xi"};
-  static double force(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double F_n,
-                      double dt, double* const* hist, std::size_t row) {
+  static TangentialForce force(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
+                               double F_n, double dt, double* const* hist, std::size_t row) {
     double& xi = hist[0][row];
     xi += k.V_s * dt;
     const double c_t = p.zeta_t > 0.0 ? 2.0 * p.zeta_t * std::sqrt(b.m_eff * p.k_s) : 0.0;
     const double trial = -p.k_s * xi - c_t * k.V_s;
-    return cap_spring_slider(trial, p.mu * F_n, p.k_s, xi).value;
+    const double before = xi;
+    const CapResult F = cap_spring_slider(trial, p.mu * F_n, p.k_s, xi);
+    return {F.value, F.capped ? std::fabs(F.value * (before - xi)) : 0.0};
+  }
+  static double stored(const ContactParams& p, double* const* hist, std::size_t row) {
+    const double xi = hist[0][row];
+    return 0.5 * p.k_s * xi * xi;
   }
 };
 

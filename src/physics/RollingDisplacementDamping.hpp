@@ -1,0 +1,64 @@
+#pragma once
+// displacement_damping: the commercial manual's displacement damping method (CM Eqs. 3277-3278);
+// PHYSICS.md section 3.
+//   R_eq = 2 R1 R2/(R1 + R2) (-> 2 R1 at a wall),  k_r = mu_r R_eq F_n/theta_rmax      [N m/rad]
+//   trial = M_k - k_r (omega1 - omega2) dt; |trial| > mu_r R_eq F_n: "at the limit", M_k clamped to it;
+//   otherwise "elastic", M_k = trial.
+//   viscous part (only when nu > 0): -nu C_crit (omega1 - omega2) elastic, -f nu C_crit (omega1 - omega2)
+//   at the limit (regime from the trial value); C_crit = 2 sqrt(I_r k_r),
+//   I_r = [(I1 + m1 R1^2)^-1 + (I2 + m2 R2^2)^-1]^-1 (a wall: I1 + m1 R1^2).
+//   M = M_k + M_d, +M on disc 1 and -M on disc 2.
+// Parameters mu_r, theta_rmax (0.035), nu (0), f (1). History slot: "M_k" [N m].
+#include <array>
+#include <cmath>
+
+#include "core/ContactParams.hpp"
+#include "physics/ContactKinematics.hpp"
+#include "physics/LawTypes.hpp"
+
+namespace rondel {
+
+struct RollingDisplacementDamping {
+  static constexpr const char* name = "displacement_damping";
+  static constexpr bool kActive = true;
+  static constexpr std::array<const char*, 1> slots{"M_k"};
+
+  static double R_eq(const ContactKinematics& k) { return k.wall ? 2.0 * k.R1 : 2.0 * k.R1 * k.R2 / (k.R1 + k.R2); }
+
+  static RollingCouple moment(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
+                              double F_n, double dt, double, double, double* const* hist, std::size_t row) {
+    double& M_k = hist[0][row];
+    const double cap = p.mu_r * R_eq(k) * F_n;
+    const double k_r = cap / p.theta_rmax;
+    const double rel = k.thetadot_r;
+    const double trial = M_k - k_r * rel * dt;
+    const bool at_limit = std::fabs(trial) > cap;
+    RollingCouple c;
+    if (at_limit) {
+      const double clamped = cap * sign(trial);
+      c.plastic = k_r > 0.0 ? std::fabs(clamped * (trial - clamped)) / k_r : 0.0;  // cap x slip angle
+      M_k = clamped;
+    } else {
+      M_k = trial;
+    }
+    double M_d = 0.0;
+    if (p.nu > 0.0) {
+      const double I_r = k.wall ? b.I1 + b.m1 * k.R1 * k.R1
+                                : 1.0 / (1.0 / (b.I1 + b.m1 * k.R1 * k.R1) + 1.0 / (b.I2 + b.m2 * k.R2 * k.R2));
+      const double C_crit = 2.0 * std::sqrt(I_r * k_r);
+      M_d = -(at_limit ? p.f_visc : 1.0) * p.nu * C_crit * rel;
+      c.dashpot = -M_d * rel * dt;
+    }
+    c.M1 = M_k + M_d;
+    c.M2 = -c.M1;
+    return c;
+  }
+  static double stored(const ContactParams& p, const ContactBodies&, const ContactKinematics& k, double F_n,
+                       double* const* hist, std::size_t row) {
+    const double k_r = p.mu_r * R_eq(k) * F_n / p.theta_rmax;
+    const double M = hist[0][row];
+    return k_r > 0.0 ? 0.5 * M * M / k_r : 0.0;
+  }
+};
+
+}  // namespace rondel

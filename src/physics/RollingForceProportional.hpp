@@ -1,0 +1,32 @@
+#pragma once
+// force_proportional: the commercial manual's force proportional method (CM Eq. 3275); PHYSICS.md
+// section 3. Each disc gets its own couple from its own spin:
+//   M_i = -mu_r F_n a_i sign(omega_i)      [N m],  a_i = R_i - u_n/2 (a wall gets none)
+// Not objective: a pair in rigid rotation is braked, so the angular momentum of an isolated pair is not
+// conserved (dL/dt = -mu_r F_n (a1 + a2) for a pair spinning together, VALIDATION.md case K7).
+// Parameter mu_r [-]. No history.
+#include <array>
+
+#include "core/ContactParams.hpp"
+#include "physics/ContactKinematics.hpp"
+#include "physics/LawTypes.hpp"
+
+namespace rondel {
+
+struct RollingForceProportional {
+  static constexpr const char* name = "force_proportional";
+  static constexpr bool kActive = true;
+  static constexpr std::array<const char*, 0> slots{};
+
+  static RollingCouple moment(const ContactParams& p, const ContactBodies&, const ContactKinematics& k,
+                              double F_n, double, double w1, double w2, double* const*, std::size_t) {
+    const double f = p.mu_r * F_n;
+    return {-f * k.a1 * sign(w1), k.wall ? 0.0 : -f * k.a2 * sign(w2)};
+  }
+  static double stored(const ContactParams&, const ContactBodies&, const ContactKinematics&, double,
+                       double* const*, std::size_t) {
+    return 0.0;
+  }
+};
+
+}  // namespace rondel

@@ -1,0 +1,48 @@
+#pragma once
+// iwashita_oda: Iwashita & Oda 1998 (IO98) as summarised in J05 Table 1; PHYSICS.md section 3. Legacy
+// rolling measure kept on purpose for comparison studies: it is zero in rigid rotation but not in pure
+// sliding of unequal discs (it gives (R1 - R2) omega T/2 where W15 gives 0, VALIDATION.md case K8).
+//   r' = (R1 + R2)/2;  dbeta = turn of the contact direction = -V_t dt/|d| (W15 Eqs. 17, 19a)
+//   da = R1 (dtheta1 - dbeta),  db = R2 (dtheta2 - dbeta),  dU_r = (da - db)/2,  theta_r += dU_r/r'
+//   at a wall (no wall limit exists, J05 section 2.2): theta_r += (omega1 - omega_wall) dt
+//   trial M = -K_r theta_r - C_r dtheta_r/dt, capped at eta F_n by the capping rule.
+// Parameters K_r [N m/rad], C_r [N m s/rad], eta [m]. History slot: "theta_r" [rad].
+#include <array>
+#include <cmath>
+
+#include "core/ContactParams.hpp"
+#include "physics/ContactKinematics.hpp"
+#include "physics/LawTypes.hpp"
+
+namespace rondel {
+
+// Rate of the legacy rolling angle, dtheta_r/dt.
+inline double iwashita_oda_rate(const ContactKinematics& k, double w1, double w2) {
+  if (k.wall) return w1;
+  const double dbeta = -k.V_t / k.dist;
+  const double da = k.R1 * (w1 - dbeta), db = k.R2 * (w2 - dbeta);
+  return 0.5 * (da - db) / (0.5 * (k.R1 + k.R2));
+}
+
+struct RollingIwashitaOda {
+  static constexpr const char* name = "iwashita_oda";
+  static constexpr bool kActive = true;
+  static constexpr std::array<const char*, 1> slots{"theta_r"};
+
+  static RollingCouple moment(const ContactParams& p, const ContactBodies&, const ContactKinematics& k,
+                              double F_n, double dt, double w1, double w2, double* const* hist, std::size_t row) {
+    double& theta_r = hist[0][row];
+    const double rate = iwashita_oda_rate(k, w1, w2);
+    theta_r += rate * dt;
+    const double trial = -p.K_r * theta_r - p.C_r * rate;
+    const CapResult M = cap_spring_slider(trial, p.eta * F_n, p.K_r, theta_r);
+    return {M.value, -M.value};
+  }
+  static double stored(const ContactParams& p, const ContactBodies&, const ContactKinematics&, double,
+                       double* const* hist, std::size_t row) {
+    const double th = hist[0][row];
+    return 0.5 * p.K_r * th * th;
+  }
+};
+
+}  // namespace rondel

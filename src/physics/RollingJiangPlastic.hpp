@@ -1,0 +1,58 @@
+#pragma once
+// jiang_plastic: Jiang, Yu & Harris 2005 (J05) Model 1, Eqs. 24, 29, 33, 35, 49c; PHYSICS.md section 3.
+//   contact width B = delta r, r = 2 R1 R2/(R1 + R2) (-> 2 R1 at a wall, J05 Eq. 11)      [m]
+//   K_m = k_n B^2/12 [N m/rad],  mu_m = c_n B^2/12 [N m s/rad]
+//   theta_r += thetadot_r dt;  trial M = -K_m theta_r - mu_m thetadot_r  [N m, per thickness]
+//   capped at M0 = F_n B/6 by the capping rule (theta_r reset to -M/K_m).
+// The couple acts +M on disc 1 and -M on disc 2. History slot: "theta_r" [rad]. Parameter: delta.
+#include <array>
+#include <cmath>
+
+#include "core/ContactParams.hpp"
+#include "physics/ContactKinematics.hpp"
+#include "physics/LawTypes.hpp"
+#include "physics/NormalLinear.hpp"
+
+namespace rondel {
+
+struct JiangGeometry {
+  double B, K_m, mu_m;
+};
+
+inline JiangGeometry jiang_geometry(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k) {
+  const double r = k.wall ? 2.0 * k.R1 : 2.0 * k.R1 * k.R2 / (k.R1 + k.R2);
+  const double B = p.delta * r;
+  return {B, p.k_n * B * B / 12.0, NormalLinear::c_n(p, b) * B * B / 12.0};
+}
+
+// The elastic-plastic spring-slider shared by both Jiang models; theta_r already incremented.
+inline RollingCouple jiang_spring_slider(const JiangGeometry& g, double F_n, double thetadot_r, double dt,
+                                         double& theta_r) {
+  const double trial = -g.K_m * theta_r - g.mu_m * thetadot_r;
+  const double before = theta_r;
+  const CapResult m = cap_spring_slider(trial, F_n * g.B / 6.0, g.K_m, theta_r);
+  RollingCouple c{m.value, -m.value};
+  if (m.capped) c.plastic = std::fabs(m.value * (before - theta_r));
+  else c.dashpot = g.mu_m * thetadot_r * thetadot_r * dt;
+  return c;
+}
+
+struct RollingJiangPlastic {
+  static constexpr const char* name = "jiang_plastic";
+  static constexpr bool kActive = true;
+  static constexpr std::array<const char*, 1> slots{"theta_r"};
+
+  static RollingCouple moment(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
+                              double F_n, double dt, double, double, double* const* hist, std::size_t row) {
+    double& theta_r = hist[0][row];
+    theta_r += k.thetadot_r * dt;
+    return jiang_spring_slider(jiang_geometry(p, b, k), F_n, k.thetadot_r, dt, theta_r);
+  }
+  static double stored(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double,
+                       double* const* hist, std::size_t row) {
+    const double th = hist[0][row];
+    return 0.5 * jiang_geometry(p, b, k).K_m * th * th;
+  }
+};
+
+}  // namespace rondel

@@ -1,0 +1,42 @@
+#pragma once
+// wang: Wang, Alonso-Marroquin, Xue & Xie 2015 (W15) Eq. 28, a spring-slider on the objective rolling
+// displacement (W15 Eq. 11); PHYSICS.md section 3.
+//   x_r += V_r dt,  V_r = R* (w1 - w2), R* = R1 R2/(R1 + R2) (-> R1 at a wall)            [m]
+//   trial T_r = -k_r x_r - c_r V_r, capped at mu_r F_n by the capping rule (x_r = -T_r/k_r)  [N]
+//   M = R* T_r, +M on disc 1 and -M on disc 2                                                [N m]
+// Parameters k_r [N/m], mu_r [-], c_r [N s/m] (default 0). History slot: "x_r" [m].
+#include <array>
+#include <cmath>
+
+#include "core/ContactParams.hpp"
+#include "physics/ContactKinematics.hpp"
+#include "physics/LawTypes.hpp"
+
+namespace rondel {
+
+struct RollingWang {
+  static constexpr const char* name = "wang";
+  static constexpr bool kActive = true;
+  static constexpr std::array<const char*, 1> slots{"x_r"};
+
+  static RollingCouple moment(const ContactParams& p, const ContactBodies&, const ContactKinematics& k,
+                              double F_n, double dt, double, double, double* const* hist, std::size_t row) {
+    double& x_r = hist[0][row];
+    x_r += k.V_r * dt;
+    const double trial = -p.k_r * x_r - p.c_r * k.V_r;
+    const double before = x_r;
+    const CapResult T = cap_spring_slider(trial, p.mu_r * F_n, p.k_r, x_r);
+    const double M = k.R_star * T.value;
+    RollingCouple c{M, -M};
+    if (T.capped) c.plastic = std::fabs(T.value * (before - x_r));
+    else c.dashpot = p.c_r * k.V_r * k.V_r * dt;
+    return c;
+  }
+  static double stored(const ContactParams& p, const ContactBodies&, const ContactKinematics&, double,
+                       double* const* hist, std::size_t row) {
+    const double x = hist[0][row];
+    return 0.5 * p.k_r * x * x;
+  }
+};
+
+}  // namespace rondel
