@@ -175,7 +175,9 @@ void Simulation::step() {
   if (neighbours_.needs_rebuild(disp, walls_)) rebuild();
   // 4-6. Contact kernel over every row, then per-disc sums in ascending partner gid (gravity first).
   LedgerStep work;
-  kernel_.run(KernelContext{discs_, config_.domain, walls_, config_.params, dt_}, pairs_, wall_rows_, work);
+  kernel_.run(KernelContext{discs_, config_.domain, walls_, config_.params, dt_, config_.max_overlap}, pairs_,
+              wall_rows_, work);
+  if (comm_.any(work.worst_overlap > 0.0)) report_overlap(work);
   assembly_.assemble(discs_, config_.gravity, pairs_, wall_rows_);
   // 7. Second half kick.
   Integrator::half_kick(discs_, dt_);
@@ -241,13 +243,29 @@ DiagnosticsRow Simulation::diagnostics() {
   return row;
 }
 
+void Simulation::report_overlap(const LedgerStep& work) const {
+  std::string where;
+  if (work.worst_overlap > 0.0) {
+    where = work.worst_at_wall ? "disc " + std::to_string(work.worst_key.lo) + " and wall " + std::to_string(work.worst_key.hi)
+                               : "discs " + std::to_string(work.worst_key.lo) + " and " + std::to_string(work.worst_key.hi);
+    where += " overlap by " + fmt(work.worst_overlap) + " of the smaller radius";
+  } else {
+    where = "another rank found an overlap";
+  }
+  throw InstabilityError("step " + std::to_string(step_ + 1) + " (t = " + fmt(time_ + dt_) + " s): " + where +
+                         ", above run.max_overlap = " + fmt(config_.max_overlap) +
+                         ". The linear contact is not valid there: stiffen the contacts (linear.k_n), slow the "
+                         "impact, or lower run.dt if the run became unstable");
+}
+
 void Simulation::check_stability(const DiagnosticsRow& row) const {
   if (!std::isfinite(row.ke_trans + row.ke_rot))
     throw InstabilityError("step " + std::to_string(row.step) + ": the kinetic energy is not finite");
-  if (row.max_overlap > config_.max_overlap)
-    throw InstabilityError("step " + std::to_string(row.step) + ": an overlap reached " + fmt(row.max_overlap) +
-                           " of the smaller radius (run.max_overlap = " + fmt(config_.max_overlap) +
-                           "); lower run.dt or run.safety, or stiffen the contacts");
+  if (row.residual > config_.max_residual)
+    throw InstabilityError("step " + std::to_string(row.step) + ": the energy ledger residual reached " +
+                           fmt(row.residual) + " of the energy scale (run.max_residual = " + fmt(config_.max_residual) +
+                           "): energy grows with no work done, the integration is unstable; lower run.dt or "
+                           "run.safety");
 }
 
 std::string Simulation::state_text() const {

@@ -63,6 +63,7 @@ class Simulation {
   void log(const std::string& line);
   void prepare_output();
   void check_stability(const DiagnosticsRow& row) const;
+  [[noreturn]] void report_overlap(const LedgerStep& work) const;
 
   Config config_;
   const Communicator& comm_;

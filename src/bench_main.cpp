@@ -2,7 +2,10 @@
 // packing of 10,000 discs, or its exact periodic copies (40,000 = 2 x 2, 160,000 = 4 x 4), runs the
 // warm-up and the timed steps with linear contacts and friction, and prints disc-steps per second,
 // contacts per disc and memory per disc.
-//   rondel_bench [--discs 10000|40000|160000] [--steps 5000] [--warmup 1000] [--file PATH]
+//   rondel_bench [--discs 10000|40000|160000] [--steps 5000] [--warmup 1000] [--rolling LAW] [--file PATH]
+// Rolling parameters follow the benchmark README (wang k_r = 2/7 k_n, mu_r = 0.1; jiang_* delta = 0.5); the
+// other laws get the equivalent cap for the mean radius (iwashita_oda K_r = k_r R*^2, eta = mu_r R*;
+// force_proportional mu_r = 0.1; constant_torque and displacement_damping mu_r = 0.05).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +22,7 @@ namespace {
 struct Options {
   long discs = 10000, steps = 5000, warmup = 1000;
   std::string file = "../shared/bench/jammed10k.csv";
+  std::string rolling = "none";
 };
 
 Options parse(int argc, char** argv) {
@@ -29,12 +33,26 @@ Options parse(int argc, char** argv) {
     else if (k == "--steps") o.steps = std::stol(v);
     else if (k == "--warmup") o.warmup = std::stol(v);
     else if (k == "--file") o.file = v;
-    else throw rondel::ConfigError("rondel_bench: unknown option '" + k + "' (--discs, --steps, --warmup, --file)");
+    else if (k == "--rolling") o.rolling = v;
+    else throw rondel::ConfigError("rondel_bench: unknown option '" + k + "' (--discs, --steps, --warmup, --rolling, --file)");
   }
   if (argc % 2 == 0) throw rondel::ConfigError("rondel_bench: option '" + std::string(argv[argc - 1]) + "' needs a value");
   if (o.discs != 10000 && o.discs != 40000 && o.discs != 160000)
     throw rondel::ConfigError("rondel_bench: --discs must be 10000, 40000 or 160000 (copies of the 10k packing)");
   return o;
+}
+
+// The [contact] rolling line and the law's parameter block.
+std::string rolling_block(const std::string& law) {
+  const std::string head = "[contact]\nrolling = " + law + "\n";
+  if (law == "none") return head;
+  if (law == "jiang_plastic" || law == "jiang_brittle") return head + "[jiang]\ndelta = 0.5\n";
+  if (law == "wang") return head + "[wang]\nk_r = 28571.43\nmu_r = 0.1\n";
+  if (law == "iwashita_oda") return head + "[iwashita_oda]\nK_r = 4018\nC_r = 0\neta = 0.0375\n";
+  if (law == "force_proportional") return head + "[force_proportional]\nmu_r = 0.1\n";
+  if (law == "constant_torque") return head + "[constant_torque]\nmu_r = 0.05\n";
+  if (law == "displacement_damping") return head + "[displacement_damping]\nmu_r = 0.05\n";
+  throw rondel::ConfigError("rondel_bench: --rolling '" + law + "' is not a rolling law");
 }
 
 // The periodic box from the file's comment line "Periodic box x, y in [lo, hi]".
@@ -75,14 +93,14 @@ int main(int argc, char** argv) {
     box_of(o.file, lo, hi);
     const int copies = static_cast<int>(std::lround(std::sqrt(o.discs / 10000.0)));
     const double L = hi - lo;
-    char ini[2048];
+    char ini[4096];
     std::snprintf(ini, sizeof ini,
                   "[run]\ndt = 3e-4\nsteps = 0\n[domain]\nxlo = %.17g\nxhi = %.17g\nylo = %.17g\nyhi = %.17g\n"
                   "periodic_x = true\nperiodic_y = true\n[material]\ndensity = 1\n[linear]\nk_n = 1e5\nzeta = 0.3\n"
                   "[coulomb]\nk_s = 28571.43\nmu = 0.5\n[scene]\ntype = csv\nfile = %s\nreplicate_x = %d\n"
                   "replicate_y = %d\nmax_initial_overlap = 0.2\n",
                   lo, lo + copies * L, lo, lo + copies * L, o.file.c_str(), copies, copies);
-    rondel::Simulation sim(rondel::parse_config_text(ini), comm, false);
+    rondel::Simulation sim(rondel::parse_config_text(std::string(ini) + rolling_block(o.rolling)), comm, false);
     for (long s = 0; s < o.warmup; ++s) sim.step();
     const std::size_t builds0 = sim.neighbour_builds();
     const auto t0 = std::chrono::steady_clock::now();
@@ -93,11 +111,13 @@ int main(int argc, char** argv) {
     const double n = static_cast<double>(sim.discs().n_owned());
     const double store = sim.discs().memory_bytes() + sim.pairs().memory_bytes() + sim.wall_rows().memory_bytes();
     if (comm.root())
-      std::printf("rondel_bench: %ld discs, %ld timed steps (after %ld warm-up), dt %.3g s, %d rank(s)\n"
+      std::printf("rondel_bench: %ld discs, rolling %s, %ld timed steps (after %ld warm-up), dt %.3g s "
+                  "(critical %.3g s, %s mode), %d rank(s)\n"
                   "  wall time            %.3f s\n  disc-steps per second %.4g\n  contacts per disc     %.3f (coordination %.3f)\n"
                   "  candidate rows/disc  %.3f\n  neighbour builds     %zu\n"
                   "  memory per disc      %.0f B in discs and contact rows, %.0f B peak RSS\n",
-                  o.discs, o.steps, o.warmup, sim.dt(), comm.size(), secs, n * o.steps / secs, contacts / n, 2.0 * contacts / n,
+                  o.discs, o.rolling.c_str(), o.steps, o.warmup, sim.dt(), sim.critical().dt,
+                  sim.critical().mode.c_str(), comm.size(), secs, n * o.steps / secs, contacts / n, 2.0 * contacts / n,
                   sim.pairs().size() / n, sim.neighbour_builds() - builds0, store / n, peak_rss_kib() * 1024.0 / n);
     return 0;
   } catch (const std::exception& e) {

@@ -327,6 +327,8 @@ Config build(const po::options_description& schema, const po::variables_map& vm)
   c.progress = r.get<bool>("run.progress");
   c.max_overlap = r.get<double>("run.max_overlap");
   check(c.max_overlap > 0.0, "run.max_overlap", "must be > 0", num(c.max_overlap));
+  c.max_residual = r.get<double>("run.max_residual");
+  check(c.max_residual > 0.0, "run.max_residual", "must be > 0", num(c.max_residual));
   c.diag_every = r.get<std::int64_t>("diagnostics.every");
   check(c.diag_every > 0, "diagnostics.every", "must be > 0", std::to_string(c.diag_every));
 

@@ -41,7 +41,8 @@ struct Config {
   std::string output;
   bool overwrite = false;
   bool progress = true;
-  double max_overlap = 0.5;
+  double max_overlap = 0.1;
+  double max_residual = 0.5;
   // [diagnostics]
   std::int64_t diag_every = 100;
   // [domain], [gravity], [material]

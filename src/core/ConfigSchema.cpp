@@ -29,7 +29,8 @@ po::options_description config_schema() {
       ("run.output", def("rondel-output"), "[path] output directory (must not exist unless run.overwrite)")
       ("run.overwrite", def(false), "[-] reuse an existing output directory")
       ("run.progress", def(true), "[-] progress line on rank 0")
-      ("run.max_overlap", def(0.5), "[-] stop when an overlap exceeds this fraction of the smaller radius");
+      ("run.max_overlap", def(0.1), "[-] stop when an overlap exceeds this fraction of the smaller radius")
+      ("run.max_residual", def(0.5), "[-] stop when the energy ledger residual exceeds this fraction of the energy scale");
   po::options_description diag("[diagnostics]");
   diag.add_options()("diagnostics.every", def<std::int64_t>(100), "[steps] interval of diagnostics.csv rows");
   po::options_description domain("[domain]");

@@ -10,7 +10,9 @@
 // and a moving wall's work on a disc is (f' + f)/2 . v_wall dt. The laws report Coulomb slip, rolling
 // plastic and dashpot work and brittle-break releases. A row is booked by the rank that owns its disc 1,
 // so a border pair computed on two ranks counts once.
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <string>
 
@@ -28,6 +30,10 @@ namespace rondel {
 struct LedgerStep {
   double W_n = 0.0, W_t = 0.0, W_r = 0.0, W_w = 0.0;
   double D_slip = 0.0, D_r_plastic = 0.0, D_r_dashpot = 0.0, E_r_break = 0.0;
+  // The worst overlap above the context's limit this step (u_n / smaller radius; 0 when none), and where.
+  double worst_overlap = 0.0;
+  ContactKey worst_key;
+  bool worst_at_wall = false;
 };
 
 // Energy held by the contact springs now [J per thickness].
@@ -42,6 +48,7 @@ struct KernelContext {
   const WallSet& walls;
   const ContactParamTable& params;
   double dt;
+  double overlap_limit = INFINITY;  // report overlaps above this fraction of the smaller radius
 };
 
 template <class Normal, class Tangential, class Rolling>
@@ -150,6 +157,12 @@ struct ContactKernel {
         continue;
       }
 
+      const double R_small = kWall ? k.R1 : std::min(k.R1, k.R2);
+      if (k.u_n > c.overlap_limit * R_small && k.u_n > L.worst_overlap * R_small) {
+        L.worst_overlap = k.u_n / R_small;
+        L.worst_key = tab.key[r];
+        L.worst_at_wall = kWall;
+      }
       const ContactParams& p = params[static_cast<std::size_t>(tab.param[r])];
       const double F_n = Normal::force(p, row.b, k);
       const TangentialForce T = Tangential::force(p, row.b, k, F_n, dt, h.t.data(), r);
@@ -188,6 +201,11 @@ struct ContactKernel {
     ledger.D_r_plastic += L.D_r_plastic;
     ledger.D_r_dashpot += L.D_r_dashpot;
     ledger.E_r_break += L.E_r_break;
+    if (L.worst_overlap > ledger.worst_overlap) {
+      ledger.worst_overlap = L.worst_overlap;
+      ledger.worst_key = L.worst_key;
+      ledger.worst_at_wall = L.worst_at_wall;
+    }
   }
 
   template <bool kWall>
