@@ -1,0 +1,334 @@
+// Configuration refusals (DESIGN.md section 8): an unknown key, a missing required one, a value out of
+// range, or a parameter block for a law that is not selected raises ConfigError naming the key, before
+// any work starts. Valid input parses, the command line wins over the file, and --help lists every key
+// with its unit.
+#include <gtest/gtest.h>
+
+#include <boost/program_options.hpp>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/Config.hpp"
+#include "core/ConfigSchema.hpp"
+#include "core/Errors.hpp"
+
+namespace rondel {
+namespace {
+
+// A minimal valid configuration; each test adds, removes or overrides one thing.
+const std::string kValid = R"(
+[run]
+steps = 50
+dt = 0
+[domain]
+xlo = 0
+xhi = 0.2
+ylo = 0
+yhi = 0.1
+[linear]
+k_n = 1e5
+e = 0.8
+[coulomb]
+k_s = 7.5e4
+mu = 0.5
+[walls]
+box = bottom left right
+[scene]
+type = lattice_square
+nx = 4
+ny = 3
+radius = 0.005
+x0 = 0.01
+y0 = 0.01
+)";
+
+// `ini` without the line `key = ...` of the given section.
+std::string without(const std::string& ini, const std::string& section, const std::string& key) {
+  std::istringstream in(ini);
+  std::string line, current, out;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line[0] == '[') current = line.substr(1, line.find(']') - 1);
+    if (current == section && line.rfind(key + " ", 0) == 0) continue;
+    out += line + "\n";
+  }
+  return out;
+}
+std::string without(const std::string& section, const std::string& key) { return without(kValid, section, key); }
+
+// Runs the parser and returns the ConfigError's message; fails the test when it does not throw one.
+std::string config_error(const std::string& ini, const std::vector<std::string>& overrides = {}) {
+  try {
+    parse_config_text(ini, overrides);
+  } catch (const ConfigError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "threw something other than ConfigError: " << e.what();
+    return "";
+  }
+  ADD_FAILURE() << "accepted; expected a ConfigError";
+  return "";
+}
+
+// Success when parsing throws a ConfigError whose message contains `key`.
+::testing::AssertionResult refused_naming(const std::string& ini, const std::vector<std::string>& overrides,
+                                          const std::string& key) {
+  const std::string message = config_error(ini, overrides);
+  if (message.find(key) != std::string::npos) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "the message does not name " << key << ": '" << message << "'";
+}
+
+TEST(Config, ValidInputParses) {
+  const Config c = parse_config_text(kValid);
+  EXPECT_EQ(c.steps, 50);
+  EXPECT_EQ(c.dt, 0.0);
+  EXPECT_EQ(c.domain.xhi, 0.2);
+  EXPECT_EQ(c.domain.yhi, 0.1);
+  EXPECT_FALSE(c.domain.periodic_x);
+  EXPECT_EQ(c.normal_law, "linear");
+  EXPECT_EQ(c.tangential_law, "coulomb");
+  EXPECT_EQ(c.rolling_law, "none");
+  ASSERT_EQ(c.params.n_materials(), 1u);
+  EXPECT_EQ(c.params.pair(0, 0).k_n, 1e5);
+  EXPECT_EQ(c.params.pair(0, 0).e_n, 0.8);
+  EXPECT_EQ(c.params.pair(0, 0).k_s, 7.5e4);
+  EXPECT_EQ(c.params.pair(0, 0).mu, 0.5);
+  EXPECT_EQ(c.params.wall(0).k_n, 1e5) << "walls default to the disc-disc parameters";
+  EXPECT_EQ(c.walls.size(), 3u);
+  EXPECT_EQ(c.box_walls, (std::vector<std::string>{"bottom", "left", "right"}));
+  EXPECT_EQ(c.scene.type, "lattice_square");
+  EXPECT_EQ(c.scene.nx, 4);
+  EXPECT_EQ(c.scene.spacing, 0.01) << "spacing 0 means 2 x radius";
+  EXPECT_EQ(c.density, 2650.0) << "default density";
+  EXPECT_NE(c.resolved_text.find("k_n = 100000"), std::string::npos) << c.resolved_text;
+}
+
+TEST(Config, CommandLineOverridesWinOverTheFile) {
+  const Config c = parse_config_text(
+      kValid, {"--run.steps=7", "--linear.k_n=2e5", "--scene.nx=2", "--domain.periodic_x=true", "--walls.box=bottom"});
+  EXPECT_EQ(c.steps, 7);
+  EXPECT_EQ(c.params.pair(0, 0).k_n, 2e5);
+  EXPECT_EQ(c.scene.nx, 2);
+  EXPECT_TRUE(c.domain.periodic_x);
+  EXPECT_EQ(c.walls.size(), 1u);
+  EXPECT_NE(c.resolved_text.find("steps = 7"), std::string::npos) << "the resolved text shows the override";
+  // An override may also supply a key missing from the file.
+  const Config d = parse_config_text(without("linear", "k_n"), {"--linear.k_n=3e5"});
+  EXPECT_EQ(d.params.pair(0, 0).k_n, 3e5);
+}
+
+TEST(Config, UnknownKeyIsRefused) {
+  EXPECT_TRUE(refused_naming(kValid + "[run]\nbogus = 1\n", {}, "run.bogus"));
+  EXPECT_TRUE(refused_naming(kValid + "[nonsense]\nk = 1\n", {}, "nonsense.k"));
+  EXPECT_TRUE(refused_naming(kValid, {"--run.bogus=1"}, "run.bogus"));
+  EXPECT_TRUE(refused_naming(kValid, {"--linear.kn=1"}, "linear.kn"));
+}
+
+TEST(Config, MissingRequiredKeyIsRefused) {
+  const std::vector<std::pair<std::string, std::string>> required = {{"linear", "k_n"},  {"domain", "xlo"},
+                                                                     {"domain", "yhi"},  {"scene", "type"},
+                                                                     {"coulomb", "k_s"}, {"coulomb", "mu"}};
+  for (const auto& [section, key] : required) {
+    SCOPED_TRACE(section + "." + key);
+    const std::string ini = without(section, key);
+    ASSERT_NE(ini, kValid) << "the test did not remove the key";
+    EXPECT_TRUE(refused_naming(ini, {}, section + "." + key));
+  }
+}
+
+TEST(Config, NonPositiveDensityIsRefused) {
+  EXPECT_TRUE(refused_naming(kValid, {"--material.density=0"}, "material.density"));
+  EXPECT_TRUE(refused_naming(kValid, {"--material.density=-2650"}, "material.density"));
+  EXPECT_TRUE(refused_naming(kValid, {"--material.thickness=0"}, "material.thickness"));
+}
+
+TEST(Config, NonPositiveStiffnessIsRefused) {
+  EXPECT_TRUE(refused_naming(kValid, {"--linear.k_n=0"}, "linear.k_n"));
+  EXPECT_TRUE(refused_naming(kValid, {"--linear.k_n=-1e5"}, "linear.k_n"));
+  EXPECT_TRUE(refused_naming(kValid, {"--coulomb.k_s=0"}, "coulomb.k_s"));
+  EXPECT_TRUE(refused_naming(kValid, {"--coulomb.k_s=-3"}, "coulomb.k_s"));
+  EXPECT_TRUE(refused_naming(kValid, {"--wall_contact.k_n=0"}, "wall_contact.k_n"));
+}
+
+TEST(Config, RestitutionOutsideZeroOneIsRefused) {
+  EXPECT_TRUE(refused_naming(kValid, {"--linear.e=0"}, "linear.e"));
+  EXPECT_TRUE(refused_naming(kValid, {"--linear.e=1.5"}, "linear.e"));
+  EXPECT_TRUE(refused_naming(kValid, {"--linear.e=-0.5"}, "linear.e"));
+  EXPECT_NO_THROW(parse_config_text(kValid, {"--linear.e=1"})) << "e = 1 (elastic) is allowed";
+  EXPECT_TRUE(refused_naming(kValid, {"--wall_contact.e=0"}, "wall_contact.e"));
+}
+
+TEST(Config, NegativeFrictionIsRefused) {
+  EXPECT_TRUE(refused_naming(kValid, {"--coulomb.mu=-0.1"}, "coulomb.mu"));
+  EXPECT_TRUE(refused_naming(kValid, {"--wall_contact.mu=-0.1"}, "wall_contact.mu"));
+  EXPECT_NO_THROW(parse_config_text(kValid, {"--coulomb.mu=0"})) << "frictionless is allowed";
+}
+
+TEST(Config, NegativeDampingIsRefused) {
+  EXPECT_TRUE(refused_naming(without("linear", "e"), {"--linear.zeta=-0.1"}, "linear.zeta"));
+  EXPECT_TRUE(refused_naming(without("linear", "e"), {"--linear.c_n=-1"}, "linear.c_n"));
+  EXPECT_TRUE(refused_naming(kValid, {"--coulomb.zeta_t=-0.1"}, "coulomb.zeta_t"));
+}
+
+TEST(Config, LawBlockForALawNotSelectedIsRefused) {
+  // kValid has a [coulomb] block: with contact.tangential = none it must be refused, naming a coulomb key.
+  const std::string message = config_error(kValid, {"--contact.tangential=none"});
+  EXPECT_NE(message.find("coulomb."), std::string::npos) << message;
+  EXPECT_NE(message.find("contact.tangential"), std::string::npos) << message;
+  EXPECT_TRUE(refused_naming(without("coulomb", "mu"), {"--contact.tangential=none"}, "coulomb.k_s"));
+  EXPECT_TRUE(refused_naming(without("coulomb", "k_s"), {"--contact.tangential=none"}, "coulomb.mu"));
+  // Without the block the same selection is valid, and any single coulomb key is refused.
+  const std::string no_coulomb = without(without("coulomb", "k_s"), "coulomb", "mu");
+  ASSERT_EQ(no_coulomb.find("k_s"), std::string::npos);
+  ASSERT_EQ(no_coulomb.find("mu ="), std::string::npos);
+  const Config c = parse_config_text(no_coulomb, {"--contact.tangential=none"});
+  EXPECT_EQ(c.tangential_law, "none");
+  EXPECT_EQ(c.params.pair(0, 0).k_s, 0.0);
+  for (const char* key : {"coulomb.k_s", "coulomb.mu", "coulomb.zeta_t"})
+    EXPECT_TRUE(refused_naming(no_coulomb, {"--contact.tangential=none", std::string("--") + key + "=0.3"}, key));
+  EXPECT_TRUE(refused_naming(no_coulomb, {"--contact.tangential=none", "--wall_contact.mu=0.3"}, "wall_contact.mu"));
+  EXPECT_TRUE(refused_naming(no_coulomb, {"--contact.tangential=none", "--wall_contact.k_s=1e4"}, "wall_contact.k_s"));
+}
+
+TEST(Config, TwoDampingKeysAtOnceAreRefused) {
+  // kValid gives linear.e.
+  const std::string both = config_error(kValid, {"--linear.zeta=0.1"});
+  EXPECT_NE(both.find("linear.zeta"), std::string::npos) << both;
+  EXPECT_NE(both.find("linear.e"), std::string::npos) << both;
+  EXPECT_TRUE(refused_naming(kValid, {"--linear.c_n=3"}, "linear.c_n"));
+  EXPECT_TRUE(refused_naming(without("linear", "e"), {"--linear.c_n=3", "--linear.zeta=0.1"}, "linear.c_n"));
+  EXPECT_TRUE(refused_naming(kValid, {"--wall_contact.zeta=0.1", "--wall_contact.e=0.5"}, "wall_contact.zeta"));
+  EXPECT_NO_THROW(parse_config_text(without("linear", "e"), {"--linear.zeta=0.1"}));
+}
+
+TEST(Config, UnknownLawNameIsRefused) {
+  EXPECT_TRUE(refused_naming(kValid, {"--contact.normal=bogus_law"}, "contact.normal"));
+  EXPECT_TRUE(refused_naming(kValid, {"--contact.tangential=bogus_law"}, "contact.tangential"));
+  EXPECT_TRUE(refused_naming(kValid, {"--contact.rolling=bogus_law"}, "contact.rolling"));
+  const std::string message = config_error(kValid, {"--contact.tangential=bogus_law"});
+  EXPECT_NE(message.find("bogus_law"), std::string::npos) << "the message shows the value: " << message;
+  EXPECT_NE(message.find("coulomb"), std::string::npos) << "the message lists what is allowed: " << message;
+}
+
+TEST(Config, BadWallsBoxSideIsRefused) {
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.box=bottom floor"}, "walls.box"));
+  const std::string message = config_error(kValid, {"--walls.box=bottom floor"});
+  EXPECT_NE(message.find("floor"), std::string::npos) << message;
+  // A box wall across a periodic direction.
+  EXPECT_TRUE(refused_naming(kValid, {"--domain.periodic_x=true"}, "walls.box"));
+  EXPECT_TRUE(refused_naming(kValid, {"--domain.periodic_y=true", "--walls.box=top"}, "walls.box"));
+}
+
+TEST(Config, BadWallRecordsAreRefused) {
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.lines=0 0 0"}, "walls.lines"));
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.lines=0 0 0 0"}, "walls.lines"));
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.segments=0 0 x 1"}, "walls.segments"));
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.segments=0.1 0.1 0.1 0.1"}, "walls.segments"));
+}
+
+TEST(Config, SceneFractionsMustSumToOne) {
+  const std::vector<std::string> random = {"--scene.type=random", "--scene.count=10", "--scene.distribution=list",
+                                           "--scene.sizes=0.004 0.005"};
+  auto with = [&](const std::string& fractions) {
+    auto v = random;
+    v.push_back("--scene.fractions=" + fractions);
+    return v;
+  };
+  EXPECT_TRUE(refused_naming(kValid, with("0.5 0.4"), "scene.fractions"));
+  EXPECT_TRUE(refused_naming(kValid, with("0.7 0.4"), "scene.fractions"));
+  EXPECT_TRUE(refused_naming(kValid, with("1"), "scene.fractions")) << "one fraction per size";
+  EXPECT_TRUE(refused_naming(kValid, with("1.5 -0.5"), "scene.fractions"));
+  const Config c = parse_config_text(kValid, with("0.25 0.75"));
+  EXPECT_EQ(c.scene.fractions, (std::vector<double>{0.25, 0.75}));
+}
+
+TEST(Config, OtherOutOfRangeValuesNameTheirKey) {
+  EXPECT_TRUE(refused_naming(kValid, {"--scene.type=hexagonal"}, "scene.type"));
+  EXPECT_TRUE(refused_naming(kValid, {"--scene.radius=0"}, "scene.radius"));
+  EXPECT_TRUE(refused_naming(kValid, {"--domain.xhi=-1"}, "domain.xhi"));
+  EXPECT_TRUE(refused_naming(kValid, {"--run.safety=1.5"}, "run.safety"));
+  EXPECT_TRUE(refused_naming(kValid, {"--run.dt=-1e-5"}, "run.dt"));
+  EXPECT_TRUE(refused_naming(kValid, {"--neighbour.skin=-0.001"}, "neighbour.skin"));
+  EXPECT_TRUE(refused_naming(kValid, {"--diagnostics.every=0"}, "diagnostics.every"));
+  EXPECT_TRUE(refused_naming(kValid, {"--run.steps=1.5"}, "run.steps")) << "not an integer";
+  EXPECT_TRUE(refused_naming(kValid, {"--linear.k_n=stiff"}, "linear.k_n")) << "not a number";
+  EXPECT_TRUE(refused_naming(kValid, {"--scene.type=csv"}, "scene.file"));
+}
+
+TEST(Config, HelpListsEveryKeyWithItsUnit) {
+  const std::string help = config_help();
+  const auto schema = config_schema();
+  ASSERT_GT(schema.options().size(), 40u);
+  for (const auto& opt : schema.options()) {
+    const std::string name = opt->long_name();
+    EXPECT_NE(help.find("--" + name), std::string::npos) << name << " is missing from --help";
+    const std::string& text = opt->description();
+    EXPECT_TRUE(text.size() > 2 && text[0] == '[' && text.find(']') != std::string::npos)
+        << name << " has no [unit] at the start of its description: '" << text << "'";
+  }
+  // A few keys with their unit on the same help line.
+  const std::vector<std::pair<std::string, std::string>> units = {
+      {"--linear.k_n", "[N/m]"},  {"--run.dt", "[s]"},     {"--material.density", "[kg/m^3]"},
+      {"--gravity.y", "[m/s^2]"}, {"--coulomb.mu", "[-]"}, {"--scene.omega", "[rad/s]"}};
+  for (const auto& [key, unit] : units) {
+    const auto at = help.find(key);
+    ASSERT_NE(at, std::string::npos) << key;
+    const auto end = help.find('\n', help.find('[', at));
+    const std::string entry = help.substr(at, end - at);
+    EXPECT_NE(entry.find(unit), std::string::npos) << key << " should show " << unit << ": '" << entry << "'";
+  }
+}
+
+TEST(Config, HelpIsRequestedWithDashDashHelp) {
+  const char* argv[] = {"rondel", "--help"};
+  try {
+    parse_config(2, argv);
+    ADD_FAILURE() << "--help did not throw HelpRequested";
+  } catch (const HelpRequested& h) {
+    EXPECT_EQ(h.text, config_help());
+  }
+}
+
+TEST(Config, CommandLineWithAFileAndOverrides) {
+  const std::string file = ::testing::TempDir() + "rondel_test_config_cli.ini";
+  std::ofstream(file) << kValid;
+  {
+    const char* argv[] = {"rondel", file.c_str(), "--run.steps=3", "--coulomb.mu=0.25"};
+    const Config c = parse_config(4, argv);
+    EXPECT_EQ(c.steps, 3);
+    EXPECT_EQ(c.params.pair(0, 0).mu, 0.25);
+    EXPECT_EQ(c.source_file, file);
+  }
+  const char* bogus[] = {"rondel", file.c_str(), "--run.bogus=1"};
+  try {
+    parse_config(3, bogus);
+    ADD_FAILURE() << "accepted --run.bogus";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("run.bogus"), std::string::npos) << e.what();
+  }
+  std::ofstream(file) << kValid << "[linear]\nbogus = 2\n";
+  const char* plain[] = {"rondel", file.c_str()};
+  try {
+    parse_config(2, plain);
+    ADD_FAILURE() << "accepted linear.bogus in the file";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("linear.bogus"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << "names the file: " << e.what();
+  }
+  std::remove(file.c_str());
+}
+
+TEST(Config, MissingFileIsAConfigErrorNamingIt) {
+  const char* argv[] = {"rondel", "/nonexistent/dir/scene.ini"};
+  try {
+    parse_config(2, argv);
+    ADD_FAILURE() << "accepted a missing file";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/scene.ini"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace rondel
