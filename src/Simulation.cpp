@@ -10,6 +10,7 @@
 
 #include "core/Errors.hpp"
 #include "core/Integrator.hpp"
+#include "core/ExactSum.hpp"
 #include "core/SceneBuilder.hpp"
 #include "physics/Restitution.hpp"
 
@@ -28,9 +29,6 @@ std::string fmt(double v, int precision = 6) {
 
 Simulation::Simulation(Config config, const Communicator& comm, bool write_files)
     : config_(std::move(config)), comm_(comm), write_files_(write_files), neighbours_(0.0) {
-  if (comm_.size() > 1)
-    throw ConfigError("this build runs on 1 MPI rank (the domain decomposition is not in yet); start it with "
-                      "'mpirun -n 1' or without mpirun");
   laws_.tangential = config_.tangential_law == "coulomb" ? TangentialLaw::coulomb : TangentialLaw::none;
   if (!parse_rolling_law(config_.rolling_law, laws_.rolling))
     throw ConfigError("contact.rolling = " + config_.rolling_law + " is not one of " + rolling_law_names());
@@ -43,12 +41,17 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
   build_discs();
   resolve_time_step();
   check_initial_state();
+  distribute_discs();
   if (write_files_) prepare_output();
   rebuild();
-  // Forces at t = 0 for the first half kick: the kernel at the initial state with a zero increment, so
-  // no spring moves and no work is booked.
+  // Forces at t = 0 for the first half kick: the kernel at the initial state with a zero increment. Its
+  // capping rule may reset springs (a dashpot alone above the cap); the history is restored so that the
+  // run starts with unloaded springs and no work booked.
+  const auto pair_history = pairs_.slot, wall_history = wall_rows_.slot;
   LedgerStep initial;
   kernel_.run(KernelContext{discs_, config_.domain, walls_, config_.params, 0.0}, pairs_, wall_rows_, initial);
+  pairs_.slot = pair_history;
+  wall_rows_.slot = wall_history;
   assembly_.assemble(discs_, config_.gravity, pairs_, wall_rows_);
   ledger_.start(kinetic_energy());
 }
@@ -56,7 +59,10 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
 void Simulation::build_discs() {
   const std::string dir = config_.source_file.empty() ? "" : fs::path(config_.source_file).parent_path().string();
   const auto scene = build_scene(config_.scene, config_.domain, dir);
-  if (scene.empty()) throw InputError("the scene has no discs (scene.type = " + config_.scene.type + ")");
+  if (scene.empty())
+    throw InputError(config_.scene.type == "csv"
+                         ? "scene.file '" + config_.scene.file + "' holds no discs: the scene is empty"
+                         : "the scene has no discs (scene.type = " + config_.scene.type + ")");
   discs_.reserve(scene.size());
   for (const auto& d : scene) {
     Vec2 x = d.x;
@@ -84,6 +90,24 @@ void Simulation::build_discs() {
       if (walls_[w].kind == Wall::Kind::line && walls_[w].proximity(discs_.position[i]).dist < 0.0)
         throw InputError("disc " + std::to_string(discs_.gid[i]) + " lies behind wall " + std::to_string(w) +
                          " (its centre is on the far side of the line)");
+}
+
+void Simulation::distribute_discs() {
+  // Every rank built the whole scene; each keeps the discs of its cells.
+  double R_max = 0.0;
+  for (double R : discs_.radius) R_max = std::max(R_max, R);
+  const auto partitioner = config_.partitioner == "grid" ? Decomposition::Partitioner::grid
+                                                          : Decomposition::Partitioner::metis;
+  decomposition_ = std::make_unique<Decomposition>(config_.domain, neighbours_.range(R_max), partitioner, comm_);
+  std::vector<long> weights(decomposition_->grid().size(), 1);
+  for (const Vec2& x : discs_.position) weights[decomposition_->grid().cell_of(x)] += 1;
+  decomposition_->initial_partition(weights);
+  if (decomposition_->empty_ranks() > 0 && comm_.root())
+    std::cerr << "rondel: warning: " << decomposition_->empty_ranks() << " of " << comm_.size()
+              << " ranks own no cell and will idle; use fewer ranks for this scene\n";
+  std::vector<bool> elsewhere(discs_.n_owned());
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) elsewhere[i] = decomposition_->owner(discs_.position[i]) != comm_.rank();
+  discs_.remove_owned(elsewhere);
 }
 
 void Simulation::resolve_time_step() {
@@ -160,9 +184,23 @@ void Simulation::log(const std::string& line) {
 }
 
 void Simulation::rebuild() {
+  // Discs go to their cell owners with their contact rows; the rows (local and received) then serve as
+  // the history source of the new neighbour list.
+  const DiscExchange::Counts moved = exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_);
+  migrated_ += moved.sent;
+  exchange_.build_ghosts(discs_, *decomposition_, comm_);
   const ContactTable old_pairs = pairs_, old_walls = wall_rows_;
   neighbours_.build(discs_, config_.domain, walls_, config_.params, old_pairs, pairs_, old_walls, wall_rows_);
   assembly_.build(discs_, pairs_, wall_rows_);
+  rebalance_due_ = false;
+}
+
+void Simulation::balance_load() {
+  const double work = static_cast<double>(discs_.n_owned() + pairs_.size());
+  const double max = comm_.max(work), mean = comm_.sum(work) / comm_.size();
+  imbalance_ = mean > 0.0 ? max / mean : 1.0;
+  if (comm_.size() == 1 || (!config_.force_balance && imbalance_ <= config_.balance_threshold)) return;
+  if (decomposition_->repartition(decomposition_->cell_work(discs_, pairs_))) rebalance_due_ = true;
 }
 
 void Simulation::step() {
@@ -172,7 +210,8 @@ void Simulation::step() {
   for (auto& w : walls_) w.move(dt_);
   // 3. Rebuild the neighbour list when a disc (global max) has moved more than half the skin.
   const double disp = comm_.max(neighbours_.max_displacement(discs_, config_.domain));
-  if (neighbours_.needs_rebuild(disp, walls_)) rebuild();
+  if (rebalance_due_ || neighbours_.needs_rebuild(disp, walls_)) rebuild();
+  else exchange_.update_ghosts(discs_, comm_);
   // 4-6. Contact kernel over every row, then per-disc sums in ascending partner gid (gravity first).
   LedgerStep work;
   kernel_.run(KernelContext{discs_, config_.domain, walls_, config_.params, dt_, config_.max_overlap}, pairs_,
@@ -184,27 +223,41 @@ void Simulation::step() {
   ledger_.add(work, W_g);
   ++step_;
   time_ += dt_;
+  if (config_.balance_every > 0 && step_ % config_.balance_every == 0) balance_load();
+}
+
+EnergyLedger Simulation::global_ledger() const {
+  // Each rank integrates the work of the rows it books; the run's ledger is their sum (KE0 and the energy
+  // scale are global already).
+  EnergyLedger g = ledger_;
+  for (double* w : {&g.W_g, &g.W_w, &g.W_n, &g.W_t, &g.W_r, &g.D_slip, &g.D_r_plastic, &g.D_r_dashpot, &g.E_r_break}) {
+    ExactSum local;
+    local += *w;
+    *w = comm_.exact_sum(local);
+  }
+  return g;
 }
 
 double Simulation::kinetic_energy() const {
-  double ke = 0.0;
-  for (std::size_t i = 0; i < discs_.n_owned(); ++i)
-    ke += 0.5 * discs_.mass[i] * dot(discs_.velocity[i], discs_.velocity[i]) +
-          0.5 * discs_.inertia[i] * discs_.omega[i] * discs_.omega[i];
-  return comm_.sum(ke);
+  ExactSum ke;
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
+    ke += 0.5 * discs_.mass[i] * dot(discs_.velocity[i], discs_.velocity[i]);
+    ke += 0.5 * discs_.inertia[i] * discs_.omega[i] * discs_.omega[i];
+  }
+  return comm_.exact_sum(ke);
 }
 
 DiagnosticsRow Simulation::diagnostics() {
   DiagnosticsRow row;
   row.step = step_;
   row.time = time_;
-  double ke_t = 0.0, ke_r = 0.0;
+  ExactSum ke_t, ke_r;
   for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
     ke_t += 0.5 * discs_.mass[i] * dot(discs_.velocity[i], discs_.velocity[i]);
     ke_r += 0.5 * discs_.inertia[i] * discs_.omega[i] * discs_.omega[i];
   }
-  row.ke_trans = comm_.sum(ke_t);
-  row.ke_rot = comm_.sum(ke_r);
+  row.ke_trans = comm_.exact_sum(ke_t);
+  row.ke_rot = comm_.exact_sum(ke_r);
   std::int64_t contacts = 0, wall_contacts = 0;
   double worst = 0.0;
   for (std::size_t r = 0; r < pairs_.size(); ++r) {
@@ -226,20 +279,26 @@ DiagnosticsRow Simulation::diagnostics() {
   const std::int64_t n = comm_.sum(static_cast<std::int64_t>(discs_.n_owned()));
   row.coordination = n > 0 ? 2.0 * row.contacts / n : 0.0;
   row.max_overlap = comm_.max(worst);
-  row.W_g = ledger_.W_g;
-  row.W_w = ledger_.W_w;
-  row.W_n = ledger_.W_n;
-  row.W_t = ledger_.W_t;
-  row.W_r = ledger_.W_r;
+  EnergyLedger g = global_ledger();
+  row.W_g = g.W_g;
+  row.W_w = g.W_w;
+  row.W_n = g.W_n;
+  row.W_t = g.W_t;
+  row.W_r = g.W_r;
   const StoredEnergy stored =
       kernel_.stored(KernelContext{discs_, config_.domain, walls_, config_.params, dt_}, pairs_, wall_rows_);
   row.E_stored = comm_.sum(stored.total());
-  row.D_slip = ledger_.D_slip;
-  row.D_r_plastic = ledger_.D_r_plastic;
-  row.D_r_dashpot = ledger_.D_r_dashpot;
-  row.E_r_break = ledger_.E_r_break;
-  row.D_other = -ledger_.W_c() - row.E_stored - row.D_slip - row.D_r_plastic - row.D_r_dashpot - row.E_r_break;
-  row.residual = ledger_.relative_residual(row.ke_trans + row.ke_rot);
+  row.imbalance = imbalance_;
+  const double ghosts = comm_.sum(static_cast<double>(exchange_.ghost_count()));
+  row.ghost_fraction = n > 0 ? ghosts / n : 0.0;
+  row.migrated = comm_.sum(static_cast<std::int64_t>(migrated_));
+  row.D_slip = g.D_slip;
+  row.D_r_plastic = g.D_r_plastic;
+  row.D_r_dashpot = g.D_r_dashpot;
+  row.E_r_break = g.E_r_break;
+  row.D_other = -g.W_c() - row.E_stored - row.D_slip - row.D_r_plastic - row.D_r_dashpot - row.E_r_break;
+  row.residual = g.relative_residual(row.ke_trans + row.ke_rot);
+  ledger_.scale = g.scale;
   return row;
 }
 
@@ -248,7 +307,8 @@ void Simulation::report_overlap(const LedgerStep& work) const {
   if (work.worst_overlap > 0.0) {
     where = work.worst_at_wall ? "disc " + std::to_string(work.worst_key.lo) + " and wall " + std::to_string(work.worst_key.hi)
                                : "discs " + std::to_string(work.worst_key.lo) + " and " + std::to_string(work.worst_key.hi);
-    where += " overlap by " + fmt(work.worst_overlap) + " of the smaller radius";
+    where += std::isinf(work.worst_overlap) ? " have coincident centres"
+                                            : " overlap by " + fmt(work.worst_overlap) + " of the smaller radius";
   } else {
     where = "another rank found an overlap";
   }
@@ -269,15 +329,27 @@ void Simulation::check_stability(const DiagnosticsRow& row) const {
 }
 
 std::string Simulation::state_text() const {
-  std::vector<std::size_t> order(discs_.n_owned());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return discs_.gid[a] < discs_.gid[b]; });
+  struct Record {
+    std::int64_t gid;
+    double x, y, vx, vy, theta, omega;
+  };
+  ByteBuffer mine;
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i)
+    mine.put(Record{discs_.gid[i], discs_.position[i].x, discs_.position[i].y, discs_.velocity[i].x,
+                    discs_.velocity[i].y, discs_.theta[i], discs_.omega[i]});
+  const auto all = comm_.gather(mine);
+  if (!comm_.root()) return "";
+  std::vector<Record> records;
+  for (const ByteBuffer& b : all) {
+    ByteReader r(b.bytes.data(), b.bytes.size());
+    while (!r.done()) records.push_back(r.get<Record>());
+  }
+  std::sort(records.begin(), records.end(), [](const Record& a, const Record& b) { return a.gid < b.gid; });
   std::string out = "gid,x,y,vx,vy,theta,omega\n";
   char buf[512];
-  for (std::size_t i : order) {
-    std::snprintf(buf, sizeof buf, "%lld,%a,%a,%a,%a,%a,%a\n", static_cast<long long>(discs_.gid[i]),
-                  discs_.position[i].x, discs_.position[i].y, discs_.velocity[i].x, discs_.velocity[i].y,
-                  discs_.theta[i], discs_.omega[i]);
+  for (const Record& d : records) {
+    std::snprintf(buf, sizeof buf, "%lld,%a,%a,%a,%a,%a,%a\n", static_cast<long long>(d.gid), d.x, d.y, d.vx, d.vy,
+                  d.theta, d.omega);
     out += buf;
   }
   return out;
@@ -319,7 +391,8 @@ RunSummary Simulation::run() {
   sum.disc_steps_per_second = sum.wall_seconds > 0 ? sum.discs * sum.steps / sum.wall_seconds : 0.0;
   sum.dt = dt_;
   sum.critical = critical_;
-  sum.ledger_residual = ledger_.relative_residual(kinetic_energy());
+  EnergyLedger g = global_ledger();
+  sum.ledger_residual = g.relative_residual(kinetic_energy());
   sum.neighbour_builds = neighbours_.builds();
   std::ostringstream s;
   s << "summary: " << sum.steps << " steps of " << sum.discs << " discs in " << fmt(sum.wall_seconds, 4)
@@ -327,8 +400,9 @@ RunSummary Simulation::run() {
     << fmt(dt_ / critical_.dt, 4) << " x critical, " << critical_.mode << " mode); ledger residual "
     << fmt(sum.ledger_residual, 3) << "; " << sum.neighbour_builds << " neighbour builds";
   log(s.str());
+  const std::string final_state = write_files_ ? state_text() : "";
   if (write_files_ && comm_.root()) {
-    std::ofstream(fs::path(config_.output) / "final.csv") << state_text();
+    std::ofstream(fs::path(config_.output) / "final.csv") << final_state;
     std::ofstream(fs::path(config_.output) / "summary.txt") << s.str() << "\nstatus: complete\n";
     log("results in " + config_.output + "/ (config.ini, log.txt, diagnostics.csv, final.csv, summary.txt)");
   }

@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <fstream>
+#include <memory>
 #include <string>
 
 #include "core/Config.hpp"
@@ -10,6 +11,8 @@
 #include "core/ForceAssembly.hpp"
 #include "core/NeighbourList.hpp"
 #include "parallel/Communicator.hpp"
+#include "parallel/Decomposition.hpp"
+#include "parallel/DiscExchange.hpp"
 #include "physics/CriticalTimeStep.hpp"
 #include "physics/EnergyLedger.hpp"
 #include "physics/LawRegistry.hpp"
@@ -44,19 +47,28 @@ class Simulation {
   const ContactTable& pairs() const { return pairs_; }
   const ContactTable& wall_rows() const { return wall_rows_; }
   const WallSet& walls() const { return walls_; }
+  // This rank's share of the energy ledger (the whole ledger on one rank).
   const EnergyLedger& ledger() const { return ledger_; }
+  // The run's ledger: every rank's share summed (collective).
+  EnergyLedger global_ledger() const;
   const CriticalStep& critical() const { return critical_; }
   double dt() const { return dt_; }
   double time() const { return time_; }
   std::int64_t step_count() const { return step_; }
   std::size_t neighbour_builds() const { return neighbours_.builds(); }
+  const Decomposition& decomposition() const { return *decomposition_; }
+  std::size_t ghost_count() const { return exchange_.ghost_count(); }
+  double imbalance() const { return imbalance_; }
   double kinetic_energy() const;
   DiagnosticsRow diagnostics();
-  // Owned discs as "gid,x,y,vx,vy,theta,omega" in hexadecimal floats, ascending gid (bit-exact).
+  // Every disc as "gid,x,y,vx,vy,theta,omega" in hexadecimal floats, ascending gid (bit-exact), gathered
+  // on rank 0 (collective; other ranks get an empty string).
   std::string state_text() const;
 
  private:
   void build_discs();
+  void distribute_discs();
+  void balance_load();
   void resolve_time_step();
   void check_initial_state();
   void rebuild();
@@ -80,6 +92,11 @@ class Simulation {
   double dt_ = 0.0;
   double time_ = 0.0;
   std::int64_t step_ = 0;
+  std::unique_ptr<Decomposition> decomposition_;
+  DiscExchange exchange_;
+  bool rebalance_due_ = false;
+  double imbalance_ = 1.0;
+  std::size_t migrated_ = 0;
   std::ofstream log_;
   DiagnosticsWriter diag_;
 };

@@ -349,6 +349,13 @@ Config build(const po::options_description& schema, const po::variables_map& vm)
   c.thickness = r.get<double>("material.thickness");
   c.skin = r.get<double>("neighbour.skin");
   non_negative(c.skin, "neighbour.skin");
+  c.partitioner = r.get<std::string>("parallel.partitioner");
+  check(c.partitioner == "metis" || c.partitioner == "grid", "parallel.partitioner", "metis | grid", c.partitioner);
+  c.balance_every = r.get<std::int64_t>("parallel.balance_every");
+  check(c.balance_every >= 0, "parallel.balance_every", "must be >= 0", std::to_string(c.balance_every));
+  c.balance_threshold = r.get<double>("parallel.balance_threshold");
+  check(c.balance_threshold > 1.0, "parallel.balance_threshold", "must be > 1", num(c.balance_threshold));
+  c.force_balance = r.get<bool>("parallel.force_balance");
   read_contact(r, c);
   read_walls(r, c);
   read_scene(r, c);

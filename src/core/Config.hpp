@@ -54,6 +54,11 @@ struct Config {
   ContactParamTable params;
   // [neighbour]
   double skin = 0.0;  // 0: automatic
+  // [parallel]
+  std::string partitioner = "metis";
+  std::int64_t balance_every = 1000;
+  double balance_threshold = 1.1;
+  bool force_balance = false;
   // [walls]
   WallSet walls;
   std::vector<std::string> box_walls;

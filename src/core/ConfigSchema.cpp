@@ -98,6 +98,12 @@ po::options_description config_schema() {
       ("wall_contact.rolling", def(true), "[-] rolling resistance at walls (same law and parameters as discs)");
   po::options_description neigh("[neighbour]");
   neigh.add_options()("neighbour.skin", def(0.0), "[m] Verlet skin; 0 = a quarter of the mean radius");
+  po::options_description par("[parallel]");
+  par.add_options()
+      ("parallel.partitioner", def("metis"), "[-] cell-to-rank partitioner: metis | grid")
+      ("parallel.balance_every", def<std::int64_t>(1000), "[steps] interval of load-balance checks; 0 = never")
+      ("parallel.balance_threshold", def(1.1), "[-] repartition when max/mean work per rank exceeds this, > 1")
+      ("parallel.force_balance", def(false), "[-] repartition at every check (testing)");
   po::options_description walls("[walls]");
   walls.add_options()
       ("walls.box", def(""), "[-] box sides that are walls: any of bottom left right top")
@@ -131,7 +137,7 @@ po::options_description config_schema() {
   po::options_description all;
   all.add(run).add(diag).add(domain).add(grav).add(mat).add(contact).add(linear).add(coulomb).add(jiang).add(wang)
       .add(io).add(fp).add(ct).add(dd).add(wallc)
-      .add(neigh).add(walls).add(scene);
+      .add(neigh).add(par).add(walls).add(scene);
   return all;
 }
 

@@ -1,5 +1,7 @@
 #include "core/ContactTable.hpp"
 
+#include <algorithm>
+
 namespace rondel {
 
 ContactTable::ContactTable(std::vector<std::string> slot_names, bool has_moment)
@@ -52,6 +54,42 @@ void ContactTable::inherit_history(const ContactTable& old) {
     }
     f1[r] = old.f1[j];  // the wall-work trapezoid needs last step's force
   }
+}
+
+void ContactTable::push_copy(const ContactTable& src, std::size_t r) {
+  push(src.key[r], -1, -1, src.param[r]);
+  const std::size_t n = size() - 1;
+  for (std::size_t k = 0; k < slot.size(); ++k) slot[k][n] = src.slot[k][r];
+  F_n[n] = src.F_n[r];
+  F_t[n] = src.F_t[r];
+  if (has_moment_) {
+    M1[n] = src.M1[r];
+    M2[n] = src.M2[r];
+  }
+  f1[n] = src.f1[r];
+  tq1[n] = src.tq1[r];
+  tq2[n] = src.tq2[r];
+}
+
+void ContactTable::sort_unique_by_key() {
+  std::vector<std::size_t> order(size());
+  for (std::size_t r = 0; r < order.size(); ++r) order[r] = r;
+  std::stable_sort(order.begin(), order.end(), [this](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+  ContactTable sorted(slot_names_, has_moment_);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    if (k > 0 && key[order[k]] == key[order[k - 1]]) continue;
+    sorted.push_copy(*this, order[k]);
+    sorted.i1.back() = i1[order[k]];
+    sorted.i2.back() = i2[order[k]];
+  }
+  *this = std::move(sorted);
+}
+
+bool ContactTable::has_state(std::size_t r) const {
+  if (F_n[r] != 0.0 || F_t[r] != 0.0) return true;
+  for (const auto& s : slot)
+    if (s[r] != 0.0) return true;
+  return has_moment_ && (M1[r] != 0.0 || M2[r] != 0.0);
 }
 
 std::size_t ContactTable::memory_bytes() const {

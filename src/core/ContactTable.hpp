@@ -44,6 +44,13 @@ class ContactTable {
 
   // Appends a row with zero history.
   void push(ContactKey k, std::int32_t a, std::int32_t b, std::int32_t p);
+  // Appends row r of `src` (same columns) with its key, parameter index, history and last scalars; the
+  // local indices are set to -1 (they are rebuilt).
+  void push_copy(const ContactTable& src, std::size_t r);
+  // Sorts rows by key and keeps the first of equal keys (copies of one contact are bit-identical).
+  void sort_unique_by_key();
+  // True when the row carries state worth keeping (history or last forces).
+  bool has_state(std::size_t r) const;
   // Copies history and last scalars, matched by key, from `old` (both tables in ascending key order).
   // Rows of `old` that are not candidates any more are dropped: their contact has opened.
   void inherit_history(const ContactTable& old);

@@ -10,7 +10,7 @@ namespace rondel {
 std::string DiagnosticsWriter::header() {
   return "step,time,ke_trans,ke_rot,contacts,wall_contacts,coordination,max_overlap_ratio,W_gravity,W_walls,"
          "W_normal,W_tangential,W_rolling,E_stored,D_slip,D_rolling_plastic,D_rolling_dashpot,E_rolling_break,D_other,"
-         "ledger_residual";
+         "ledger_residual,imbalance,ghost_fraction,migrated";
 }
 
 std::string DiagnosticsWriter::format(const DiagnosticsRow& r) {
@@ -19,7 +19,7 @@ std::string DiagnosticsWriter::format(const DiagnosticsRow& r) {
   s << r.step << ',' << r.time << ',' << r.ke_trans << ',' << r.ke_rot << ',' << r.contacts << ','
     << r.wall_contacts << ',' << r.coordination << ',' << r.max_overlap << ',' << r.W_g << ',' << r.W_w << ','
     << r.W_n << ',' << r.W_t << ',' << r.W_r << ',' << r.E_stored << ',' << r.D_slip << ',' << r.D_r_plastic << ','
-    << r.D_r_dashpot << ',' << r.E_r_break << ',' << r.D_other << ',' << r.residual;
+    << r.D_r_dashpot << ',' << r.E_r_break << ',' << r.D_other << ',' << r.residual << ',' << r.imbalance << ',' << r.ghost_fraction << ',' << r.migrated;
   return s.str();
 }
 

@@ -18,6 +18,9 @@ struct DiagnosticsRow {
   double D_slip = 0.0, D_r_plastic = 0.0, D_r_dashpot = 0.0, E_r_break = 0.0;
   double D_other = 0.0;   // -W_c - E_stored - the dissipation above: dashpots and integration error
   double residual = 0.0;       // relative ledger residual
+  double imbalance = 1.0;      // max over mean of the per-rank work at the last balance check
+  double ghost_fraction = 0.0; // ghosts over discs, all ranks
+  std::int64_t migrated = 0;   // discs moved between ranks so far
 };
 
 // diagnostics.csv: one header, one row per diagnostics step (rank 0 only).

@@ -40,6 +40,19 @@ void DiscStore::truncate_to_owned() {
   for_each_field([n](const char*, unsigned, auto& field) { field.resize(n); });
 }
 
+void DiscStore::remove_owned(const std::vector<bool>& drop) {
+  truncate_to_owned();
+  std::size_t kept = 0;
+  for_each_field([&drop, &kept](const char*, unsigned, auto& field) {
+    std::size_t out = 0;
+    for (std::size_t i = 0; i < field.size(); ++i)
+      if (!drop[i]) field[out++] = field[i];
+    field.resize(out);
+    kept = out;
+  });
+  n_owned_ = kept;
+}
+
 void DiscStore::sort_owned_by_gid() {
   truncate_to_owned();
   std::vector<std::size_t> order(n_owned_);

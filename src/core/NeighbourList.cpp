@@ -6,59 +6,19 @@
 
 namespace rondel {
 
-namespace {
-int cell_count(double length, double range) {
-  const double n = std::floor(length / range);
-  return n < 1.0 ? 1 : static_cast<int>(std::min(n, 1.0e5));
-}
-int clamp_index(double coord, double lo, double side, int n) {
-  const double c = std::floor((coord - lo) / side);
-  if (!(c >= 0.0)) return 0;  // also catches NaN
-  if (c >= n - 1) return n - 1;
-  return static_cast<int>(c);
-}
-}  // namespace
-
-std::size_t NeighbourList::cell_of(Vec2 x, const Domain& domain) const {
-  const int cx = clamp_index(x.x, domain.xlo, cell_x_, nx_);
-  const int cy = clamp_index(x.y, domain.ylo, cell_y_, ny_);
-  return static_cast<std::size_t>(cy) * nx_ + cx;
-}
-
 void NeighbourList::bin(const DiscStore& discs, const Domain& domain, double R_max) {
-  const double r = range(R_max);
-  nx_ = cell_count(domain.length_x(), r);
-  ny_ = cell_count(domain.length_y(), r);
-  cell_x_ = domain.length_x() / nx_;
-  cell_y_ = domain.length_y() / ny_;
-  const std::size_t n_cells = static_cast<std::size_t>(nx_) * ny_;
+  grid_ = CellGrid(domain, range(R_max));
+  const std::size_t n_cells = grid_.size();
   cell_start_.assign(n_cells + 1, 0);
   std::vector<std::size_t> cell(discs.size());
   for (std::size_t i = 0; i < discs.size(); ++i) {
-    cell[i] = cell_of(discs.position[i], domain);
+    cell[i] = grid_.cell_of(discs.position[i]);
     ++cell_start_[cell[i] + 1];
   }
   for (std::size_t c = 0; c < n_cells; ++c) cell_start_[c + 1] += cell_start_[c];
   cell_items_.resize(discs.size());
   std::vector<std::size_t> fill(cell_start_.begin(), cell_start_.end() - 1);
   for (std::size_t i = 0; i < discs.size(); ++i) cell_items_[fill[cell[i]]++] = i;
-}
-
-std::vector<std::size_t> NeighbourList::neighbour_cells(std::size_t cell, const Domain& domain) const {
-  const int cx = static_cast<int>(cell % nx_), cy = static_cast<int>(cell / nx_);
-  std::vector<std::size_t> out;
-  for (int dy = -1; dy <= 1; ++dy) {
-    for (int dx = -1; dx <= 1; ++dx) {
-      int x = cx + dx, y = cy + dy;
-      if (domain.periodic_x) x = (x + nx_) % nx_;
-      if (domain.periodic_y) y = (y + ny_) % ny_;
-      if (x < 0 || x >= nx_ || y < 0 || y >= ny_) continue;
-      out.push_back(static_cast<std::size_t>(y) * nx_ + x);
-    }
-  }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
 }
 
 void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet& walls,
@@ -71,7 +31,7 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
 
   std::vector<std::tuple<ContactKey, std::int32_t, std::int32_t>> found;
   for (std::size_t c = 0; c + 1 < cell_start_.size(); ++c) {
-    const auto around = neighbour_cells(c, domain);
+    const auto around = grid_.stencil(c);
     for (std::size_t a = cell_start_[c]; a < cell_start_[c + 1]; ++a) {
       const std::size_t i = cell_items_[a];
       for (std::size_t c2 : around) {

@@ -2,6 +2,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "core/CellGrid.hpp"
 #include "core/ContactParams.hpp"
 #include "core/ContactTable.hpp"
 #include "core/DiscStore.hpp"
@@ -37,12 +38,9 @@ class NeighbourList {
 
  private:
   void bin(const DiscStore& discs, const Domain& domain, double R_max);
-  std::size_t cell_of(Vec2 x, const Domain& domain) const;
-  std::vector<std::size_t> neighbour_cells(std::size_t cell, const Domain& domain) const;
 
   double skin_;
-  int nx_ = 1, ny_ = 1;
-  double cell_x_ = 1.0, cell_y_ = 1.0;
+  CellGrid grid_;
   std::vector<std::size_t> cell_start_, cell_items_;
   std::vector<Vec2> position_at_build_;
   std::size_t builds_ = 0;

@@ -2,6 +2,10 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <vector>
+
+#include "core/ExactSum.hpp"
+#include "parallel/ByteBuffer.hpp"
 
 namespace rondel {
 
@@ -25,6 +29,19 @@ class Communicator {
   double sum(double local) const;
   std::int64_t sum(std::int64_t local) const;
   bool any(bool local) const;
+  std::int64_t max(std::int64_t local) const;
+  // Order-independent exact sum over ranks: the same bits on any rank count.
+  double exact_sum(ExactSum local) const;
+  void exact_sum_in_place(ExactSum& local) const;
+  // Sends out[r] to rank r and returns what each rank sent here (in[r] from rank r).
+  std::vector<ByteBuffer> all_to_all(const std::vector<ByteBuffer>& out) const;
+  // Sends `out` to each rank in `to` and receives from each rank in `from` (point to point).
+  std::vector<ByteBuffer> exchange(const std::vector<int>& to, const std::vector<ByteBuffer>& out,
+                                   const std::vector<int>& from, const std::vector<std::size_t>& sizes) const;
+  // Every rank gets root's bytes.
+  void broadcast(std::vector<char>& bytes, int root = 0) const;
+  // Root gets every rank's bytes, in rank order (others get an empty vector).
+  std::vector<ByteBuffer> gather(const ByteBuffer& mine, int root = 0) const;
   void barrier() const;
   MPI_Comm comm() const { return comm_; }
 

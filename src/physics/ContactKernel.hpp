@@ -20,7 +20,6 @@
 #include "core/ContactTable.hpp"
 #include "core/DiscStore.hpp"
 #include "core/Domain.hpp"
-#include "core/Errors.hpp"
 #include "core/Wall.hpp"
 #include "physics/ContactKinematics.hpp"
 #include "physics/LawTypes.hpp"
@@ -83,12 +82,14 @@ struct ContactKernel {
     ContactBodies b;
     double w1 = 0.0, w2 = 0.0;
     Vec2 v_wall;
+    bool coincident = false;
   };
 
   // Kinematics of row r; false when the discs are apart and the row carries no force (nothing to do).
   template <bool kWall>
   static bool kinematics(const KernelContext& c, const ContactTable& tab, std::size_t r, Row& row) {
     const DiscStore& D = c.discs;
+    row.coincident = false;
     const auto i = static_cast<std::size_t>(tab.i1[r]);
     const auto j = static_cast<std::size_t>(tab.i2[r]);
     const bool loaded = tab.F_n[r] != 0.0 || tab.F_t[r] != 0.0;
@@ -105,9 +106,7 @@ struct ContactKernel {
       const double dist2 = dot(d, d);
       const double Rs = D.radius[i] + D.radius[j];
       if (dist2 >= Rs * Rs && !loaded) return false;
-      if (dist2 == 0.0)
-        throw InstabilityError("discs " + std::to_string(D.gid[i]) + " and " + std::to_string(D.gid[j]) +
-                               " have coincident centres");
+      if (dist2 == 0.0) return !(row.coincident = true);  // no normal exists: reported as a failed run
       row.w2 = D.omega[j];
       row.k = disc_disc_kinematics(d, std::sqrt(dist2), D.radius[i], D.radius[j], D.velocity[i], D.velocity[j],
                                    row.w1, row.w2);
@@ -140,6 +139,10 @@ struct ContactKernel {
     Row row;
     for (std::size_t r = 0; r < tab.size(); ++r) {
       if (!kinematics<kWall>(c, tab, r, row)) {
+        if (row.coincident) {
+          L.worst_overlap = INFINITY;  // coincident centres: the run has failed
+          L.worst_key = tab.key[r];
+        }
         open_row(tab, r, h);
         continue;
       }

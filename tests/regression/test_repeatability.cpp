@@ -17,10 +17,10 @@ yhi = 0.3
 [gravity]
 y = -9.81
 [linear]
-k_n = 1e5
+k_n = 1e7
 e = 0.5
 [coulomb]
-k_s = 7.5e4
+k_s = 7.5e6
 mu = 0.5
 [walls]
 box = bottom left right

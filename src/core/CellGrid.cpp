@@ -1,0 +1,51 @@
+#include "core/CellGrid.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rondel {
+
+namespace {
+int cell_count(double length, double range) {
+  const double n = std::floor(length / range);
+  return n < 1.0 ? 1 : static_cast<int>(std::min(n, 1.0e5));
+}
+int clamp_index(double coord, double lo, double side, int n) {
+  const double c = std::floor((coord - lo) / side);
+  if (!(c >= 0.0)) return 0;  // also catches NaN
+  if (c >= n - 1) return n - 1;
+  return static_cast<int>(c);
+}
+}  // namespace
+
+CellGrid::CellGrid(const Domain& domain, double range)
+    : domain_(domain), nx_(cell_count(domain.length_x(), range)), ny_(cell_count(domain.length_y(), range)) {
+  side_x_ = domain.length_x() / nx_;
+  side_y_ = domain.length_y() / ny_;
+}
+
+std::size_t CellGrid::cell_of(Vec2 x) const {
+  const int cx = clamp_index(x.x, domain_.xlo, side_x_, nx_);
+  const int cy = clamp_index(x.y, domain_.ylo, side_y_, ny_);
+  return static_cast<std::size_t>(cy) * nx_ + cx;
+}
+
+std::vector<std::size_t> CellGrid::stencil(std::size_t cell) const {
+  const int cx = static_cast<int>(cell % nx_), cy = static_cast<int>(cell / nx_);
+  std::vector<std::size_t> out;
+  out.reserve(9);
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      int x = cx + dx, y = cy + dy;
+      if (domain_.periodic_x) x = (x + nx_) % nx_;
+      if (domain_.periodic_y) y = (y + ny_) % ny_;
+      if (x < 0 || x >= nx_ || y < 0 || y >= ny_) continue;
+      out.push_back(static_cast<std::size_t>(y) * nx_ + x);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+}  // namespace rondel

@@ -1,0 +1,46 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/CellGrid.hpp"
+#include "core/ContactTable.hpp"
+#include "core/DiscStore.hpp"
+#include "parallel/Communicator.hpp"
+
+namespace rondel {
+
+// The cell-to-rank map of the domain decomposition (DESIGN.md section 6). Cells have side >= the
+// interaction range (largest contact distance plus skin), so a disc interacts only with discs of its own
+// and the 8 neighbouring cells; every rank holds the whole map.
+class Decomposition {
+ public:
+  enum class Partitioner { grid, metis };
+
+  Decomposition(const Domain& domain, double range, Partitioner partitioner, const Communicator& comm);
+
+  const CellGrid& grid() const { return grid_; }
+  const std::vector<int>& cell_rank() const { return cell_rank_; }
+  int owner(Vec2 x) const { return cell_rank_[grid_.cell_of(x)]; }
+  int owner_of_cell(std::size_t c) const { return cell_rank_[c]; }
+  Partitioner partitioner() const { return partitioner_; }
+
+  // First map: grid blocks, or METIS on the per-cell work (`weights`, identical on every rank).
+  void initial_partition(const std::vector<long>& weights);
+  // New METIS map from the present per-cell work (no-op for the grid partitioner); parts are relabelled to
+  // keep most cells where they were. Returns true when the map changed.
+  bool repartition(const std::vector<long>& weights);
+  // Per-cell work of the local owned discs and their booked contacts, summed over ranks.
+  std::vector<long> cell_work(const DiscStore& discs, const ContactTable& pairs) const;
+  // Number of ranks that own no cell.
+  int empty_ranks() const;
+
+ private:
+  void set_map(std::vector<int> map);
+
+  const Communicator& comm_;
+  CellGrid grid_;
+  Partitioner partitioner_;
+  std::vector<int> cell_rank_;
+};
+
+}  // namespace rondel

@@ -1,0 +1,42 @@
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include "core/ContactTable.hpp"
+#include "core/DiscStore.hpp"
+#include "parallel/Communicator.hpp"
+#include "parallel/Decomposition.hpp"
+
+namespace rondel {
+
+// Moves discs between ranks (DESIGN.md section 6):
+//  - migrate(): every owned disc goes to the owner of its cell, with every contact row that carries state
+//    (history and last forces; a pair's row exists on both ranks of a border pair, so copies are identical);
+//  - build_ghosts(): each owned disc is copied to every other rank owning one of the 8 cells around its
+//    cell (periodic images included: a ghost is a bit copy, never a shifted one);
+//  - update_ghosts(): refreshes the ghosts' position, velocity and omega every step between rebuilds,
+//    point to point with the ranks of the ghost lists.
+class DiscExchange {
+ public:
+  struct Counts {
+    std::size_t sent = 0, received = 0;
+  };
+
+  // Drops ghosts, sends away owned discs whose cell belongs to another rank and appends those received.
+  // The rows of `pairs` and `wall_rows` are extended with the received rows, sorted by key, de-duplicated;
+  // their local indices are stale (they only serve as history for the next neighbour build).
+  Counts migrate(DiscStore& discs, ContactTable& pairs, ContactTable& wall_rows, const Decomposition& dec,
+                 const Communicator& comm);
+  void build_ghosts(DiscStore& discs, const Decomposition& dec, const Communicator& comm);
+  void update_ghosts(DiscStore& discs, const Communicator& comm) const;
+  std::size_t ghost_count() const { return ghosts_; }
+
+ private:
+  std::vector<int> send_ranks_, recv_ranks_;
+  std::vector<std::vector<std::size_t>> send_index_;
+  std::vector<std::size_t> recv_bytes_;
+  std::size_t ghosts_ = 0;
+  std::size_t first_ghost_ = 0;
+};
+
+}  // namespace rondel
