@@ -318,14 +318,27 @@ void Simulation::report_overlap(const LedgerStep& work) const {
                          "impact, or lower run.dt if the run became unstable");
 }
 
+std::string Simulation::most_energetic_disc() const {
+  double best = -1.0;
+  std::int64_t gid = -1;
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
+    const double ke = 0.5 * discs_.mass[i] * dot(discs_.velocity[i], discs_.velocity[i]) +
+                      0.5 * discs_.inertia[i] * discs_.omega[i] * discs_.omega[i];
+    if (ke > best || std::isnan(ke)) best = std::isnan(ke) ? INFINITY : ke, gid = discs_.gid[i];
+  }
+  const double top = comm_.max(best);
+  const std::int64_t who = comm_.max(best == top ? gid : std::int64_t{-1});
+  return std::to_string(who) + " (kinetic energy " + fmt(top) + " J)";
+}
+
 void Simulation::check_stability(const DiagnosticsRow& row) const {
   if (!std::isfinite(row.ke_trans + row.ke_rot))
     throw InstabilityError("step " + std::to_string(row.step) + ": the kinetic energy is not finite");
   if (row.residual > config_.max_residual)
     throw InstabilityError("step " + std::to_string(row.step) + ": the energy ledger residual reached " +
                            fmt(row.residual) + " of the energy scale (run.max_residual = " + fmt(config_.max_residual) +
-                           "): energy grows with no work done, the integration is unstable; lower run.dt or "
-                           "run.safety");
+                           "): energy grows with no work done, the integration is unstable; the most energetic disc is " +
+                           most_energetic_disc() + "; lower run.dt or run.safety");
 }
 
 std::string Simulation::state_text() const {

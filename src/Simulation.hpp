@@ -75,6 +75,7 @@ class Simulation {
   void log(const std::string& line);
   void prepare_output();
   void check_stability(const DiagnosticsRow& row) const;
+  std::string most_energetic_disc() const;
   [[noreturn]] void report_overlap(const LedgerStep& work) const;
 
   Config config_;

@@ -3,60 +3,11 @@
 #include <algorithm>
 #include <set>
 
+#include "parallel/RecordPacking.hpp"
+
 namespace rondel {
 
 namespace {
-
-void pack_disc(DiscStore& discs, std::size_t i, unsigned use, ByteBuffer& out) {
-  discs.for_each_field([&](const char*, unsigned uses, auto& field) {
-    if (uses & use) out.put(field[i]);
-  });
-}
-
-// Appends one disc record; fields the record does not carry get their default value.
-void append_disc(DiscStore& discs, unsigned use, ByteReader& in) {
-  discs.for_each_field([&](const char*, unsigned uses, auto& field) {
-    using T = typename std::decay_t<decltype(field)>::value_type;
-    field.push_back((uses & use) ? in.get<T>() : T{});
-  });
-}
-
-void read_disc(DiscStore& discs, std::size_t i, unsigned use, ByteReader& in) {
-  discs.for_each_field([&](const char*, unsigned uses, auto& field) {
-    using T = typename std::decay_t<decltype(field)>::value_type;
-    if (uses & use) field[i] = in.get<T>();
-  });
-}
-
-std::size_t record_bytes(DiscStore& discs, unsigned use) {
-  std::size_t bytes = 0;
-  discs.for_each_field([&](const char*, unsigned uses, auto& field) {
-    if (uses & use) bytes += sizeof(field[0]);
-  });
-  return bytes;
-}
-
-void pack_row(const ContactTable& t, std::size_t r, ByteBuffer& out) {
-  out.put(t.key[r]);
-  out.put(t.param[r]);
-  for (const auto& s : t.slot) out.put(s[r]);
-  out.put(t.F_n[r]);
-  out.put(t.F_t[r]);
-  if (t.has_moment()) out.put(t.M1[r]), out.put(t.M2[r]);
-  out.put(t.f1[r]);
-}
-
-void unpack_row(ContactTable& t, ByteReader& in) {
-  const auto key = in.get<ContactKey>();
-  const auto param = in.get<std::int32_t>();
-  t.push(key, -1, -1, param);
-  const std::size_t r = t.size() - 1;
-  for (auto& s : t.slot) s[r] = in.get<double>();
-  t.F_n[r] = in.get<double>();
-  t.F_t[r] = in.get<double>();
-  if (t.has_moment()) t.M1[r] = in.get<double>(), t.M2[r] = in.get<double>();
-  t.f1[r] = in.get<Vec2>();
-}
 
 // Rows (with state) per disc gid: (gid, row) sorted, for the rows that travel with a disc.
 std::vector<std::pair<std::int64_t, std::size_t>> rows_by_gid(const ContactTable& t, bool both_ends) {

@@ -1,0 +1,53 @@
+#pragma once
+#include <hdf5.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "parallel/Communicator.hpp"
+
+namespace rondel {
+
+// A parallel HDF5 file opened collectively by every rank of a communicator, with the few operations the
+// checkpoint and snapshot layers need. Datasets are 1D (n) or 2D (n x 2) arrays; each rank writes or reads
+// a contiguous block of rows [offset, offset + count) collectively. Errors throw InputError naming the file.
+class Hdf5File {
+ public:
+  enum class Mode { create, read };
+  Hdf5File(const std::string& path, Mode mode, const Communicator& comm);
+  ~Hdf5File();
+  Hdf5File(const Hdf5File&) = delete;
+  Hdf5File& operator=(const Hdf5File&) = delete;
+
+  const std::string& path() const { return path_; }
+  void create_group(const std::string& name);
+  bool exists(const std::string& name) const;
+
+  // Attributes on an object ("/" for the file). Every rank passes the same value.
+  void write_attribute(const std::string& object, const std::string& name, const std::string& value);
+  void write_attribute(const std::string& object, const std::string& name, std::int64_t value);
+  void write_attribute(const std::string& object, const std::string& name, double value);
+  std::string read_string_attribute(const std::string& object, const std::string& name) const;
+  std::int64_t read_int_attribute(const std::string& object, const std::string& name) const;
+  double read_double_attribute(const std::string& object, const std::string& name) const;
+  bool has_attribute(const std::string& object, const std::string& name) const;
+
+  // Collective block write: `total` rows of `width` values; this rank's rows start at `offset`.
+  template <class T>
+  void write(const std::string& name, const std::vector<T>& local, std::uint64_t total, std::uint64_t offset,
+             int width = 1);
+  // Collective block read of rows [offset, offset + count).
+  template <class T>
+  std::vector<T> read(const std::string& name, std::uint64_t offset, std::uint64_t count, int width = 1) const;
+  // Rows of a dataset (0 when absent).
+  std::uint64_t rows(const std::string& name) const;
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const;
+  std::string path_;
+  hid_t file_ = -1;
+  hid_t xfer_ = -1;
+};
+
+}  // namespace rondel
