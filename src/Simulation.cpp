@@ -12,6 +12,7 @@
 #include "core/Integrator.hpp"
 #include "core/ExactSum.hpp"
 #include "core/SceneBuilder.hpp"
+#include "core/StopSignal.hpp"
 #include "physics/Restitution.hpp"
 
 namespace rondel {
@@ -27,7 +28,7 @@ std::string fmt(double v, int precision = 6) {
 }
 }  // namespace
 
-Simulation::Simulation(Config config, const Communicator& comm, bool write_files)
+Simulation::Simulation(Config config, const Communicator& comm, bool write_files, const std::string& restart_file)
     : config_(std::move(config)), comm_(comm), write_files_(write_files), neighbours_(0.0) {
   laws_.tangential = config_.tangential_law == "coulomb" ? TangentialLaw::coulomb : TangentialLaw::none;
   if (!parse_rolling_law(config_.rolling_law, laws_.rolling))
@@ -38,12 +39,18 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
   walls_ = config_.walls;
   for (ContactParams* p : {&config_.params.pair(0, 0), &config_.params.wall(0)})
     if (p->e_n > 0.0) p->zeta_n = zeta_from_restitution(p->e_n);
-  build_discs();
-  resolve_time_step();
-  check_initial_state();
-  distribute_discs();
-  if (write_files_) prepare_output();
+  const bool restart = !restart_file.empty();
+  if (restart) {
+    load_checkpoint(restart_file);
+  } else {
+    build_discs();
+    resolve_time_step();
+    check_initial_state();
+    distribute_discs();
+  }
+  if (write_files_) prepare_output(restart);
   rebuild();
+  if (restart) return;  // forces, history and ledger come from the file (no recomputation before the first kick)
   // Forces at t = 0 for the first half kick: the kernel at the initial state with a zero increment. Its
   // capping rule may reset springs (a dashpot alone above the cap); the history is restored so that the
   // run starts with unloaded springs and no work booked.
@@ -58,7 +65,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
 
 void Simulation::build_discs() {
   const std::string dir = config_.source_file.empty() ? "" : fs::path(config_.source_file).parent_path().string();
-  const auto scene = build_scene(config_.scene, config_.domain, dir);
+  const auto scene = config_.scene.type == "file" ? scene_from_file() : build_scene(config_.scene, config_.domain, dir);
   if (scene.empty())
     throw InputError(config_.scene.type == "csv"
                          ? "scene.file '" + config_.scene.file + "' holds no discs: the scene is empty"
@@ -73,9 +80,17 @@ void Simulation::build_discs() {
                        "] x [" + fmt(config_.domain.ylo) + ", " + fmt(config_.domain.yhi) + "]");
     discs_.add(d.gid, 0, d.radius, config_.density, config_.thickness, x, d.v, d.omega);
   }
-  double R_min = INFINITY, R_max = 0.0, R_sum = 0.0;
-  for (double R : discs_.radius) R_min = std::min(R_min, R), R_max = std::max(R_max, R), R_sum += R;
-  const double skin = config_.skin > 0.0 ? config_.skin : 0.25 * R_sum / discs_.size();
+  setup_neighbours();
+}
+
+void Simulation::setup_neighbours() {
+  // From the radii of every disc (the discs may be spread over ranks already, on a restart).
+  double R_max = 0.0;
+  ExactSum R_sum;
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) R_max = std::max(R_max, discs_.radius[i]), R_sum += discs_.radius[i];
+  R_max = comm_.max(R_max);
+  const auto n = comm_.sum(static_cast<std::int64_t>(discs_.n_owned()));
+  const double skin = config_.skin > 0.0 ? config_.skin : 0.25 * comm_.exact_sum(R_sum) / static_cast<double>(n);
   neighbours_ = NeighbourList(skin);
   const double range = neighbours_.range(R_max);
   const Domain& d = config_.domain;
@@ -94,25 +109,34 @@ void Simulation::build_discs() {
 
 void Simulation::distribute_discs() {
   // Every rank built the whole scene; each keeps the discs of its cells.
-  double R_max = 0.0;
-  for (double R : discs_.radius) R_max = std::max(R_max, R);
-  const auto partitioner = config_.partitioner == "grid" ? Decomposition::Partitioner::grid
-                                                          : Decomposition::Partitioner::metis;
-  decomposition_ = std::make_unique<Decomposition>(config_.domain, neighbours_.range(R_max), partitioner, comm_);
-  std::vector<long> weights(decomposition_->grid().size(), 1);
-  for (const Vec2& x : discs_.position) weights[decomposition_->grid().cell_of(x)] += 1;
-  decomposition_->initial_partition(weights);
-  if (decomposition_->empty_ranks() > 0 && comm_.root())
-    std::cerr << "rondel: warning: " << decomposition_->empty_ranks() << " of " << comm_.size()
-              << " ranks own no cell and will idle; use fewer ranks for this scene\n";
+  make_decomposition(true);
   std::vector<bool> elsewhere(discs_.n_owned());
   for (std::size_t i = 0; i < discs_.n_owned(); ++i) elsewhere[i] = decomposition_->owner(discs_.position[i]) != comm_.rank();
   discs_.remove_owned(elsewhere);
 }
 
+void Simulation::make_decomposition(bool replicated) {
+  double R_max = 0.0;
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) R_max = std::max(R_max, discs_.radius[i]);
+  R_max = comm_.max(R_max);
+  const auto partitioner = config_.partitioner == "grid" ? Decomposition::Partitioner::grid
+                                                          : Decomposition::Partitioner::metis;
+  decomposition_ = std::make_unique<Decomposition>(config_.domain, neighbours_.range(R_max), partitioner, comm_);
+  std::vector<long> weights(decomposition_->grid().size(), 1);
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) weights[decomposition_->grid().cell_of(discs_.position[i])] += 1;
+  if (!replicated) weights = decomposition_->sum_over_ranks(weights);
+  decomposition_->initial_partition(weights);
+  if (decomposition_->empty_ranks() > 0 && comm_.root())
+    std::cerr << "rondel: warning: " << decomposition_->empty_ranks() << " of " << comm_.size()
+              << " ranks own no cell and will idle; use fewer ranks for this scene\n";
+}
+
 void Simulation::resolve_time_step() {
   double R_min = INFINITY, R_max = 0.0;
-  for (double R : discs_.radius) R_min = std::min(R_min, R), R_max = std::max(R_max, R);
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i)
+    R_min = std::min(R_min, discs_.radius[i]), R_max = std::max(R_max, discs_.radius[i]);
+  R_min = -comm_.max(-R_min);
+  R_max = comm_.max(R_max);
   const std::vector<MaterialInfo> mats{{config_.density, config_.thickness, R_min, R_max}};
   critical_ = critical_time_step(laws_, config_.params, mats, !walls_.empty());
   if (config_.dt == 0.0) {
@@ -157,25 +181,6 @@ void Simulation::check_initial_state() {
                      " between " + where);
 }
 
-void Simulation::prepare_output() {
-  const fs::path dir(config_.output);
-  bool exists = false;
-  if (comm_.root()) {
-    exists = fs::exists(dir) && !(fs::is_directory(dir) && fs::is_empty(dir));
-  }
-  if (comm_.any(exists) && !config_.overwrite)
-    throw ConfigError("run.output = '" + config_.output +
-                      "' already exists and is not empty; choose another directory or set run.overwrite = true");
-  if (!comm_.root()) return;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  for (const char* stale : {"final.csv", "summary.txt"}) fs::remove(dir / stale, ec);
-  std::ofstream cfg(dir / "config.ini");
-  if (!cfg) throw ConfigError("run.output = '" + config_.output + "' cannot be written");
-  cfg << "# resolved configuration of this run (every key, defaults included)\n" << config_.resolved_text;
-  log_.open(dir / "log.txt");
-  diag_.open((dir / "diagnostics.csv").string());
-}
 
 void Simulation::log(const std::string& line) {
   if (!comm_.root()) return;
@@ -287,7 +292,9 @@ DiagnosticsRow Simulation::diagnostics() {
   row.W_r = g.W_r;
   const StoredEnergy stored =
       kernel_.stored(KernelContext{discs_, config_.domain, walls_, config_.params, dt_}, pairs_, wall_rows_);
-  row.E_stored = comm_.sum(stored.total());
+  ExactSum stored_sum;
+  stored_sum += stored.total();
+  row.E_stored = comm_.exact_sum(stored_sum);
   row.imbalance = imbalance_;
   const double ghosts = comm_.sum(static_cast<double>(exchange_.ghost_count()));
   row.ghost_fraction = n > 0 ? ghosts / n : 0.0;
@@ -369,37 +376,62 @@ std::string Simulation::state_text() const {
 }
 
 RunSummary Simulation::run() {
-  log("Rondel: " + std::to_string(discs_.n_owned()) + " discs, " + std::to_string(walls_.size()) + " walls, " +
+  const auto n_discs = comm_.sum(static_cast<std::int64_t>(discs_.n_owned()));
+  log("Rondel: " + std::to_string(n_discs) + " discs, " + std::to_string(walls_.size()) + " walls, " +
       std::to_string(comm_.size()) + " rank(s); laws: normal " + config_.normal_law + ", tangential " +
       config_.tangential_law + ", rolling " + config_.rolling_law);
   log("time step " + fmt(dt_) + " s = " + fmt(dt_ / critical_.dt, 4) + " x critical " + fmt(critical_.dt) +
       " s, limited by the " + critical_.mode + " mode (" + critical_.pair + ")");
-  log("neighbour skin " + fmt(neighbours_.skin()) + " m; output in " + (write_files_ ? config_.output : "(none)"));
+  log("neighbour skin " + fmt(neighbours_.skin()) + " m; output in " + (write_files_ ? config_.output : "(none)") +
+      (step_ > 0 ? "; resumed at step " + std::to_string(step_) : ""));
   log("resolved configuration:\n" + config_.resolved_text);
-  ProgressLine progress(config_.steps, static_cast<std::int64_t>(discs_.n_owned()),
-                        write_files_ && config_.progress && comm_.root());
+  const std::int64_t first = step_, todo = std::max<std::int64_t>(0, config_.steps - step_);
+  ProgressLine progress(todo, n_discs, write_files_ && config_.progress && comm_.root());
+  StopSignal::install();
+  RunSummary sum;
   const auto start = std::chrono::steady_clock::now();
+  auto last_checkpoint = start;
+  std::int64_t checkpointed = -1;
   auto record = [&]() {
     const DiagnosticsRow row = diagnostics();
     if (comm_.root()) diag_.write(row);
     check_stability(row);
   };
+  auto checkpoint = [&]() {
+    wall_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count();
+    last_checkpoint = std::chrono::steady_clock::now();
+    sum.last_checkpoint = write_checkpoint();
+    checkpointed = step_;
+  };
   try {
-    record();
-    for (std::int64_t s = 0; s < config_.steps; ++s) {
+    if (step_ == 0) record();
+    while (step_ < config_.steps) {
       step();
-      if (step_ % config_.diag_every == 0 || s + 1 == config_.steps) record();
-      progress.update(s + 1);
+      if (step_ % config_.diag_every == 0 || step_ == config_.steps) record();
+      if (files_ && config_.snapshot_every > 0 && step_ % config_.snapshot_every == 0) write_snapshot();
+      // Every rank agrees on the step of a signal or of a wall-clock checkpoint (rank 0's clock decides).
+      const double minutes = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() / 60.0;
+      const bool timed = comm_.root() && config_.checkpoint_minutes > 0.0 && minutes >= config_.checkpoint_minutes;
+      const std::int64_t signal = comm_.max(static_cast<std::int64_t>(StopSignal::received()));
+      const bool timed_any = comm_.any(timed);
+      if (files_ && (signal != 0 || timed_any || (config_.checkpoint_every > 0 && step_ % config_.checkpoint_every == 0)))
+        checkpoint();
+      progress.update(step_ - first);
+      if (signal != 0) {
+        sum.stop_signal = static_cast<int>(signal);
+        log(std::string("stopped by ") + StopSignal::name(sum.stop_signal) + " at step " + std::to_string(step_));
+        break;
+      }
     }
+    if (files_ && config_.checkpoint_at_end && sum.stop_signal == 0 && checkpointed != step_) checkpoint();
   } catch (const InstabilityError& e) {
     progress.finish();
     log(std::string("FAILED: ") + e.what());
     throw;
   }
   progress.finish();
-  RunSummary sum;
-  sum.steps = config_.steps;
-  sum.discs = comm_.sum(static_cast<std::int64_t>(discs_.n_owned()));
+  sum.steps = step_ - first;
+  sum.discs = n_discs;
   sum.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   sum.disc_steps_per_second = sum.wall_seconds > 0 ? sum.discs * sum.steps / sum.wall_seconds : 0.0;
   sum.dt = dt_;
@@ -416,7 +448,9 @@ RunSummary Simulation::run() {
   const std::string final_state = write_files_ ? state_text() : "";
   if (write_files_ && comm_.root()) {
     std::ofstream(fs::path(config_.output) / "final.csv") << final_state;
-    std::ofstream(fs::path(config_.output) / "summary.txt") << s.str() << "\nstatus: complete\n";
+    std::ofstream(fs::path(config_.output) / "summary.txt")
+        << s.str() << (sum.stop_signal ? "\nstatus: stopped by a signal; resume with --resume " + config_.output + "\n"
+                                       : std::string("\nstatus: complete\n"));
     log("results in " + config_.output + "/ (config.ini, log.txt, diagnostics.csv, final.csv, summary.txt)");
   }
   return sum;

@@ -4,7 +4,9 @@
 #include <memory>
 #include <string>
 
+#include "Checkpointing.hpp"
 #include "core/Config.hpp"
+#include "core/SceneBuilder.hpp"
 #include "core/ContactTable.hpp"
 #include "core/Diagnostics.hpp"
 #include "core/DiscStore.hpp"
@@ -20,6 +22,8 @@
 namespace rondel {
 
 struct RunSummary {
+  int stop_signal = 0;          // the signal that stopped the run early (0: it ran to the end)
+  std::string last_checkpoint;  // path of the last checkpoint written ("" if none)
   std::int64_t steps = 0;
   std::int64_t discs = 0;
   double wall_seconds = 0.0;
@@ -34,7 +38,9 @@ struct RunSummary {
 // section 4. All set-up checks happen in the constructor, before any file is written.
 class Simulation {
  public:
-  Simulation(Config config, const Communicator& comm, bool write_files = true);
+  // `restart_file`: continue from this checkpoint (its discs, contact history, walls, step, time, dt and
+  // ledger), on any rank count; the configuration must select the same laws.
+  Simulation(Config config, const Communicator& comm, bool write_files = true, const std::string& restart_file = "");
 
   // Runs config.steps steps with diagnostics and output; returns the summary (also logged).
   RunSummary run();
@@ -59,6 +65,8 @@ class Simulation {
   const Decomposition& decomposition() const { return *decomposition_; }
   std::size_t ghost_count() const { return exchange_.ghost_count(); }
   double imbalance() const { return imbalance_; }
+  // Collective: writes a checkpoint into the output directory now; returns its path.
+  std::string write_checkpoint();
   double kinetic_energy() const;
   DiagnosticsRow diagnostics();
   // Every disc as "gid,x,y,vx,vy,theta,omega" in hexadecimal floats, ascending gid (bit-exact), gathered
@@ -67,13 +75,21 @@ class Simulation {
 
  private:
   void build_discs();
+  void setup_neighbours();
   void distribute_discs();
+  void make_decomposition(bool replicated);
+  // Files (SimulationFiles.cpp).
+  std::vector<SceneDisc> scene_from_file() const;
+  void load_checkpoint(const std::string& path);
+  void check_laws_match(const StateHeader& header, const std::string& path) const;
+  StateHeader state_header(const char* kind) const;
   void balance_load();
   void resolve_time_step();
   void check_initial_state();
   void rebuild();
   void log(const std::string& line);
-  void prepare_output();
+  void prepare_output(bool resuming);
+  void write_snapshot();
   void check_stability(const DiagnosticsRow& row) const;
   std::string most_energetic_disc() const;
   [[noreturn]] void report_overlap(const LedgerStep& work) const;
@@ -98,6 +114,8 @@ class Simulation {
   bool rebalance_due_ = false;
   double imbalance_ = 1.0;
   std::size_t migrated_ = 0;
+  std::unique_ptr<Checkpointing> files_;
+  double wall_seconds_ = 0.0;  // wall time of earlier runs of this simulation (before a restart) and this one
   std::ofstream log_;
   DiagnosticsWriter diag_;
 };

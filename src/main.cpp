@@ -1,21 +1,61 @@
-// rondel: a 2D discrete element code for discs. Usage: mpirun -n N rondel FILE.ini [--section.key=value ...]
-#include <cstdio>
+// rondel: a 2D discrete element code for discs.
+//   mpirun -n N rondel FILE.ini [--section.key=value ...]
+//   mpirun -n N rondel [FILE.ini] --resume OUTPUT_DIR [--section.key=value ...]
+#include <cstring>
 #include <exception>
 #include <iostream>
+#include <string>
+#include <vector>
 
+#include "Checkpointing.hpp"
 #include "Simulation.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"
+#include "parallel/StateFile.hpp"
+
+namespace {
+
+// The --resume directory, if any, and whether an INI file was named.
+std::string resume_directory(int argc, char** argv, bool& has_file) {
+  std::string dir;
+  has_file = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--resume" && i + 1 < argc) dir = argv[++i];
+    else if (a.rfind("--resume=", 0) == 0) dir = a.substr(9);
+    else if (a.rfind("--", 0) != 0) has_file = true;
+  }
+  return dir;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   rondel::MpiEnvironment mpi(&argc, &argv);
   rondel::Communicator comm;
-  // Exit codes: 0 done, 1 configuration or input error, 3 the run became unstable, 4 internal error.
+  // Exit codes: 0 done, 1 configuration or input error, 3 the run became unstable, 4 internal error,
+  // 10 stopped by SIGTERM, SIGINT or SIGUSR1 after writing a checkpoint (continue with --resume).
   try {
-    rondel::Config config = rondel::parse_config(argc, argv);
-    rondel::Simulation sim(std::move(config), comm);
-    sim.run();
-    return 0;
+    bool has_file = false;
+    const std::string resume = resume_directory(argc, argv, has_file);
+    std::string checkpoint;
+    rondel::Config config;
+    if (!resume.empty()) {
+      std::vector<std::string> skipped;
+      checkpoint = rondel::Checkpointing::newest_checkpoint(resume, comm, &skipped);
+      if (comm.root())
+        for (const auto& s : skipped) std::cerr << "rondel: skipping " << s << '\n';
+    }
+    if (!resume.empty() && !has_file) {
+      // No INI: the configuration stored in the checkpoint, with the command line's overrides.
+      std::vector<std::string> args(argv + 1, argv + argc);
+      config = rondel::parse_config_text(rondel::read_state_header(checkpoint, comm).config, args);
+    } else {
+      config = rondel::parse_config(argc, argv);
+    }
+    rondel::Simulation sim(std::move(config), comm, true, checkpoint);
+    const rondel::RunSummary summary = sim.run();
+    return summary.stop_signal != 0 ? 10 : 0;
   } catch (const rondel::HelpRequested& h) {
     if (comm.root()) std::cout << h.text;
     return 0;

@@ -1,6 +1,7 @@
 #include "core/Config.hpp"
 
 #include <boost/any.hpp>
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -28,7 +29,16 @@ std::string value_text(const boost::any& v) {
 }
 
 // INI text of every key that has a value, grouped by section in declaration order.
-std::string resolved_text(const po::options_description& schema, const po::variables_map& vm) {
+// Blocks of laws that are not selected are left out (their defaults would read as a stale block).
+std::string resolved_text(const po::options_description& schema, const po::variables_map& vm, const Config& c) {
+  const std::map<std::string, bool> law_block = {
+      {"coulomb", c.tangential_law == "coulomb"},
+      {"jiang", c.rolling_law == "jiang_plastic" || c.rolling_law == "jiang_brittle"},
+      {"wang", c.rolling_law == "wang"},
+      {"iwashita_oda", c.rolling_law == "iwashita_oda"},
+      {"force_proportional", c.rolling_law == "force_proportional"},
+      {"constant_torque", c.rolling_law == "constant_torque"},
+      {"displacement_damping", c.rolling_law == "displacement_damping"}};
   std::ostringstream out;
   std::string section;
   for (const auto& opt : schema.options()) {
@@ -36,6 +46,8 @@ std::string resolved_text(const po::options_description& schema, const po::varia
     if (!vm.count(name)) continue;
     const auto dot = name.find('.');
     const std::string sec = name.substr(0, dot);
+    const auto block = law_block.find(sec);
+    if (block != law_block.end() && !block->second) continue;
     if (sec != section) {
       out << (section.empty() ? "" : "\n") << "[" << sec << "]\n";
       section = sec;
@@ -302,12 +314,14 @@ void read_scene(const Reader& r, Config& c) {
     } else {
       throw ConfigError("key 'scene.distribution' = " + s.distribution + " is not allowed: uniform_radius | uniform_area | list");
     }
+  } else if (s.type == "file") {
+    if (s.file.empty()) throw ConfigError("missing required key 'scene.file' (scene.type = file: a checkpoint or snapshot)");
   } else if (s.type == "csv") {
     if (s.file.empty()) throw ConfigError("missing required key 'scene.file' (scene.type = csv)");
     check(s.replicate_x >= 1, "scene.replicate_x", "must be >= 1", std::to_string(s.replicate_x));
     check(s.replicate_y >= 1, "scene.replicate_y", "must be >= 1", std::to_string(s.replicate_y));
   } else {
-    throw ConfigError("key 'scene.type' = " + s.type + " is not allowed: lattice_square | lattice_hex | random | csv");
+    throw ConfigError("key 'scene.type' = " + s.type + " is not allowed: lattice_square | lattice_hex | random | csv | file");
   }
 }
 
@@ -329,6 +343,27 @@ Config build(const po::options_description& schema, const po::variables_map& vm)
   check(c.max_overlap > 0.0, "run.max_overlap", "must be > 0", num(c.max_overlap));
   c.max_residual = r.get<double>("run.max_residual");
   check(c.max_residual > 0.0, "run.max_residual", "must be > 0", num(c.max_residual));
+  c.reset_history = r.get<bool>("run.reset_history");
+  c.snapshot_every = r.get<std::int64_t>("output.snapshot_every");
+  check(c.snapshot_every >= 0, "output.snapshot_every", "must be >= 0", std::to_string(c.snapshot_every));
+  {
+    std::istringstream in(r.get<std::string>("output.snapshot_fields"));
+    const std::string allowed = " gid material radius mass inertia position velocity theta omega force torque flags rank ";
+    for (std::string f; in >> f;) {
+      check(allowed.find(" " + f + " ") != std::string::npos, "output.snapshot_fields", allowed, f);
+      c.snapshot_fields.push_back(f);
+    }
+    if (std::find(c.snapshot_fields.begin(), c.snapshot_fields.end(), "position") == c.snapshot_fields.end())
+      c.snapshot_fields.push_back("position");  // the XDMF geometry
+  }
+  c.checkpoint_every = r.get<std::int64_t>("output.checkpoint_every");
+  check(c.checkpoint_every >= 0, "output.checkpoint_every", "must be >= 0", std::to_string(c.checkpoint_every));
+  c.checkpoint_minutes = r.get<double>("output.checkpoint_minutes");
+  non_negative(c.checkpoint_minutes, "output.checkpoint_minutes");
+  c.checkpoint_keep = r.get<int>("output.checkpoint_keep");
+  check(c.checkpoint_keep >= 1, "output.checkpoint_keep", "must be >= 1", std::to_string(c.checkpoint_keep));
+  c.checkpoint_at_end = r.get<bool>("output.checkpoint_at_end");
+  if (vm.count("resume")) c.resume_dir = vm["resume"].as<std::string>();
   c.diag_every = r.get<std::int64_t>("diagnostics.every");
   check(c.diag_every > 0, "diagnostics.every", "must be > 0", std::to_string(c.diag_every));
 
@@ -359,7 +394,7 @@ Config build(const po::options_description& schema, const po::variables_map& vm)
   read_contact(r, c);
   read_walls(r, c);
   read_scene(r, c);
-  c.resolved_text = resolved_text(schema, vm);
+  c.resolved_text = resolved_text(schema, vm, c);
   return c;
 }
 
@@ -367,7 +402,8 @@ po::variables_map parse(const std::vector<std::string>& args, std::string* file_
   const auto schema = config_schema();
   po::options_description cli("Command line");
   cli.add_options()("help,h", "print every key with its default, unit and meaning")
-      ("config", po::value<std::string>(), "INI file (also the first positional argument)");
+      ("config", po::value<std::string>(), "INI file (also the first positional argument)")
+      ("resume", po::value<std::string>(), "continue from the newest complete checkpoint of this output directory");
   cli.add(schema);
   po::positional_options_description pos;
   pos.add("config", 1);
@@ -388,7 +424,7 @@ po::variables_map parse(const std::vector<std::string>& args, std::string* file_
       } catch (const po::error& e) {
         throw ConfigError("in '" + file + "': " + std::string(e.what()) + " (rondel --help lists every key)");
       }
-    } else {
+    } else if (!vm.count("resume")) {
       throw ConfigError("no configuration file given: usage 'rondel FILE.ini [--section.key=value ...]'");
     }
     po::notify(vm);

@@ -43,6 +43,15 @@ struct Config {
   bool progress = true;
   double max_overlap = 0.1;
   double max_residual = 0.5;
+  bool reset_history = false;
+  // [output]
+  std::int64_t snapshot_every = 0;
+  std::vector<std::string> snapshot_fields;
+  std::int64_t checkpoint_every = 0;
+  double checkpoint_minutes = 0.0;
+  int checkpoint_keep = 2;
+  bool checkpoint_at_end = true;
+  std::string resume_dir;  // --resume DIR (command line only)
   // [diagnostics]
   std::int64_t diag_every = 100;
   // [domain], [gravity], [material]

@@ -30,7 +30,17 @@ po::options_description config_schema() {
       ("run.overwrite", def(false), "[-] reuse an existing output directory")
       ("run.progress", def(true), "[-] progress line on rank 0")
       ("run.max_overlap", def(0.1), "[-] stop when an overlap exceeds this fraction of the smaller radius")
+      ("run.reset_history", def(false), "[-] start from a file whose laws differ: drop its contact history")
       ("run.max_residual", def(0.5), "[-] stop when the energy ledger residual exceeds this fraction of the energy scale");
+  po::options_description out("[output] snapshots and checkpoints (HDF5, FORMAT.md)");
+  out.add_options()
+      ("output.snapshot_every", def<std::int64_t>(0), "[steps] snapshot interval; 0 = none")
+      ("output.snapshot_fields", def("position velocity omega radius rank"),
+       "[-] snapshot datasets: any of gid material radius mass inertia position velocity theta omega force torque flags rank")
+      ("output.checkpoint_every", def<std::int64_t>(0), "[steps] checkpoint interval; 0 = none (see checkpoint_minutes)")
+      ("output.checkpoint_minutes", def(0.0), "[min] checkpoint also after this much wall time; 0 = off")
+      ("output.checkpoint_keep", def(2), "[-] newest checkpoints kept, >= 1")
+      ("output.checkpoint_at_end", def(true), "[-] write a checkpoint after the last step");
   po::options_description diag("[diagnostics]");
   diag.add_options()("diagnostics.every", def<std::int64_t>(100), "[steps] interval of diagnostics.csv rows");
   po::options_description domain("[domain]");
@@ -111,7 +121,7 @@ po::options_description config_schema() {
       ("walls.segments", def(""), "[m, m/s] segments 'x1 y1 x2 y2 [vx vy]; ...'");
   po::options_description scene("[scene]");
   scene.add_options()
-      ("scene.type", opt<std::string>(), "[-] lattice_square | lattice_hex | random | csv (required)")
+      ("scene.type", opt<std::string>(), "[-] lattice_square | lattice_hex | random | csv | file (required)")
       ("scene.nx", def(0), "[-] lattice: discs per row")
       ("scene.ny", def(0), "[-] lattice: rows")
       ("scene.radius", def(0.0), "[m] lattice: disc radius")
@@ -127,7 +137,8 @@ po::options_description config_schema() {
       ("scene.fractions", def(""), "[-] random, list: number fractions 'f1 f2 ...' (sum 1)")
       ("scene.seed", def<std::uint64_t>(1), "[-] random: seed (same scene on any rank count)")
       ("scene.max_attempts", def<std::int64_t>(1000), "[-] random: placement attempts per disc")
-      ("scene.file", def(""), "[path] csv: 'id,x,y,radius[,vx,vy,omega]' rows, # comments")
+      ("scene.file", def(""), "[path] csv: 'id,x,y,radius[,vx,vy,omega]' rows, # comments; file: a Rondel "
+                               "checkpoint or snapshot (.h5)")
       ("scene.replicate_x", def(1), "[-] csv: periodic copies in x")
       ("scene.replicate_y", def(1), "[-] csv: periodic copies in y")
       ("scene.vx", def(0.0), "[m/s] initial velocity x of every disc (csv: added to the file's)")
@@ -135,7 +146,7 @@ po::options_description config_schema() {
       ("scene.omega", def(0.0), "[rad/s] initial angular velocity")
       ("scene.max_initial_overlap", def(0.01), "[-] largest initial overlap allowed, / smaller radius");
   po::options_description all;
-  all.add(run).add(diag).add(domain).add(grav).add(mat).add(contact).add(linear).add(coulomb).add(jiang).add(wang)
+  all.add(run).add(out).add(diag).add(domain).add(grav).add(mat).add(contact).add(linear).add(coulomb).add(jiang).add(wang)
       .add(io).add(fp).add(ct).add(dd).add(wallc)
       .add(neigh).add(par).add(walls).add(scene);
   return all;

@@ -15,21 +15,33 @@ std::string DiagnosticsWriter::header() {
 
 std::string DiagnosticsWriter::format(const DiagnosticsRow& r) {
   std::ostringstream s;
-  s.precision(10);
-  s << r.step << ',' << r.time << ',' << r.ke_trans << ',' << r.ke_rot << ',' << r.contacts << ','
+  s.precision(12);
+  s << r.step << ',';
+  s.precision(16);
+  s << r.time << ',';
+  s.precision(12);
+  s << r.ke_trans << ',' << r.ke_rot << ',' << r.contacts << ','
     << r.wall_contacts << ',' << r.coordination << ',' << r.max_overlap << ',' << r.W_g << ',' << r.W_w << ','
     << r.W_n << ',' << r.W_t << ',' << r.W_r << ',' << r.E_stored << ',' << r.D_slip << ',' << r.D_r_plastic << ','
     << r.D_r_dashpot << ',' << r.E_r_break << ',' << r.D_other << ',' << r.residual << ',' << r.imbalance << ',' << r.ghost_fraction << ',' << r.migrated;
   return s.str();
 }
 
-void DiagnosticsWriter::open(const std::string& path) {
-  out_.open(path);
-  out_ << header() << '\n';
+void DiagnosticsWriter::open(const std::string& path, bool append) {
+  const bool existed = append && std::ifstream(path).good();
+  out_.open(path, append ? std::ios::app : std::ios::trunc);
+  if (!existed) out_ << header() << '\n';
 }
 
 void DiagnosticsWriter::write(const DiagnosticsRow& row) {
-  if (out_.is_open()) out_ << format(row) << '\n' << std::flush;
+  if (!out_.is_open()) return;
+  out_ << format(row) << '\n';
+  // Flushed at most once a second: a crash keeps nearly everything, without a flush per row.
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_flush_ > std::chrono::seconds(1)) {
+    out_.flush();
+    last_flush_ = now;
+  }
 }
 
 ProgressLine::ProgressLine(std::int64_t total_steps, std::int64_t n_discs, bool enabled)

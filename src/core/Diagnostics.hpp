@@ -26,13 +26,15 @@ struct DiagnosticsRow {
 // diagnostics.csv: one header, one row per diagnostics step (rank 0 only).
 class DiagnosticsWriter {
  public:
-  void open(const std::string& path);
+  // Starts the file with its header, or appends to it (a resumed run) when `append` and it exists.
+  void open(const std::string& path, bool append = false);
   void write(const DiagnosticsRow& row);
   static std::string header();
   static std::string format(const DiagnosticsRow& row);
 
  private:
   std::ofstream out_;
+  std::chrono::steady_clock::time_point last_flush_;
 };
 
 // A progress line with rate and ETA: rewritten in place on a terminal, a plain line every tenth of the run

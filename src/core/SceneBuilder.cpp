@@ -1,6 +1,7 @@
 #include "core/SceneBuilder.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -112,16 +113,26 @@ std::vector<SceneDisc> csv(const SceneConfig& s, const Domain& domain, const std
   std::vector<SceneDisc> base;
   std::string line;
   std::size_t lineno = 0;
+  bool header_seen = false;
   while (std::getline(in, line)) {
     ++lineno;
     if (line.empty() || line[0] == '#') continue;
+    // strtod reads decimal and hexadecimal floats (final.csv is written in hexadecimal, bit-exact).
     std::replace(line.begin(), line.end(), ',', ' ');
     std::istringstream fields(line);
     std::vector<double> v;
-    double x;
-    while (fields >> x) v.push_back(x);
-    if (v.empty() && base.empty()) continue;  // a header line
-    if (!fields.eof() || (v.size() != 4 && v.size() != 7))
+    bool numeric = true;
+    for (std::string tok; fields >> tok;) {
+      char* end = nullptr;
+      const double x = std::strtod(tok.c_str(), &end);
+      if (end != tok.c_str() + tok.size()) numeric = false;
+      v.push_back(x);
+    }
+    if (!numeric && base.empty() && !header_seen) {  // one header line before the data
+      header_seen = true;
+      continue;
+    }
+    if (!numeric || (v.size() != 4 && v.size() != 7))
       throw InputError("scene.file '" + s.file + "' line " + std::to_string(lineno) +
                        ": expected 'id,x,y,radius' or 'id,x,y,radius,vx,vy,omega'");
     SceneDisc d{static_cast<std::int64_t>(v[0]), {v[1], v[2]}, v[3], s.velocity, s.omega};

@@ -129,4 +129,17 @@ std::vector<ByteBuffer> Communicator::gather(const ByteBuffer& mine, int root) c
   return out;
 }
 
+std::vector<ByteBuffer> Communicator::all_gather(const ByteBuffer& mine) const {
+  int n = static_cast<int>(mine.bytes.size());
+  std::vector<int> counts(size_), displs(size_);
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
+  int total = 0;
+  for (int r = 0; r < size_; ++r) displs[r] = total, total += counts[r];
+  std::vector<char> all(static_cast<std::size_t>(total));
+  MPI_Allgatherv(mine.bytes.data(), n, MPI_BYTE, all.data(), counts.data(), displs.data(), MPI_BYTE, comm_);
+  std::vector<ByteBuffer> out(static_cast<std::size_t>(size_));
+  for (int r = 0; r < size_; ++r) out[r].bytes.assign(all.begin() + displs[r], all.begin() + displs[r] + counts[r]);
+  return out;
+}
+
 }  // namespace rondel

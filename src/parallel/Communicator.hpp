@@ -22,6 +22,8 @@ class MpiEnvironment {
 class Communicator {
  public:
   explicit Communicator(MPI_Comm comm = MPI_COMM_WORLD);
+  // This process alone (e.g. to read a whole file on every rank).
+  static Communicator self() { return Communicator(MPI_COMM_SELF); }
   int rank() const { return rank_; }
   int size() const { return size_; }
   bool root() const { return rank_ == 0; }
@@ -40,6 +42,8 @@ class Communicator {
                                    const std::vector<int>& from, const std::vector<std::size_t>& sizes) const;
   // Every rank gets root's bytes.
   void broadcast(std::vector<char>& bytes, int root = 0) const;
+  // Every rank gets every rank's bytes, in rank order.
+  std::vector<ByteBuffer> all_gather(const ByteBuffer& mine) const;
   // Root gets every rank's bytes, in rank order (others get an empty vector).
   std::vector<ByteBuffer> gather(const ByteBuffer& mine, int root = 0) const;
   void barrier() const;

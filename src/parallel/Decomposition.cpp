@@ -45,10 +45,14 @@ std::vector<long> Decomposition::cell_work(const DiscStore& discs, const Contact
   for (std::size_t r = 0; r < pairs.size(); ++r)
     if (static_cast<std::size_t>(pairs.i1[r]) < discs.n_owned() && pairs.F_n[r] > 0.0)
       work[grid_.cell_of(discs.position[pairs.i1[r]])] += 1;
+  work = sum_over_ranks(std::move(work));
   for (long& w : work) w += 1;  // an empty cell still costs a little, and METIS needs positive weights
-  MPI_Allreduce(MPI_IN_PLACE, work.data(), static_cast<int>(work.size()), MPI_LONG, MPI_SUM, comm_.comm());
-  for (long& w : work) w -= comm_.size() - 1;
   return work;
+}
+
+std::vector<long> Decomposition::sum_over_ranks(std::vector<long> values) const {
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_LONG, MPI_SUM, comm_.comm());
+  return values;
 }
 
 int Decomposition::empty_ranks() const {

@@ -31,6 +31,8 @@ class Decomposition {
   bool repartition(const std::vector<long>& weights);
   // Per-cell work of the local owned discs and their booked contacts, summed over ranks.
   std::vector<long> cell_work(const DiscStore& discs, const ContactTable& pairs) const;
+  // Element-wise sum over ranks of a per-cell array.
+  std::vector<long> sum_over_ranks(std::vector<long> values) const;
   // Number of ranks that own no cell.
   int empty_ranks() const;
 

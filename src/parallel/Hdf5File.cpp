@@ -145,6 +145,7 @@ void Hdf5File::write(const std::string& name, const std::vector<T>& local, std::
   Handle set{H5Dcreate2(file_, name.c_str(), memory_type<T>(), space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
              H5Dclose};
   if (set.id < 0) fail("cannot create dataset " + name);
+  if (total == 0) return;  // nothing to write (and no storage to write to); the same on every rank
   const hsize_t n_local = local.size() * components<T>() / width;
   hsize_t start[2] = {offset, 0}, count[2] = {n_local, static_cast<hsize_t>(width)};
   H5Sselect_hyperslab(space.id, H5S_SELECT_SET, start, nullptr, count, nullptr);
@@ -166,6 +167,7 @@ std::vector<T> Hdf5File::read(const std::string& name, std::uint64_t offset, std
       offset + count > dims[0])
     fail("dataset " + name + " has an unexpected shape");
   std::vector<T> out(count * width / components<T>());
+  if (dims[0] == 0) return out;
   hsize_t start[2] = {offset, 0}, cnt[2] = {count, static_cast<hsize_t>(width)};
   H5Sselect_hyperslab(space.id, H5S_SELECT_SET, start, nullptr, cnt, nullptr);
   Handle mem{H5Screate_simple(rank, cnt, nullptr), H5Sclose};

@@ -1,0 +1,109 @@
+#include "Checkpointing.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "core/Errors.hpp"
+
+namespace rondel {
+
+namespace fs = std::filesystem;
+
+Checkpointing::Checkpointing(std::string directory, int keep, std::vector<std::string> snapshot_fields,
+                             const Communicator& comm)
+    : dir_(std::move(directory)), keep_(keep), fields_(std::move(snapshot_fields)), comm_(comm) {}
+
+std::string Checkpointing::file_name(const char* prefix, std::int64_t step) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%s_%010lld.h5", prefix, static_cast<long long>(step));
+  return buf;
+}
+
+std::string Checkpointing::write_checkpoint(const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
+                                            const ContactTable& wall_rows, const WallSet& walls, double wall_seconds) {
+  const fs::path final_path = fs::path(dir_) / file_name("checkpoint", header.step);
+  std::string part_name = ".";  // hidden and never matched by checkpoint_*.h5 until complete
+  part_name += file_name("checkpoint", header.step);
+  part_name += ".part";
+  const fs::path part = fs::path(dir_) / part_name;
+  write_state_file(part.string(), header, discs, pairs, wall_rows, walls, comm_, {}, wall_seconds);
+  comm_.barrier();
+  if (comm_.root()) {
+    fs::rename(part, final_path);
+    std::vector<fs::path> existing;
+    for (const auto& e : fs::directory_iterator(dir_)) {
+      const std::string n = e.path().filename().string();
+      if (n.rfind("checkpoint_", 0) == 0 && e.path().extension() == ".h5") existing.push_back(e.path());
+    }
+    std::sort(existing.begin(), existing.end());
+    for (std::size_t k = 0; k + static_cast<std::size_t>(keep_) < existing.size(); ++k) fs::remove(existing[k]);
+  }
+  comm_.barrier();
+  return final_path.string();
+}
+
+std::string Checkpointing::write_snapshot(const StateHeader& header, DiscStore& discs, const WallSet& walls,
+                                          std::int64_t n_discs) {
+  const std::string name = file_name("snapshot", header.step);
+  const ContactTable none;
+  write_state_file((fs::path(dir_) / name).string(), header, discs, none, none, walls, comm_, fields_, 0.0);
+  snapshots_.push_back({name, header.step, n_discs, header.time});
+  if (comm_.root()) write_xdmf();
+  return (fs::path(dir_) / name).string();
+}
+
+void Checkpointing::write_xdmf() const {
+  std::ofstream x(fs::path(dir_) / "snapshots.xdmf");
+  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
+    << "  <Grid Name=\"discs\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  auto has = [this](const char* f) { return std::find(fields_.begin(), fields_.end(), f) != fields_.end(); };
+  for (const Snapshot& s : snapshots_) {
+    const std::string n = std::to_string(s.discs);
+    auto item = [&](const std::string& set, const std::string& dims, const char* type, int precision) {
+      return "<DataItem Dimensions=\"" + dims + "\" NumberType=\"" + type + "\" Precision=\"" +
+             std::to_string(precision) + "\" Format=\"HDF\">" + s.file + ":/discs/" + set + "</DataItem>";
+    };
+    x << "   <Grid Name=\"step " << s.step << "\" GridType=\"Uniform\">\n"
+      << "    <Time Value=\"" << s.time << "\"/>\n"
+      << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\" NodesPerElement=\"1\"/>\n"
+      << "    <Geometry GeometryType=\"XY\">" << item("position", n + " 2", "Float", 8) << "</Geometry>\n";
+    for (const char* f : {"radius", "omega", "theta", "mass"})
+      if (has(f))
+        x << "    <Attribute Name=\"" << f << "\" AttributeType=\"Scalar\" Center=\"Node\">" << item(f, n, "Float", 8)
+          << "</Attribute>\n";
+    for (const char* f : {"velocity", "force"})
+      if (has(f))
+        x << "    <Attribute Name=\"" << f << "\" AttributeType=\"Vector\" Center=\"Node\">"
+          << item(f, n + " 2", "Float", 8) << "</Attribute>\n";
+    for (const char* f : {"rank", "gid"})
+      if (has(f))
+        x << "    <Attribute Name=\"" << f << "\" AttributeType=\"Scalar\" Center=\"Node\">"
+          << item(f, n, "Int", std::string(f) == "gid" ? 8 : 4) << "</Attribute>\n";
+    x << "   </Grid>\n";
+  }
+  x << "  </Grid>\n </Domain>\n</Xdmf>\n";
+}
+
+std::string Checkpointing::newest_checkpoint(const std::string& directory, const Communicator& comm,
+                                             std::vector<std::string>* skipped) {
+  std::vector<fs::path> found;
+  if (fs::is_directory(directory))
+    for (const auto& e : fs::directory_iterator(directory)) {
+      const std::string n = e.path().filename().string();
+      if (n.rfind("checkpoint_", 0) == 0 && e.path().extension() == ".h5") found.push_back(e.path());
+    }
+  std::sort(found.rbegin(), found.rend());
+  for (const fs::path& p : found) {
+    try {
+      read_state_header(p.string(), comm);
+      return p.string();
+    } catch (const InputError& e) {
+      if (skipped) skipped->push_back(p.string() + ": " + e.what());
+    }
+  }
+  throw InputError("--resume " + directory + ": no complete checkpoint (checkpoint_<step>.h5) in that directory");
+}
+
+}  // namespace rondel
