@@ -37,6 +37,9 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
   pairs_ = make_contact_table(laws_);
   wall_rows_ = make_contact_table(laws_);
   walls_ = config_.walls;
+  boundaries_ = Boundaries(config_.servo_gain, config_.servo_max_speed);
+  controlled_walls_ = boundaries_.controlled(walls_);
+  box0_ = Boundaries::box(walls_, config_.domain);
   for (ContactParams* p : {&config_.params.pair(0, 0), &config_.params.wall(0)})
     if (p->e_n > 0.0) p->zeta_n = zeta_from_restitution(p->e_n);
   const bool restart = !restart_file.empty();
@@ -60,6 +63,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
   pairs_.slot = pair_history;
   wall_rows_.slot = wall_history;
   assembly_.assemble(discs_, config_.gravity, pairs_, wall_rows_);
+  if (controlled_walls_) boundaries_.measure(walls_, wall_rows_, discs_.n_owned(), comm_);
   ledger_.start(kinetic_energy());
 }
 
@@ -122,8 +126,8 @@ void Simulation::make_decomposition(bool replicated) {
   const auto partitioner = config_.partitioner == "grid" ? Decomposition::Partitioner::grid
                                                           : Decomposition::Partitioner::metis;
   decomposition_ = std::make_unique<Decomposition>(config_.domain, neighbours_.range(R_max), partitioner, comm_);
-  std::vector<long> weights(decomposition_->grid().size(), 1);
-  for (std::size_t i = 0; i < discs_.n_owned(); ++i) weights[decomposition_->grid().cell_of(discs_.position[i])] += 1;
+  std::vector<long> weights(decomposition_->grid().size(), 1);  // as Decomposition::cell_work, discs only
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) weights[decomposition_->grid().cell_of(discs_.position[i])] += 100;
   if (!replicated) weights = decomposition_->sum_over_ranks(weights);
   decomposition_->initial_partition(weights);
   if (decomposition_->empty_ranks() > 0 && comm_.root())
@@ -201,7 +205,10 @@ void Simulation::rebuild() {
 }
 
 void Simulation::balance_load() {
-  const double work = static_cast<double>(discs_.n_owned() + pairs_.size());
+  // Work: owned discs and booked rows (Decomposition::cell_work counts the same).
+  std::size_t booked = 0;
+  for (std::size_t r = 0; r < pairs_.size(); ++r) booked += static_cast<std::size_t>(pairs_.i1[r]) < discs_.n_owned();
+  const double work = static_cast<double>(discs_.n_owned() + booked);
   const double max = comm_.max(work), mean = comm_.sum(work) / comm_.size();
   imbalance_ = mean > 0.0 ? max / mean : 1.0;
   if (comm_.size() == 1 || (!config_.force_balance && imbalance_ <= config_.balance_threshold)) return;
@@ -211,7 +218,8 @@ void Simulation::balance_load() {
 void Simulation::step() {
   // 1. Half kick and drift of owned discs (wrapping into the periodic box).
   const double W_g = Integrator::half_kick_drift(discs_, config_.domain, dt_, config_.gravity);
-  // 2. Move walls.
+  // 2. Move walls: servo and strain-rate walls steer from the last step's exact wall loads.
+  if (controlled_walls_) boundaries_.steer(walls_, config_.params, config_.domain, config_.thickness, dt_);
   for (auto& w : walls_) w.move(dt_);
   // 3. Rebuild the neighbour list when a disc (global max) has moved more than half the skin.
   const double disp = comm_.max(neighbours_.max_displacement(discs_, config_.domain));
@@ -223,6 +231,7 @@ void Simulation::step() {
               wall_rows_, work);
   if (comm_.any(work.worst_overlap > 0.0)) report_overlap(work);
   assembly_.assemble(discs_, config_.gravity, pairs_, wall_rows_);
+  if (controlled_walls_) boundaries_.measure(walls_, wall_rows_, discs_.n_owned(), comm_);
   // 7. Second half kick.
   Integrator::half_kick(discs_, dt_);
   ledger_.add(work, W_g);
@@ -290,8 +299,9 @@ DiagnosticsRow Simulation::diagnostics() {
   row.W_n = g.W_n;
   row.W_t = g.W_t;
   row.W_r = g.W_r;
-  const StoredEnergy stored =
+  const ContactSummary stored =
       kernel_.stored(KernelContext{discs_, config_.domain, walls_, config_.params, dt_}, pairs_, wall_rows_);
+  summary_ = stored;
   ExactSum stored_sum;
   stored_sum += stored.total();
   row.E_stored = comm_.exact_sum(stored_sum);
@@ -396,6 +406,9 @@ RunSummary Simulation::run() {
     const DiagnosticsRow row = diagnostics();
     if (comm_.root()) diag_.write(row);
     check_stability(row);
+    if (!write_files_) return;
+    const MeasuresRow m = measures(summary_);
+    if (comm_.root()) measures_ << m.csv() << '\n';
   };
   auto checkpoint = [&]() {
     wall_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count();

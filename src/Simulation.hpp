@@ -4,7 +4,9 @@
 #include <memory>
 #include <string>
 
+#include "Boundaries.hpp"
 #include "Checkpointing.hpp"
+#include "Measures.hpp"
 #include "core/Config.hpp"
 #include "core/SceneBuilder.hpp"
 #include "core/ContactTable.hpp"
@@ -69,6 +71,9 @@ class Simulation {
   std::string write_checkpoint();
   double kinetic_energy() const;
   DiagnosticsRow diagnostics();
+  // Collective: the macroscopic measures now (Measures.hpp), from the contact summary of diagnostics().
+  MeasuresRow measures(const ContactSummary& contacts);
+  MeasuresRow measures() { diagnostics(); return measures(summary_); }
   // Every disc as "gid,x,y,vx,vy,theta,omega" in hexadecimal floats, ascending gid (bit-exact), gathered
   // on rank 0 (collective; other ranks get an empty string).
   std::string state_text() const;
@@ -115,6 +120,11 @@ class Simulation {
   double imbalance_ = 1.0;
   std::size_t migrated_ = 0;
   std::unique_ptr<Checkpointing> files_;
+  Boundaries boundaries_{0.2, 0.1};
+  bool controlled_walls_ = false;
+  BoxGeometry box0_;          // the box at the start of the run (reference of the strains)
+  ContactSummary summary_;    // of the last diagnostics
+  std::ofstream measures_;
   double wall_seconds_ = 0.0;  // wall time of earlier runs of this simulation (before a restart) and this one
   std::ofstream log_;
   DiagnosticsWriter diag_;

@@ -34,6 +34,9 @@ void Simulation::prepare_output(bool resuming) {
                                     << config_.resolved_text;
   log_.open(dir / "log.txt", resuming ? std::ios::app : std::ios::trunc);
   diag_.open((dir / "diagnostics.csv").string(), resuming);
+  const bool measures_existed = resuming && fs::exists(dir / "measures.csv");
+  measures_.open(dir / "measures.csv", resuming ? std::ios::app : std::ios::trunc);
+  if (!measures_existed) measures_ << MeasuresRow::header() << '\n';
 }
 
 StateHeader Simulation::state_header(const char* kind) const {
@@ -47,6 +50,8 @@ StateHeader Simulation::state_header(const char* kind) const {
   h.rolling_law = config_.rolling_law;
   h.slots = history_slots(laws_);
   h.config = config_.resolved_text;
+  h.box_width0 = box0_.width;
+  h.box_height0 = box0_.height;
   const EnergyLedger g = global_ledger();
   h.ledger = {{"KE0", g.KE0},       {"W_g", g.W_g},       {"W_w", g.W_w},
               {"W_n", g.W_n},       {"W_t", g.W_t},       {"W_r", g.W_r},
@@ -106,10 +111,16 @@ void Simulation::load_checkpoint(const std::string& path) {
   if (walls.size() != walls_.size())
     throw InputError("'" + path + "' has " + std::to_string(walls.size()) + " walls but the configuration defines " +
                      std::to_string(walls_.size()));
-  for (std::size_t w = 0; w < walls.size(); ++w) {  // positions come from the file, motions from the config
+  for (std::size_t w = 0; w < walls.size(); ++w) {  // positions and loads from the file, controls from the config
     walls_[w].p0 = walls[w].p0;
     walls_[w].p1 = walls[w].p1;
+    walls_[w].velocity = walls[w].velocity;
+    walls_[w].force = walls[w].force;
+    walls_[w].normal_force = walls[w].normal_force;
+    walls_[w].contacts = walls[w].contacts;
   }
+  box0_.width = h.box_width0;
+  box0_.height = h.box_height0;
   setup_neighbours();
   resolve_time_step();
   dt_ = h.dt;

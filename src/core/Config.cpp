@@ -139,19 +139,50 @@ void read_walls(const Reader& r, Config& c) {
   std::istringstream box(r.get<std::string>("walls.box"));
   std::string side;
   const Domain& d = c.domain;
+  const auto region = numbers(r.get<std::string>("walls.box_region"), "walls.box_region");
+  double b[4] = {d.xlo, d.xhi, d.ylo, d.yhi};
+  if (region.size() == 4 && region[0] < region[1] && region[2] < region[3]) std::copy(region.begin(), region.end(), b);
+  else if (!region.empty()) throw ConfigError("key 'walls.box_region' must be 'xlo xhi ylo yhi' with xlo < xhi and ylo < yhi");
+  const char* sides[4] = {"bottom", "left", "right", "top"};
   while (box >> side) {
     Wall w;
     w.kind = Wall::Kind::line;
-    if (side == "bottom") w.p0 = {d.xlo, d.ylo}, w.normal = {0, 1};
-    else if (side == "top") w.p0 = {d.xlo, d.yhi}, w.normal = {0, -1};
-    else if (side == "left") w.p0 = {d.xlo, d.ylo}, w.normal = {1, 0};
-    else if (side == "right") w.p0 = {d.xhi, d.ylo}, w.normal = {-1, 0};
+    if (side == "bottom") w.p0 = {b[0], b[2]}, w.normal = {0, 1}, w.box_side = 0;
+    else if (side == "left") w.p0 = {b[0], b[2]}, w.normal = {1, 0}, w.box_side = 1;
+    else if (side == "right") w.p0 = {b[1], b[2]}, w.normal = {-1, 0}, w.box_side = 2;
+    else if (side == "top") w.p0 = {b[0], b[3]}, w.normal = {0, -1}, w.box_side = 3;
     else throw ConfigError("key 'walls.box': '" + side + "' is not a side; allowed: bottom left right top");
     const bool periodic = (side == "left" || side == "right") ? d.periodic_x : d.periodic_y;
     check(!periodic, "walls.box", "no wall across a periodic direction", side);
     c.walls.push_back(w);
     c.box_walls.push_back(side);
   }
+  std::istringstream control(r.get<std::string>("walls.control"));
+  for (std::string spec; control >> spec;) {
+    const auto a = spec.find(':'), z = spec.rfind(':');
+    if (a == std::string::npos || a == z)
+      throw ConfigError("key 'walls.control': '" + spec + "' is not 'side:servo:STRESS' or 'side:strain_rate:RATE'");
+    const std::string name = spec.substr(0, a), mode = spec.substr(a + 1, z - a - 1);
+    const auto parsed = numbers(spec.substr(z + 1), "walls.control");
+    if (parsed.size() != 1) throw ConfigError("key 'walls.control': '" + spec + "' needs one number after the mode");
+    const double value = parsed[0];
+    Wall* wall = nullptr;
+    for (Wall& w : c.walls)
+      if (w.box_side >= 0 && name == sides[w.box_side]) wall = &w;
+    if (!wall) throw ConfigError("key 'walls.control': '" + name + "' is not a side listed in walls.box");
+    if (mode == "servo") {
+      check(value > 0.0, "walls.control", "a servo stress > 0 [Pa]", spec);
+      wall->control = Wall::Control::servo, wall->target_stress = value;
+    } else if (mode == "strain_rate") {
+      wall->control = Wall::Control::strain_rate, wall->strain_rate = value;
+    } else {
+      throw ConfigError("key 'walls.control': mode '" + mode + "' in '" + spec + "' is not servo or strain_rate");
+    }
+  }
+  c.servo_gain = r.get<double>("walls.servo_gain");
+  check(c.servo_gain > 0.0 && c.servo_gain < 1.0, "walls.servo_gain", "must be in (0, 1)", num(c.servo_gain));
+  c.servo_max_speed = r.get<double>("walls.servo_max_speed");
+  check(c.servo_max_speed > 0.0, "walls.servo_max_speed", "must be > 0", num(c.servo_max_speed));
 }
 
 double required_non_negative(const Reader& r, const std::string& key, const std::string& law) {

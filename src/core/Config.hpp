@@ -71,6 +71,7 @@ struct Config {
   // [walls]
   WallSet walls;
   std::vector<std::string> box_walls;
+  double servo_gain = 0.2, servo_max_speed = 0.1;
   SceneConfig scene;
 
   std::string source_file;    // the INI file ("" when none)

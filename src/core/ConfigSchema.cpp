@@ -117,6 +117,11 @@ po::options_description config_schema() {
   po::options_description walls("[walls]");
   walls.add_options()
       ("walls.box", def(""), "[-] box sides that are walls: any of bottom left right top")
+      ("walls.box_region", def(""), "[m] 'xlo xhi ylo yhi' of the box walls; empty = the domain")
+      ("walls.control", def(""), "[-] box wall motions 'side:servo:STRESS' [Pa] or 'side:strain_rate:RATE' [1/s, > 0 "
+                                 "compresses], e.g. 'top:strain_rate:0.05 left:servo:2e5 right:servo:2e5'")
+      ("walls.servo_gain", def(0.2), "[-] servo gain in (0, 1): fraction of the force error closed per step")
+      ("walls.servo_max_speed", def(0.1), "[m/s] largest servo wall speed")
       ("walls.lines", def(""), "[m, m/s] infinite lines 'px py nx ny [vx vy]; ...' (n points to the discs)")
       ("walls.segments", def(""), "[m, m/s] segments 'x1 y1 x2 y2 [vx vy]; ...'");
   po::options_description scene("[scene]");

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include "core/Vec2.hpp"
@@ -9,7 +10,19 @@ namespace rondel {
 // prescribed velocity and never rotate (PHYSICS.md section 1: a wall is disc 2 with R2 -> inf).
 struct Wall {
   enum class Kind { line, segment };
+  // How the wall moves: a prescribed velocity (0 = fixed); a servo holding a normal stress; or a constant
+  // strain rate of the sample between this wall and the opposite box wall.
+  enum class Control { velocity, servo, strain_rate };
   Kind kind = Kind::line;
+  Control control = Control::velocity;
+  double target_stress = 0.0;  // servo: normal stress to hold [Pa] = force / (wall length x thickness)
+  double strain_rate = 0.0;    // strain_rate: [1/s], > 0 compresses (the wall moves along its normal)
+  int box_side = -1;           // 0 bottom, 1 left, 2 right, 3 top for walls of walls.box; -1 otherwise
+  // The last step's load from the discs, summed exactly over ranks: total force on the wall, its
+  // component against the normal (>= 0 when discs push), and the number of loaded contacts.
+  Vec2 force;
+  double normal_force = 0.0;
+  std::int64_t contacts = 0;
   Vec2 p0;        // a point of the line, or the first end of the segment
   Vec2 p1;        // the second end of a segment (unused for a line)
   Vec2 normal;    // unit normal of a line, pointing to the side where discs live

@@ -13,7 +13,7 @@ Decomposition::Decomposition(const Domain& domain, double range, Partitioner par
     : comm_(comm), grid_(domain, range), partitioner_(partitioner) {
   if (static_cast<std::size_t>(comm_.size()) > grid_.size())
     throw ConfigError(std::to_string(comm_.size()) + " MPI ranks but the domain has only " +
-                      std::to_string(grid_.size()) + " cells (" + std::to_string(grid_.nx()) + " x " +
+                      std::to_string(grid_.size()) + (grid_.size() == 1 ? " cell (" : " cells (") + std::to_string(grid_.nx()) + " x " +
                       std::to_string(grid_.ny()) + ", side >= the interaction range): run on at most " +
                       std::to_string(grid_.size()) + " ranks");
 }
@@ -40,13 +40,18 @@ bool Decomposition::repartition(const std::vector<long>& weights) {
 }
 
 std::vector<long> Decomposition::cell_work(const DiscStore& discs, const ContactTable& pairs) const {
+  // Work per cell: its discs and the rows they book (a row is booked by the owner of its lower-gid disc),
+  // the same measure as Simulation::balance_load, so moving a cell moves exactly its weight. (A border row
+  // is also computed by the other rank; that duplicated cost is reported as the ghost fraction.) Scaled
+  // so that the one unit given to every cell (METIS needs positive weights) does not count.
+  constexpr long kScale = 100;
   std::vector<long> work(grid_.size(), 0);
-  for (std::size_t i = 0; i < discs.n_owned(); ++i) work[grid_.cell_of(discs.position[i])] += 1;
+  const std::size_t n = discs.n_owned();
+  for (std::size_t i = 0; i < n; ++i) work[grid_.cell_of(discs.position[i])] += kScale;
   for (std::size_t r = 0; r < pairs.size(); ++r)
-    if (static_cast<std::size_t>(pairs.i1[r]) < discs.n_owned() && pairs.F_n[r] > 0.0)
-      work[grid_.cell_of(discs.position[pairs.i1[r]])] += 1;
+    if (static_cast<std::size_t>(pairs.i1[r]) < n) work[grid_.cell_of(discs.position[pairs.i1[r]])] += kScale;
   work = sum_over_ranks(std::move(work));
-  for (long& w : work) w += 1;  // an empty cell still costs a little, and METIS needs positive weights
+  for (long& w : work) w += 1;
   return work;
 }
 

@@ -86,17 +86,23 @@ void write_walls(Hdf5File& f, const WallSet& walls, const Communicator& comm) {
   f.create_group("/walls");
   const std::uint64_t n = walls.size();
   std::vector<std::int32_t> kind;
-  std::vector<Vec2> p0, p1, normal, velocity;
+  std::vector<std::int64_t> contacts;
+  std::vector<double> normal_force;
+  std::vector<Vec2> p0, p1, normal, velocity, force;
   if (comm.root())
     for (const Wall& w : walls) {
       kind.push_back(w.kind == Wall::Kind::line ? 0 : 1);
       p0.push_back(w.p0), p1.push_back(w.p1), normal.push_back(w.normal), velocity.push_back(w.velocity);
+      force.push_back(w.force), normal_force.push_back(w.normal_force), contacts.push_back(w.contacts);
     }
   f.write("/walls/kind", kind, n, 0);
   f.write("/walls/p0", p0, n, 0);
   f.write("/walls/p1", p1, n, 0);
   f.write("/walls/normal", normal, n, 0);
   f.write("/walls/velocity", velocity, n, 0);
+  f.write("/walls/force", force, n, 0);
+  f.write("/walls/normal_force", normal_force, n, 0);
+  f.write("/walls/contacts", contacts, n, 0);
 }
 
 }  // namespace
@@ -122,6 +128,8 @@ void write_state_file(const std::string& path, const StateHeader& h, DiscStore& 
     write_rows(f, "/wall_contacts", wall_rows, discs.n_owned(), comm);
   }
   write_walls(f, walls, comm);
+  f.write_attribute("/walls", "box_width0", h.box_width0);
+  f.write_attribute("/walls", "box_height0", h.box_height0);
   f.create_group("/ledger");
   for (const auto& [name, value] : h.ledger) f.write_attribute("/ledger", name, value);
   f.create_group("/run_metadata");
@@ -150,6 +158,8 @@ StateHeader read_state_header(const std::string& path, const Communicator& comm)
   h.rolling_law = f.read_string_attribute("/", "rolling_law");
   h.slots = split(f.read_string_attribute("/", "history_slots"));
   h.config = f.read_string_attribute("/", "config");
+  h.box_width0 = f.read_double_attribute("/walls", "box_width0");
+  h.box_height0 = f.read_double_attribute("/walls", "box_height0");
   for (const char* name : {"KE0", "W_g", "W_w", "W_n", "W_t", "W_r", "D_slip", "D_r_plastic", "D_r_dashpot",
                            "E_r_break", "scale"})
     if (f.has_attribute("/ledger", name)) h.ledger.emplace_back(name, f.read_double_attribute("/ledger", name));
@@ -203,10 +213,14 @@ WallSet read_state_walls(const std::string& path, const Communicator& comm) {
   const auto kind = f.read<std::int32_t>("/walls/kind", 0, n);
   const auto p0 = f.read<Vec2>("/walls/p0", 0, n), p1 = f.read<Vec2>("/walls/p1", 0, n);
   const auto normal = f.read<Vec2>("/walls/normal", 0, n), velocity = f.read<Vec2>("/walls/velocity", 0, n);
+  const auto force = f.read<Vec2>("/walls/force", 0, n);
+  const auto normal_force = f.read<double>("/walls/normal_force", 0, n);
+  const auto contacts = f.read<std::int64_t>("/walls/contacts", 0, n);
   WallSet walls(n);
   for (std::uint64_t w = 0; w < n; ++w) {
     walls[w].kind = kind[w] == 0 ? Wall::Kind::line : Wall::Kind::segment;
     walls[w].p0 = p0[w], walls[w].p1 = p1[w], walls[w].normal = normal[w], walls[w].velocity = velocity[w];
+    walls[w].force = force[w], walls[w].normal_force = normal_force[w], walls[w].contacts = contacts[w];
   }
   return walls;
 }

@@ -24,6 +24,7 @@ struct StateHeader {
   std::vector<std::string> slots;  // history slot names, kernel order
   std::string config;              // the resolved configuration
   std::vector<std::pair<std::string, double>> ledger;
+  double box_width0 = 0.0, box_height0 = 0.0;  // the box walls' separation at the start (strain reference)
 };
 
 // Collective. `fields` selects the disc datasets of a snapshot (empty: every checkpointed field plus the

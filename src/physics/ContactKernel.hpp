@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "core/ContactParams.hpp"
@@ -35,9 +36,11 @@ struct LedgerStep {
   bool worst_at_wall = false;
 };
 
-// Energy held by the contact springs now [J per thickness].
-struct StoredEnergy {
+// The contacts now: energy held by their springs [J per thickness], how many carry load, how many slide
+// (|F_t| at mu F_n) and how many have yielded in rolling (|M| at the law's cap). Booked rows only.
+struct ContactSummary {
   double normal = 0.0, tangential = 0.0, rolling = 0.0;
+  std::int64_t contacts = 0, wall_contacts = 0, sliding = 0, rolling_yield = 0;
   double total() const { return normal + tangential + rolling; }
 };
 
@@ -60,8 +63,8 @@ struct ContactKernel {
     run_rows<true>(c, wall_rows, ledger);
   }
 
-  static StoredEnergy stored_energy(const KernelContext& c, ContactTable& pairs, ContactTable& wall_rows) {
-    StoredEnergy e;
+  static ContactSummary stored_energy(const KernelContext& c, ContactTable& pairs, ContactTable& wall_rows) {
+    ContactSummary e;
     stored_rows<false>(c, pairs, e);
     stored_rows<true>(c, wall_rows, e);
     return e;
@@ -212,7 +215,7 @@ struct ContactKernel {
   }
 
   template <bool kWall>
-  static void stored_rows(const KernelContext& c, ContactTable& tab, StoredEnergy& e) {
+  static void stored_rows(const KernelContext& c, ContactTable& tab, ContactSummary& e) {
     const Slots h(tab);
     const std::vector<ContactParams>& params = kWall ? c.params.walls() : c.params.pairs();
     Row row;
@@ -222,8 +225,17 @@ struct ContactKernel {
       const ContactParams& p = params[static_cast<std::size_t>(tab.param[r])];
       e.normal += 0.5 * p.k_n * row.k.u_n * row.k.u_n;
       e.tangential += Tangential::stored(p, h.t.data(), r);
+      const double F_n = tab.F_n[r];
+      if (!(F_n > 0.0)) continue;
+      ++e.contacts;
+      if (kWall) ++e.wall_contacts;
+      constexpr double kAtCap = 1.0 - 1e-9;
+      if (Tangential::kFriction && std::fabs(tab.F_t[r]) >= kAtCap * p.mu * F_n) ++e.sliding;
       if constexpr (Rolling::kActive) {
-        if (p.rolling) e.rolling += Rolling::stored(p, row.b, row.k, tab.F_n[r], h.r.data(), r);
+        if (p.rolling) {
+          e.rolling += Rolling::stored(p, row.b, row.k, F_n, h.r.data(), r);
+          if (std::fabs(tab.M1[r]) >= kAtCap * Rolling::cap(p, row.k, F_n)) ++e.rolling_yield;
+        }
       }
     }
   }

@@ -18,7 +18,7 @@ struct LawSelection {
 // per-contact dispatch).
 struct KernelOps {
   void (*run)(const KernelContext&, ContactTable&, ContactTable&, LedgerStep&) = nullptr;
-  StoredEnergy (*stored)(const KernelContext&, ContactTable&, ContactTable&) = nullptr;
+  ContactSummary (*stored)(const KernelContext&, ContactTable&, ContactTable&) = nullptr;
 };
 
 KernelOps select_kernel(const LawSelection& laws);

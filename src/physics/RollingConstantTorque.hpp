@@ -37,6 +37,9 @@ struct RollingConstantTorque {
                        double* const*, std::size_t) {
     return 0.0;
   }
+  static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) {
+    return p.mu_r * (k.wall ? 2.0 * k.R1 : 2.0 * k.R1 * k.R2 / (k.R1 + k.R2)) * F_n;
+  }
 };
 
 }  // namespace rondel

@@ -59,6 +59,7 @@ struct RollingDisplacementDamping {
     const double M = hist[0][row];
     return k_r > 0.0 ? 0.5 * M * M / k_r : 0.0;
   }
+  static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) { return p.mu_r * R_eq(k) * F_n; }
 };
 
 }  // namespace rondel

@@ -6,6 +6,7 @@
 // conserved (dL/dt = -mu_r F_n (a1 + a2) for a pair spinning together, VALIDATION.md case K7).
 // Parameter mu_r [-]. No history.
 #include <array>
+#include <cmath>
 
 #include "core/ContactParams.hpp"
 #include "physics/ContactKinematics.hpp"
@@ -27,6 +28,7 @@ struct RollingForceProportional {
                        double* const*, std::size_t) {
     return 0.0;
   }
+  static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) { return p.mu_r * F_n * k.a1; }
 };
 
 }  // namespace rondel

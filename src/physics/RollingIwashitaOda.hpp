@@ -43,6 +43,7 @@ struct RollingIwashitaOda {
     const double th = hist[0][row];
     return 0.5 * p.K_r * th * th;
   }
+  static double cap(const ContactParams& p, const ContactKinematics&, double F_n) { return p.eta * F_n; }
 };
 
 }  // namespace rondel

@@ -40,6 +40,9 @@ struct RollingJiangBrittle {
     const double th = hist[0][row];
     return 0.5 * jiang_geometry(p, b, k).K_m * th * th;
   }
+  static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) {
+    return RollingJiangPlastic::cap(p, k, F_n);
+  }
 };
 
 }  // namespace rondel

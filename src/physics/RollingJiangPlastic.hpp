@@ -53,6 +53,11 @@ struct RollingJiangPlastic {
     const double th = hist[0][row];
     return 0.5 * jiang_geometry(p, b, k).K_m * th * th;
   }
+  // The couple at yield, M0 = F_n B/6.
+  static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) {
+    const double r = k.wall ? 2.0 * k.R1 : 2.0 * k.R1 * k.R2 / (k.R1 + k.R2);
+    return F_n * p.delta * r / 6.0;
+  }
 };
 
 }  // namespace rondel

@@ -2,6 +2,7 @@
 // The `none` rolling law: no history column, no rolling arithmetic (the kernel drops every rolling term
 // at compile time when kActive is false).
 #include <array>
+#include <cmath>
 
 #include "core/ContactParams.hpp"
 #include "physics/ContactKinematics.hpp"
@@ -22,6 +23,7 @@ struct RollingNone {
                        double* const*, std::size_t) {
     return 0.0;
   }
+  static double cap(const ContactParams&, const ContactKinematics&, double) { return INFINITY; }
 };
 
 }  // namespace rondel

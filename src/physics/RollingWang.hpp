@@ -37,6 +37,7 @@ struct RollingWang {
     const double x = hist[0][row];
     return 0.5 * p.k_r * x * x;
   }
+  static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) { return k.R_star * p.mu_r * F_n; }
 };
 
 }  // namespace rondel

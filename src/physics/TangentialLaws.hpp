@@ -15,6 +15,7 @@ namespace rondel {
 
 struct TangentialNone {
   static constexpr const char* name = "none";
+  static constexpr bool kFriction = false;
   static constexpr std::array<const char*, 0> slots{};
   static TangentialForce force(const ContactParams&, const ContactBodies&, const ContactKinematics&, double,
                                double, double* const*, std::size_t) {
@@ -25,6 +26,7 @@ struct TangentialNone {
 
 struct TangentialCoulomb {
   static constexpr const char* name = "coulomb";
+  static constexpr bool kFriction = true;
   static constexpr std::array<const char*, 1> slots{"xi"};
   static TangentialForce force(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
                                double F_n, double dt, double* const* hist, std::size_t row) {

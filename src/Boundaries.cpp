@@ -1,0 +1,78 @@
+#include "Boundaries.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/ExactSum.hpp"
+
+namespace rondel {
+
+namespace {
+const Wall* side(const WallSet& walls, int s) {
+  for (const Wall& w : walls)
+    if (w.box_side == s) return &w;
+  return nullptr;
+}
+}  // namespace
+
+bool Boundaries::controlled(const WallSet& walls) const {
+  return std::any_of(walls.begin(), walls.end(), [](const Wall& w) { return w.control != Wall::Control::velocity; });
+}
+
+void Boundaries::measure(WallSet& walls, const ContactTable& wall_rows, std::size_t n_owned,
+                         const Communicator& comm) const {
+  std::vector<std::array<ExactSum, 3>> sums(walls.size());
+  std::vector<std::int64_t> counts(walls.size(), 0);
+  for (std::size_t r = 0; r < wall_rows.size(); ++r) {
+    if (static_cast<std::size_t>(wall_rows.i1[r]) >= n_owned || !(wall_rows.F_n[r] > 0.0)) continue;
+    const auto w = static_cast<std::size_t>(wall_rows.i2[r]);
+    const Vec2 on_wall = -wall_rows.f1[r];
+    sums[w][0] += on_wall.x;
+    sums[w][1] += on_wall.y;
+    sums[w][2] += wall_rows.F_n[r];
+    ++counts[w];
+  }
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    walls[w].force = {comm.exact_sum(sums[w][0]), comm.exact_sum(sums[w][1])};
+    walls[w].normal_force = comm.exact_sum(sums[w][2]);
+    walls[w].contacts = comm.sum(counts[w]);
+  }
+}
+
+BoxGeometry Boundaries::box(const WallSet& walls, const Domain& domain) {
+  BoxGeometry g;
+  const Wall *bottom = side(walls, 0), *left = side(walls, 1), *right = side(walls, 2), *top = side(walls, 3);
+  g.has_x = left && right;
+  g.has_y = bottom && top;
+  g.width = (right ? right->p0.x : domain.xhi) - (left ? left->p0.x : domain.xlo);
+  g.height = (top ? top->p0.y : domain.yhi) - (bottom ? bottom->p0.y : domain.ylo);
+  return g;
+}
+
+double Boundaries::stress(const Wall& w, const BoxGeometry& g, double thickness) {
+  if (w.box_side < 0) return 0.0;
+  const double length = (w.box_side == 1 || w.box_side == 2) ? g.height : g.width;
+  return w.normal_force / (length * thickness);
+}
+
+void Boundaries::steer(WallSet& walls, const ContactParamTable& params, const Domain& domain, double thickness,
+                       double dt) const {
+  const BoxGeometry g = box(walls, domain);
+  for (Wall& w : walls) {
+    if (w.control == Wall::Control::velocity) continue;
+    double v_n = 0.0;
+    const bool vertical = w.box_side == 1 || w.box_side == 2;
+    if (w.control == Wall::Control::strain_rate) {
+      v_n = w.strain_rate * (vertical ? g.width : g.height);
+    } else {
+      const double length = vertical ? g.height : g.width;
+      const double error = w.target_stress * length * thickness - w.normal_force;
+      const double k_n = params.wall(0).k_n;
+      v_n = gain_ * error / (k_n * static_cast<double>(std::max<std::int64_t>(w.contacts, 1)) * dt);
+      v_n = std::clamp(v_n, -v_max_, v_max_);
+    }
+    w.velocity = v_n * w.normal;
+  }
+}
+
+}  // namespace rondel

@@ -1,0 +1,97 @@
+#include "Measures.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "Boundaries.hpp"
+#include "Simulation.hpp"
+#include "core/ExactSum.hpp"
+
+namespace rondel {
+
+std::string MeasuresRow::header() {
+  return "step,time,width,height,wall_sxx,wall_syy,sxx,syy,sxy,s1,s3,eps_axial,eps_lateral,eps_vol,void_ratio,"
+         "coordination,rotation_mean,rotation_std,sliding_fraction,rolling_yield_fraction";
+}
+
+std::string MeasuresRow::csv() const {
+  std::ostringstream s;
+  s.precision(12);
+  s << step << ',';
+  s.precision(16);
+  s << time;
+  s.precision(12);
+  for (double v : {width, height, wall_sxx, wall_syy, sxx, syy, sxy, s1, s3, eps_axial, eps_lateral, eps_vol,
+                   void_ratio, coordination, rotation_mean, rotation_std, sliding_fraction, rolling_yield_fraction})
+    s << ',' << v;
+  return s.str();
+}
+
+MeasuresRow Simulation::measures(const ContactSummary& contacts) {
+  MeasuresRow m;
+  m.step = step_;
+  m.time = time_;
+  boundaries_.measure(walls_, wall_rows_, discs_.n_owned(), comm_);
+  const BoxGeometry g = Boundaries::box(walls_, config_.domain);
+  m.width = g.width;
+  m.height = g.height;
+  double sx = 0.0, sy = 0.0;
+  int nx = 0, ny = 0;
+  for (const Wall& w : walls_) {
+    if (w.box_side == 1 || w.box_side == 2) sx += Boundaries::stress(w, g, config_.thickness), ++nx;
+    if (w.box_side == 0 || w.box_side == 3) sy += Boundaries::stress(w, g, config_.thickness), ++ny;
+  }
+  m.wall_sxx = nx ? sx / nx : 0.0;
+  m.wall_syy = ny ? sy / ny : 0.0;
+
+  // Love-Weber: booked rows only, so each contact counts once over all ranks.
+  ExactSum xx, yy, xy, yx;
+  const std::size_t n_owned = discs_.n_owned();
+  for (std::size_t r = 0; r < pairs_.size(); ++r) {
+    if (static_cast<std::size_t>(pairs_.i1[r]) >= n_owned || !(pairs_.F_n[r] > 0.0)) continue;
+    const Vec2 d = config_.domain.separation(discs_.position[pairs_.i1[r]], discs_.position[pairs_.i2[r]]);
+    const Vec2 f = pairs_.f1[r];
+    xx += d.x * f.x, yy += d.y * f.y, xy += d.x * f.y, yx += d.y * f.x;
+  }
+  for (std::size_t r = 0; r < wall_rows_.size(); ++r) {
+    if (!(wall_rows_.F_n[r] > 0.0)) continue;
+    const auto i = static_cast<std::size_t>(wall_rows_.i1[r]);
+    const Wall::Proximity prox = walls_[wall_rows_.i2[r]].proximity(discs_.position[i]);
+    const double a1 = discs_.radius[i] - 0.5 * (discs_.radius[i] - prox.dist);
+    const Vec2 c = a1 * prox.n, f = wall_rows_.f1[r];
+    xx += c.x * f.x, yy += c.y * f.y, xy += c.x * f.y, yx += c.y * f.x;
+  }
+  const double area = (g.has_x ? g.width : config_.domain.length_x()) * (g.has_y ? g.height : config_.domain.length_y());
+  const double scale = -1.0 / (area * config_.thickness);
+  m.sxx = scale * comm_.exact_sum(xx);
+  m.syy = scale * comm_.exact_sum(yy);
+  m.sxy = 0.5 * scale * (comm_.exact_sum(xy) + comm_.exact_sum(yx));
+  const double centre = 0.5 * (m.sxx + m.syy);
+  const double radius = std::sqrt(0.25 * (m.sxx - m.syy) * (m.sxx - m.syy) + m.sxy * m.sxy);
+  m.s1 = centre + radius;
+  m.s3 = centre - radius;
+
+  m.eps_axial = box0_.height > 0.0 ? (box0_.height - g.height) / box0_.height : 0.0;
+  m.eps_lateral = box0_.width > 0.0 ? (box0_.width - g.width) / box0_.width : 0.0;
+  m.eps_vol = 1.0 - (g.width * g.height) / (box0_.width * box0_.height);
+
+  ExactSum solid, theta, theta2;
+  for (std::size_t i = 0; i < n_owned; ++i) {
+    solid += std::numbers::pi * discs_.radius[i] * discs_.radius[i];
+    theta += discs_.theta[i];
+    theta2 += discs_.theta[i] * discs_.theta[i];
+  }
+  const double a_solid = comm_.exact_sum(solid);
+  const double n = static_cast<double>(comm_.sum(static_cast<std::int64_t>(n_owned)));
+  m.void_ratio = (area - a_solid) / a_solid;
+  m.rotation_mean = comm_.exact_sum(theta) / n;
+  m.rotation_std = std::sqrt(std::max(0.0, comm_.exact_sum(theta2) / n - m.rotation_mean * m.rotation_mean));
+  const double loaded = static_cast<double>(comm_.sum(contacts.contacts));
+  m.coordination = 2.0 * static_cast<double>(comm_.sum(contacts.contacts - contacts.wall_contacts)) / n;
+  m.sliding_fraction = loaded > 0 ? static_cast<double>(comm_.sum(contacts.sliding)) / loaded : 0.0;
+  m.rolling_yield_fraction = loaded > 0 ? static_cast<double>(comm_.sum(contacts.rolling_yield)) / loaded : 0.0;
+  return m;
+}
+
+}  // namespace rondel
