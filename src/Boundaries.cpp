@@ -68,7 +68,7 @@ void Boundaries::steer(WallSet& walls, const ContactParamTable& params, const Do
       const double length = vertical ? g.height : g.width;
       const double error = w.target_stress * length * thickness - w.normal_force;
       const double k_n = params.wall(0).k_n;
-      v_n = gain_ * error / (k_n * static_cast<double>(std::max<std::int64_t>(w.contacts, 1)) * dt);
+      v_n = gain_ * error / (static_cast<double>(std::max<std::int64_t>(w.contacts, 1)) * (k_n * dt + c_n_));
       v_n = std::clamp(v_n, -v_max_, v_max_);
     }
     w.velocity = v_n * w.normal;

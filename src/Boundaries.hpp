@@ -13,8 +13,10 @@ namespace rondel {
 //  - measure(): each wall's load from the discs in the last step, summed exactly over ranks, so a servo
 //    sees the same force on any rank count;
 //  - steer(): velocities of controlled walls. A servo moves along its normal with
-//      v_n = clamp(gain (F_target - F) / (k_n max(N_c, 1) dt), +-v_max),  F_target = sigma L t,
-//    the gain kept below 1 so one step never closes more than the force error (stable for gain < 1);
+//      v_n = clamp(gain (F_target - F) / (max(N_c, 1) (k_n dt + c_n)), +-v_max),  F_target = sigma L t:
+//    a wall step v dt changes each contact's force by k_n v dt through the spring and by c_n v at once
+//    through the dashpot, so with gain < 1 one step closes at most that fraction of the force error (the
+//    dashpot term matters: without it the wall chatters between +-v_max at the dashpot's response);
 //    a strain-rate wall moves with v_n = rate x (distance to the opposite box wall).
 //  - box geometry: the sample's width and height between the box walls (for stresses and strains).
 struct BoxGeometry {
@@ -24,7 +26,9 @@ struct BoxGeometry {
 
 class Boundaries {
  public:
-  Boundaries(double servo_gain, double servo_max_speed) : gain_(servo_gain), v_max_(servo_max_speed) {}
+  // `c_n`: the largest normal dashpot coefficient of a disc-wall contact (heaviest disc).
+  Boundaries(double servo_gain, double servo_max_speed, double c_n = 0.0)
+      : gain_(servo_gain), v_max_(servo_max_speed), c_n_(c_n) {}
 
   bool controlled(const WallSet& walls) const;
   void measure(WallSet& walls, const ContactTable& wall_rows, std::size_t n_owned, const Communicator& comm) const;
@@ -34,7 +38,7 @@ class Boundaries {
   static double stress(const Wall& w, const BoxGeometry& g, double thickness);
 
  private:
-  double gain_, v_max_;
+  double gain_, v_max_, c_n_;
 };
 
 }  // namespace rondel

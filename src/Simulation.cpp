@@ -37,8 +37,8 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
   pairs_ = make_contact_table(laws_);
   wall_rows_ = make_contact_table(laws_);
   walls_ = config_.walls;
-  boundaries_ = Boundaries(config_.servo_gain, config_.servo_max_speed);
-  controlled_walls_ = boundaries_.controlled(walls_);
+  controlled_walls_ = std::any_of(walls_.begin(), walls_.end(),
+                                  [](const Wall& w) { return w.control != Wall::Control::velocity; });
   box0_ = Boundaries::box(walls_, config_.domain);
   for (ContactParams* p : {&config_.params.pair(0, 0), &config_.params.wall(0)})
     if (p->e_n > 0.0) p->zeta_n = zeta_from_restitution(p->e_n);
@@ -51,6 +51,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
     check_initial_state();
     distribute_discs();
   }
+  setup_boundaries();
   if (write_files_) prepare_output(restart);
   rebuild();
   if (restart) return;  // forces, history and ledger come from the file (no recomputation before the first kick)
@@ -133,6 +134,16 @@ void Simulation::make_decomposition(bool replicated) {
   if (decomposition_->empty_ranks() > 0 && comm_.root())
     std::cerr << "rondel: warning: " << decomposition_->empty_ranks() << " of " << comm_.size()
               << " ranks own no cell and will idle; use fewer ranks for this scene\n";
+}
+
+void Simulation::setup_boundaries() {
+  // The servo's dashpot term uses the heaviest disc (the largest c_n: the most cautious gain).
+  double m_max = 0.0;
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) m_max = std::max(m_max, discs_.mass[i]);
+  m_max = comm_.max(m_max);
+  const ContactParams& p = config_.params.wall(0);
+  const double c_n = p.c_n_fixed >= 0.0 ? p.c_n_fixed : 2.0 * p.zeta_n * std::sqrt(m_max * p.k_n);
+  boundaries_ = Boundaries(config_.servo_gain, config_.servo_max_speed, c_n);
 }
 
 void Simulation::resolve_time_step() {

@@ -81,10 +81,11 @@ class Simulation {
  private:
   void build_discs();
   void setup_neighbours();
+  void setup_boundaries();
   void distribute_discs();
   void make_decomposition(bool replicated);
   // Files (SimulationFiles.cpp).
-  std::vector<SceneDisc> scene_from_file() const;
+  std::vector<SceneDisc> scene_from_file();
   void load_checkpoint(const std::string& path);
   void check_laws_match(const StateHeader& header, const std::string& path) const;
   StateHeader state_header(const char* kind) const;

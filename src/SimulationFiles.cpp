@@ -73,11 +73,20 @@ void Simulation::write_snapshot() {
   files_->write_snapshot(state_header("snapshot"), discs_, walls_, n);
 }
 
-std::vector<SceneDisc> Simulation::scene_from_file() const {
-  // Every rank reads every disc (the scene is then distributed like any other).
+std::vector<SceneDisc> Simulation::scene_from_file() {
+  // Every rank reads every disc (the scene is then distributed like any other). A directory means its
+  // newest complete checkpoint. Box walls take their positions from the file (a prepared sample keeps its
+  // box); contact history starts afresh, and step, time and strains start at zero: a new test stage.
+  const Communicator self = Communicator::self();
+  std::string path = config_.scene.file;
+  if (fs::is_directory(path)) path = Checkpointing::newest_checkpoint(path, self);
+  read_state_header(path, self);
   DiscStore d;
-  read_state_header(config_.scene.file, Communicator::self());
-  read_state_discs(config_.scene.file, d, Communicator::self());
+  read_state_discs(path, d, self);
+  const WallSet walls = read_state_walls(path, self);
+  if (walls.size() == walls_.size())
+    for (std::size_t w = 0; w < walls.size(); ++w) walls_[w].p0 = walls[w].p0, walls_[w].p1 = walls[w].p1;
+  box0_ = Boundaries::box(walls_, config_.domain);
   std::vector<SceneDisc> out;
   for (std::size_t i = 0; i < d.n_owned(); ++i)
     out.push_back({d.gid[i], d.position[i], d.radius[i], d.velocity[i], d.omega[i]});

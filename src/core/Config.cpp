@@ -316,7 +316,9 @@ void read_scene(const Reader& r, Config& c) {
   s.omega = r.get<double>("scene.omega");
   s.max_initial_overlap = r.get<double>("scene.max_initial_overlap");
   non_negative(s.max_initial_overlap, "scene.max_initial_overlap");
-  const auto region = numbers(r.get<std::string>("scene.region"), "scene.region");
+  // The default region is the box of the walls (walls.box_region), else the domain.
+  auto region = numbers(r.get<std::string>("scene.region"), "scene.region");
+  if (region.empty()) region = numbers(r.get<std::string>("walls.box_region"), "walls.box_region");
   const Domain& d = c.domain;
   const double box[4] = {d.xlo, d.xhi, d.ylo, d.yhi};
   if (region.empty()) std::copy(box, box + 4, s.region);

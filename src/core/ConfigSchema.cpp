@@ -134,7 +134,7 @@ po::options_description config_schema() {
       ("scene.x0", def(0.0), "[m] lattice: centre of the first disc, x")
       ("scene.y0", def(0.0), "[m] lattice: centre of the first disc, y")
       ("scene.count", def<std::int64_t>(0), "[-] random: number of discs")
-      ("scene.region", def(""), "[m] random: 'xlo xhi ylo yhi' region for centres+radii; empty = the box")
+      ("scene.region", def(""), "[m] random: 'xlo xhi ylo yhi' region of the discs; empty = walls.box_region, else the domain")
       ("scene.distribution", def("uniform_radius"), "[-] random: uniform_radius | uniform_area | list")
       ("scene.radius_min", def(0.0), "[m] random: smallest radius")
       ("scene.radius_max", def(0.0), "[m] random: largest radius")
