@@ -20,6 +20,9 @@ namespace rondel {
 namespace fs = std::filesystem;
 
 namespace {
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
 std::string fmt(double v, int precision = 6) {
   std::ostringstream s;
   s.precision(precision);
@@ -206,9 +209,11 @@ void Simulation::log(const std::string& line) {
 void Simulation::rebuild() {
   // Discs go to their cell owners with their contact rows; the rows (local and received) then serve as
   // the history source of the new neighbour list.
+  const auto t0 = std::chrono::steady_clock::now();
   const DiscExchange::Counts moved = exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_);
   migrated_ += moved.sent;
   exchange_.build_ghosts(discs_, *decomposition_, comm_);
+  comm_seconds_ += seconds_since(t0);
   const ContactTable old_pairs = pairs_, old_walls = wall_rows_;
   neighbours_.build(discs_, config_.domain, walls_, config_.params, old_pairs, pairs_, old_walls, wall_rows_);
   assembly_.build(discs_, pairs_, wall_rows_);
@@ -233,14 +238,24 @@ void Simulation::step() {
   if (controlled_walls_) boundaries_.steer(walls_, config_.params, config_.domain, config_.thickness, dt_);
   for (auto& w : walls_) w.move(dt_);
   // 3. Rebuild the neighbour list when a disc (global max) has moved more than half the skin.
-  const double disp = comm_.max(neighbours_.max_displacement(discs_, config_.domain));
-  if (rebalance_due_ || neighbours_.needs_rebuild(disp, walls_)) rebuild();
-  else exchange_.update_ghosts(discs_, comm_);
+  const double moved = neighbours_.max_displacement(discs_, config_.domain);
+  const auto t0 = std::chrono::steady_clock::now();
+  const double disp = comm_.max(moved);
+  comm_seconds_ += seconds_since(t0);
+  if (rebalance_due_ || neighbours_.needs_rebuild(disp, walls_)) {
+    rebuild();
+  } else {
+    const auto t1 = std::chrono::steady_clock::now();
+    exchange_.update_ghosts(discs_, comm_);
+    comm_seconds_ += seconds_since(t1);
+  }
   // 4-6. Contact kernel over every row, then per-disc sums in ascending partner gid (gravity first).
   LedgerStep work;
   kernel_.run(KernelContext{discs_, config_.domain, walls_, config_.params, dt_, config_.max_overlap}, pairs_,
               wall_rows_, work);
+  const auto t2 = std::chrono::steady_clock::now();
   if (comm_.any(work.worst_overlap > 0.0)) report_overlap(work);
+  comm_seconds_ += seconds_since(t2);
   assembly_.assemble(discs_, config_.gravity, pairs_, wall_rows_);
   if (controlled_walls_) boundaries_.measure(walls_, wall_rows_, discs_.n_owned(), comm_);
   // 7. Second half kick.
@@ -436,8 +451,10 @@ RunSummary Simulation::run() {
       // Every rank agrees on the step of a signal or of a wall-clock checkpoint (rank 0's clock decides).
       const double minutes = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() / 60.0;
       const bool timed = comm_.root() && config_.checkpoint_minutes > 0.0 && minutes >= config_.checkpoint_minutes;
-      const std::int64_t signal = comm_.max(static_cast<std::int64_t>(StopSignal::received()));
-      const bool timed_any = comm_.any(timed);
+      // One reduction for both: the signal number times 2, plus 1 for a due wall-clock checkpoint.
+      const std::int64_t flags = comm_.max(2 * static_cast<std::int64_t>(StopSignal::received()) + (timed ? 1 : 0));
+      const std::int64_t signal = flags / 2;
+      const bool timed_any = (flags % 2) != 0;
       if (files_ && (signal != 0 || timed_any || (config_.checkpoint_every > 0 && step_ % config_.checkpoint_every == 0)))
         checkpoint();
       progress.update(step_ - first);

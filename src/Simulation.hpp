@@ -67,6 +67,9 @@ class Simulation {
   const Decomposition& decomposition() const { return *decomposition_; }
   std::size_t ghost_count() const { return exchange_.ghost_count(); }
   double imbalance() const { return imbalance_; }
+  // Seconds this rank spent in the step's communication (ghost updates, rebuilds with migration, and the
+  // step's reductions), including waiting for other ranks.
+  double comm_seconds() const { return comm_seconds_; }
   // Collective: writes a checkpoint into the output directory now; returns its path.
   std::string write_checkpoint();
   double kinetic_energy() const;
@@ -119,6 +122,7 @@ class Simulation {
   DiscExchange exchange_;
   bool rebalance_due_ = false;
   double imbalance_ = 1.0;
+  double comm_seconds_ = 0.0;
   std::size_t migrated_ = 0;
   std::unique_ptr<Checkpointing> files_;
   Boundaries boundaries_{0.2, 0.1};

@@ -103,22 +103,37 @@ int main(int argc, char** argv) {
     rondel::Simulation sim(rondel::parse_config_text(std::string(ini) + rolling_block(o.rolling)), comm, false);
     for (long s = 0; s < o.warmup; ++s) sim.step();
     const std::size_t builds0 = sim.neighbour_builds();
+    const double comm_before = sim.comm_seconds();
     const auto t0 = std::chrono::steady_clock::now();
     for (long s = 0; s < o.steps; ++s) sim.step();
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    long contacts = 0;
-    for (double f : sim.pairs().F_n) contacts += f > 0.0 ? 1 : 0;
-    const double n = static_cast<double>(sim.discs().n_owned());
-    const double store = sim.discs().memory_bytes() + sim.pairs().memory_bytes() + sim.wall_rows().memory_bytes();
+    long contacts = 0, border = 0;
+    for (std::size_t r = 0; r < sim.pairs().size(); ++r) {
+      const bool booked = static_cast<std::size_t>(sim.pairs().i1[r]) < sim.discs().n_owned();
+      if (booked && sim.pairs().F_n[r] > 0.0) ++contacts;
+      if (!booked) ++border;  // computed here for a disc we own, booked by the other rank too
+    }
+    const double n = static_cast<double>(comm.sum(static_cast<std::int64_t>(sim.discs().n_owned())));
+    const double all_contacts = static_cast<double>(comm.sum(static_cast<std::int64_t>(contacts)));
+    const double rows = comm.sum(static_cast<double>(sim.pairs().size()));
+    const double twice = comm.sum(static_cast<double>(border));
+    const double ghosts = comm.sum(static_cast<double>(sim.ghost_count()));
+    const double comm_time = comm.max(sim.comm_seconds() - comm_before);
+    const double store = comm.sum(static_cast<double>(sim.discs().memory_bytes() + sim.pairs().memory_bytes() +
+                                                      sim.wall_rows().memory_bytes()));
+    const double rss = comm.sum(static_cast<double>(peak_rss_kib()) * 1024.0);
     if (comm.root())
       std::printf("rondel_bench: %ld discs, rolling %s, %ld timed steps (after %ld warm-up), dt %.3g s "
                   "(critical %.3g s, %s mode), %d rank(s)\n"
-                  "  wall time            %.3f s\n  disc-steps per second %.4g\n  contacts per disc     %.3f (coordination %.3f)\n"
-                  "  candidate rows/disc  %.3f\n  neighbour builds     %zu\n"
-                  "  memory per disc      %.0f B in discs and contact rows, %.0f B peak RSS\n",
+                  "  wall time             %.3f s\n  disc-steps per second %.4g\n"
+                  "  contacts per disc     %.3f (coordination %.3f)\n  candidate rows/disc   %.3f\n"
+                  "  neighbour builds      %zu\n  memory per disc       %.0f B in discs and contact rows, %.0f B peak RSS\n"
+                  "  communication         %.3f s (%.1f %% of the wall time, slowest rank)\n"
+                  "  ghosts per disc       %.4f\n  rows computed twice   %.2f %% of all rows (border pairs)\n",
                   o.discs, o.rolling.c_str(), o.steps, o.warmup, sim.dt(), sim.critical().dt,
-                  sim.critical().mode.c_str(), comm.size(), secs, n * o.steps / secs, contacts / n, 2.0 * contacts / n,
-                  sim.pairs().size() / n, sim.neighbour_builds() - builds0, store / n, peak_rss_kib() * 1024.0 / n);
+                  sim.critical().mode.c_str(), comm.size(), secs, n * o.steps / secs, all_contacts / n,
+                  2.0 * all_contacts / n, rows / n, sim.neighbour_builds() - builds0, store / n, rss / n, comm_time,
+                  100.0 * comm_time / secs, ghosts / n, 100.0 * twice / rows);
     return 0;
   } catch (const std::exception& e) {
     if (comm.root()) std::cerr << e.what() << '\n';
