@@ -1,0 +1,663 @@
+// Checkpoint and restart refusals (DESIGN.md section 7, FORMAT.md): a missing, truncated, corrupted or
+// foreign file, a file of another format version, a checkpoint whose laws or history slots differ from the
+// configuration, and an output directory that cannot be written are refused by the Simulation constructor
+// (so before any step runs and before any output file is written) with an InputError or ConfigError that
+// names the file and says what is wrong. A checkpoint cut short (a leftover .part file, a truncated or
+// incomplete newest file) is never picked by --resume: the previous complete one is. And the signal path of
+// the real executable: SIGTERM -> checkpoint, exit 10, summary "stopped"; --resume runs to the end (exit 0)
+// and ends in the bits of an uninterrupted run.
+//
+// One rank (the regression binary, MPI initialised by its main).
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <typeinfo>
+#include <vector>
+
+#include "Checkpointing.hpp"
+#include "Simulation.hpp"
+#include "core/Config.hpp"
+#include "core/Errors.hpp"
+#include "parallel/Communicator.hpp"
+#include "parallel/StateFile.hpp"
+
+extern char** environ;
+
+namespace rondel {
+namespace {
+
+namespace fs = std::filesystem;
+
+class CkTempDir {
+ public:
+  CkTempDir() {
+    std::string tmpl = (fs::temp_directory_path() / "rondel-ckerr-XXXXXX").string();
+    if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
+    path_ = tmpl;
+  }
+  ~CkTempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  CkTempDir(const CkTempDir&) = delete;
+  CkTempDir& operator=(const CkTempDir&) = delete;
+  const fs::path& path() const { return path_; }
+  fs::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  fs::path path_;
+};
+
+// Swallows std::cout (the simulation logs there) while alive.
+class Quiet {
+ public:
+  Quiet() : old_(std::cout.rdbuf(sink_.rdbuf())) {}
+  ~Quiet() { std::cout.rdbuf(old_); }
+
+ private:
+  std::ostringstream sink_;
+  std::streambuf* old_;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+::testing::AssertionResult mentions(const std::string& message, const std::string& what) {
+  if (message.find(what) != std::string::npos) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "the message does not name '" << what << "': '" << message << "'";
+}
+
+// Discs dropped into a box with a wall moving in from the left, Coulomb friction and a rolling law with
+// history (the law block follows contact.rolling).
+std::string scene(const std::string& law = "wang") {
+  const std::string block = law == "wang" ? "[wang]\nk_r = 2e6\nmu_r = 0.1\n" : "[jiang]\ndelta = 0.5\n";
+  return R"(
+[run]
+progress = false
+[domain]
+xlo = 0
+xhi = 0.05
+ylo = 0
+yhi = 0.05
+[gravity]
+y = -9.81
+[linear]
+k_n = 1e7
+e = 0.5
+[coulomb]
+k_s = 7.5e6
+mu = 0.5
+[contact]
+rolling = )" + law + "\n" + block + R"(
+[walls]
+box = bottom right
+lines = 0 0 1 0 0.4 0
+[scene]
+type = random
+count = 130
+region = 0.0005 0.05 0 0.04
+radius_min = 0.001
+radius_max = 0.0018
+seed = 7
+vy = -0.5
+omega = 30
+)";
+}
+
+Config config_for(const fs::path& out, const std::string& law = "wang", std::vector<std::string> more = {}) {
+  more.push_back("--run.output=" + out.string());
+  return parse_config_text(scene(law), more);
+}
+
+// A valid checkpoint after `steps` steps, written into `out`; returns its path.
+fs::path make_checkpoint(const fs::path& out, int steps, const std::string& law = "wang") {
+  const Communicator self(MPI_COMM_SELF);
+  Quiet quiet;
+  Simulation sim(config_for(out, law, {"--run.overwrite=true"}), self, true);
+  for (int s = 0; s < steps; ++s) sim.step();
+  return sim.write_checkpoint();
+}
+
+// Constructs a restart from `file` with `config`; returns the message of the expected error type, or ""
+// after recording a failure when the restart is accepted or throws something else.
+template <class Error>
+std::string restart_refusal(const fs::path& file, Config config) {
+  const Communicator self(MPI_COMM_SELF);
+  try {
+    Quiet quiet;
+    Simulation sim(std::move(config), self, true, file.string());
+  } catch (const Error& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "restart from " << file << ": expected " << (std::is_same_v<Error, InputError> ? "InputError" : "ConfigError")
+                  << ", got " << typeid(e).name() << ": " << e.what();
+    return "";
+  }
+  ADD_FAILURE() << "the restart from " << file << " was accepted";
+  return "";
+}
+
+template <class Error>
+std::string restart_refusal(const fs::path& file, const fs::path& out, const std::string& law = "wang",
+                            const std::vector<std::string>& more = {}) {
+  return restart_refusal<Error>(file, config_for(out, law, more));
+}
+
+// The same through scene.type = file (a new run whose discs come from `file`).
+std::string scene_file_refusal(const fs::path& file, const fs::path& out) {
+  const Communicator self(MPI_COMM_SELF);
+  try {
+    Quiet quiet;
+    Simulation sim(config_for(out, "wang", {"--scene.type=file", "--scene.file=" + file.string()}), self, true);
+  } catch (const InputError& e) {
+    return e.what();
+  } catch (const ConfigError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "scene.file = " << file << ": got " << typeid(e).name() << ": " << e.what();
+    return "";
+  }
+  ADD_FAILURE() << "scene.file = " << file << " was accepted";
+  return "";
+}
+
+std::string newest_refusal(const fs::path& dir) {
+  try {
+    const std::string found = Checkpointing::newest_checkpoint(dir.string(), Communicator(MPI_COMM_SELF));
+    ADD_FAILURE() << "newest_checkpoint(" << dir << ") returned " << found;
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void overwrite_bytes(const fs::path& file, std::uintmax_t offset, std::size_t count, char value = 'Z') {
+  std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+  f.seekp(static_cast<std::streamoff>(offset));
+  const std::string bytes(count, value);
+  f.write(bytes.data(), static_cast<std::streamsize>(count));
+}
+
+// HDF5 edits of a closed file (serial access).
+struct H5 {
+  hid_t file;
+  explicit H5(const fs::path& p) : file(H5Fopen(p.string().c_str(), H5F_ACC_RDWR, H5P_DEFAULT)) {
+    if (file < 0) throw std::runtime_error("cannot open " + p.string());
+  }
+  ~H5() { H5Fclose(file); }
+  void set_int(const char* object, const char* name, std::int64_t v) const {
+    const hid_t a = H5Aopen_by_name(file, object, name, H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(a, H5T_NATIVE_INT64, &v);
+    H5Aclose(a);
+  }
+  void remove(const char* object, const char* name) const { H5Adelete_by_name(file, object, name, H5P_DEFAULT); }
+  void set_string(const char* object, const char* name, const std::string& v) const {
+    if (H5Aexists_by_name(file, object, name, H5P_DEFAULT) > 0) remove(object, name);
+    const hid_t type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(type, v.size());
+    H5Tset_strpad(type, H5T_STR_NULLPAD);
+    const hid_t space = H5Screate(H5S_SCALAR);
+    const hid_t a = H5Acreate_by_name(file, object, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(a, type, v.data());
+    H5Aclose(a);
+    H5Sclose(space);
+    H5Tclose(type);
+  }
+  haddr_t offset_of(const char* dataset) const {
+    const hid_t d = H5Dopen2(file, dataset, H5P_DEFAULT);
+    const haddr_t at = H5Dget_offset(d);
+    H5Dclose(d);
+    return at;
+  }
+  hsize_t storage_of(const char* dataset) const {
+    const hid_t d = H5Dopen2(file, dataset, H5P_DEFAULT);
+    const hsize_t n = H5Dget_storage_size(d);
+    H5Dclose(d);
+    return n;
+  }
+};
+
+// A fixture with one valid checkpoint (step 1500, Wang rolling), made once for the suite.
+class CheckpointErrors : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new CkTempDir();
+    valid_ = new fs::path(make_checkpoint(*dir_ / "source", 1500));
+  }
+  static void TearDownTestSuite() {
+    delete valid_;
+    delete dir_;
+  }
+  // A fresh copy of the valid checkpoint.
+  fs::path copy(const std::string& name) const {
+    const fs::path p = *dir_ / name;
+    fs::create_directories(p.parent_path());
+    fs::copy_file(*valid_, p, fs::copy_options::overwrite_existing);
+    return p;
+  }
+  fs::path out(const std::string& name) const { return *dir_ / ("out-" + name); }
+  static CkTempDir* dir_;
+  static fs::path* valid_;
+};
+CkTempDir* CheckpointErrors::dir_ = nullptr;
+fs::path* CheckpointErrors::valid_ = nullptr;
+
+TEST_F(CheckpointErrors, TheValidCheckpointRestarts) {
+  const Communicator self(MPI_COMM_SELF);
+  Quiet quiet;
+  Simulation sim(config_for(out("valid")), self, true, valid_->string());
+  EXPECT_EQ(sim.step_count(), 1500);
+  sim.step();
+  EXPECT_EQ(sim.step_count(), 1501);
+}
+
+TEST_F(CheckpointErrors, MissingFiles) {
+  // --resume of a directory without a checkpoint, and of one that does not exist.
+  const fs::path empty = *dir_ / "empty";
+  fs::create_directories(empty);
+  std::ofstream(empty / "log.txt") << "a log, no checkpoint\n";
+  EXPECT_TRUE(mentions(newest_refusal(empty), empty.string()));
+  const fs::path nowhere = *dir_ / "no-such-dir";
+  EXPECT_TRUE(mentions(newest_refusal(nowhere), nowhere.string()));
+  // A restart file that does not exist.
+  const fs::path missing = *dir_ / "no-such-checkpoint.h5";
+  const std::string m = restart_refusal<InputError>(missing, out("missing"));
+  EXPECT_TRUE(mentions(m, missing.string()));
+  EXPECT_FALSE(fs::exists(out("missing"))) << "a refused restart created its output directory";
+  // scene.type = file with a missing path.
+  const std::string s = scene_file_refusal(missing, out("missing-scene"));
+  EXPECT_TRUE(mentions(s, missing.string()));
+  EXPECT_FALSE(fs::exists(out("missing-scene")));
+}
+
+TEST_F(CheckpointErrors, TruncatedFile) {
+  const fs::path file = copy("truncated/checkpoint_0000001500.h5");
+  fs::resize_file(file, fs::file_size(*valid_) / 2);
+  const std::string m = restart_refusal<InputError>(file, out("truncated"));
+  EXPECT_TRUE(mentions(m, file.string()));
+  EXPECT_TRUE(mentions(m, "truncated"));
+  EXPECT_FALSE(fs::exists(out("truncated")));
+  EXPECT_TRUE(mentions(scene_file_refusal(file, out("truncated-scene")), file.string()));
+  // --resume of a directory whose only checkpoint is truncated: the refusal names that file.
+  const std::string r = newest_refusal(file.parent_path());
+  EXPECT_TRUE(mentions(r, file.parent_path().string()));
+  EXPECT_TRUE(mentions(r, file.filename().string())) << "--resume does not say which checkpoint it passed over, nor why";
+}
+
+TEST_F(CheckpointErrors, CorruptedSuperblock) {
+  const fs::path file = copy("superblock.h5");
+  overwrite_bytes(file, 0, 16, 'X');  // the HDF5 signature and the superblock versions
+  const std::string m = restart_refusal<InputError>(file, out("superblock"));
+  EXPECT_TRUE(mentions(m, file.string()));
+  EXPECT_TRUE(mentions(m, "not an HDF5 file"));
+  EXPECT_FALSE(fs::exists(out("superblock")));
+  EXPECT_TRUE(mentions(scene_file_refusal(file, out("superblock-scene")), file.string()));
+}
+
+TEST_F(CheckpointErrors, CorruptedMiddleOfTheFile) {
+  const fs::path file = copy("middle.h5");
+  overwrite_bytes(file, fs::file_size(file) / 2, 32);
+  const std::string m = restart_refusal<InputError>(file, out("middle"));
+  EXPECT_TRUE(mentions(m, file.string()));
+  EXPECT_FALSE(fs::exists(out("middle")));
+}
+
+TEST_F(CheckpointErrors, CorruptedDiscData) {
+  // 32 bytes in the middle of the positions: raw data, no HDF5 metadata involved.
+  const fs::path file = copy("positions.h5");
+  haddr_t at = 0;
+  hsize_t size = 0;
+  {
+    const H5 h(file);
+    at = h.offset_of("/discs/position");
+    size = h.storage_of("/discs/position");
+  }
+  ASSERT_NE(at, HADDR_UNDEF);
+  ASSERT_GT(size, 64u);
+  overwrite_bytes(file, at + size / 2, 32);
+  const std::string m = restart_refusal<InputError>(file, out("positions"));
+  EXPECT_TRUE(mentions(m, file.string()));
+  EXPECT_FALSE(fs::exists(out("positions")));
+}
+
+TEST_F(CheckpointErrors, AnotherFormatVersion) {
+  const fs::path file = copy("version2.h5");
+  H5(file).set_int("/", "format_version", 2);
+  const std::string m = restart_refusal<InputError>(file, out("version2"));
+  EXPECT_TRUE(mentions(m, file.string()));
+  EXPECT_TRUE(mentions(m, "format version 2"));
+  EXPECT_TRUE(mentions(m, "version " + std::to_string(kStateFormatVersion)));
+  EXPECT_FALSE(fs::exists(out("version2")));
+  EXPECT_TRUE(mentions(scene_file_refusal(file, out("version2-scene")), "format version 2"));
+
+  // A file made by hand: the two identifying attributes only, version 99: refused on the version first.
+  const fs::path hand = *dir_ / "by-hand.h5";
+  {
+    const hid_t f = H5Fcreate(hand.string().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    H5Fclose(f);
+    const H5 h(hand);
+    h.set_string("/", "format", "rondel");
+    const hid_t space = H5Screate(H5S_SCALAR);
+    const hid_t a = H5Acreate_by_name(h.file, "/", "format_version", H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT,
+                                      H5P_DEFAULT);
+    const std::int64_t v = 99;
+    H5Awrite(a, H5T_NATIVE_INT64, &v);
+    H5Aclose(a);
+    H5Sclose(space);
+  }
+  EXPECT_TRUE(mentions(restart_refusal<InputError>(hand, out("by-hand")), "format version 99"));
+
+  // An HDF5 file of another program, and a text file.
+  const fs::path foreign = *dir_ / "foreign.h5";
+  H5Fclose(H5Fcreate(foreign.string().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
+  const std::string f = restart_refusal<InputError>(foreign, out("foreign"));
+  EXPECT_TRUE(mentions(f, foreign.string()));
+  EXPECT_TRUE(mentions(f, "not a Rondel checkpoint"));
+  const fs::path text = *dir_ / "text.h5";
+  std::ofstream(text) << "id,x,y,radius\n0,0.1,0.1,0.01\n";
+  EXPECT_TRUE(mentions(restart_refusal<InputError>(text, out("text")), text.string()));
+}
+
+TEST_F(CheckpointErrors, IncompleteFile) {
+  const fs::path file = copy("incomplete.h5");
+  H5(file).remove("/", "complete");
+  const std::string m = restart_refusal<InputError>(file, out("incomplete"));
+  EXPECT_TRUE(mentions(m, file.string()));
+  EXPECT_TRUE(mentions(m, "incomplete"));
+}
+
+TEST_F(CheckpointErrors, LawsOrHistorySlotsDiffer) {
+  // Written with wang (xi, x_r); the configuration selects jiang_plastic (xi, theta_r).
+  const std::string m = restart_refusal<InputError>(*valid_, out("laws"), "jiang_plastic");
+  EXPECT_TRUE(mentions(m, valid_->string()));
+  EXPECT_TRUE(mentions(m, "wang"));
+  EXPECT_TRUE(mentions(m, "jiang_plastic"));
+  EXPECT_TRUE(mentions(m, "run.reset_history"));
+  EXPECT_FALSE(fs::exists(out("laws")));
+  // The tangential law differs (no friction: the [coulomb] block goes).
+  std::string frictionless = scene("wang");
+  const std::string coulomb = "[coulomb]\nk_s = 7.5e6\nmu = 0.5\n";
+  ASSERT_NE(frictionless.find(coulomb), std::string::npos);
+  frictionless.replace(frictionless.find(coulomb), coulomb.size(), "");
+  const std::string t = restart_refusal<InputError>(
+      *valid_, parse_config_text(frictionless, {"--contact.tangential=none", "--run.output=" + out("tangential").string()}));
+  EXPECT_TRUE(mentions(t, "tangential coulomb"));
+  EXPECT_TRUE(mentions(t, "none"));
+  // Same laws, but the file's history slots are not the kernel's.
+  const fs::path slots = copy("slots.h5");
+  H5(slots).set_string("/", "history_slots", "xi,x_r,extra");
+  const std::string s = restart_refusal<InputError>(slots, out("slots"));
+  EXPECT_TRUE(mentions(s, slots.string()));
+  EXPECT_TRUE(mentions(s, "xi,x_r,extra"));
+
+  // Accepted with run.reset_history = true: discs, step and time from the file, no contact history.
+  const Communicator self(MPI_COMM_SELF);
+  Quiet quiet;
+  Simulation sim(config_for(out("reset"), "jiang_plastic", {"--run.reset_history=true"}), self, true, valid_->string());
+  EXPECT_EQ(sim.step_count(), 1500);
+  std::size_t with_history = 0;
+  for (const ContactTable* t : {&sim.pairs(), &sim.wall_rows()})
+    for (std::size_t r = 0; r < t->size(); ++r)
+      for (const auto& column : t->slot) with_history += column[r] != 0.0;
+  EXPECT_EQ(with_history, 0u) << "history carried over from a file of other laws";
+  for (int s = 0; s < 10; ++s) sim.step();
+  EXPECT_EQ(sim.step_count(), 1510);
+}
+
+TEST_F(CheckpointErrors, OutputDirectoryCannotBeWritten) {
+  const fs::path blocker = *dir_ / "a-regular-file";
+  std::ofstream(blocker) << "not a directory\n";
+  const fs::path inside = blocker / "run";
+  const Communicator self(MPI_COMM_SELF);
+  for (const bool restart : {false, true}) {
+    SCOPED_TRACE(restart ? "restart" : "new run");
+    std::string m;
+    try {
+      Quiet quiet;
+      Simulation sim(config_for(inside), self, true, restart ? valid_->string() : "");
+      ADD_FAILURE() << "run.output inside a regular file was accepted";
+    } catch (const ConfigError& e) {
+      m = e.what();
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "expected ConfigError, got " << typeid(e).name() << ": " << e.what();
+    }
+    EXPECT_TRUE(mentions(m, "run.output"));
+    EXPECT_TRUE(mentions(m, inside.string()));
+    EXPECT_TRUE(mentions(m, "cannot be written"));
+  }
+}
+
+// A checkpoint killed half-way leaves the previous one usable, and --resume never picks it.
+TEST_F(CheckpointErrors, InterruptedCheckpointIsNeverPicked) {
+  const fs::path run = *dir_ / "interrupted";
+  const Communicator self(MPI_COMM_SELF);
+  {
+    Quiet quiet;
+    Simulation sim(config_for(run, "wang", {"--run.overwrite=true", "--output.checkpoint_keep=5"}), self, true);
+    for (int s = 0; s < 300; ++s) sim.step();
+    sim.write_checkpoint();
+    for (int s = 0; s < 300; ++s) sim.step();
+    sim.write_checkpoint();
+  }
+  const fs::path first = run / Checkpointing::file_name("checkpoint", 300);
+  const fs::path second = run / Checkpointing::file_name("checkpoint", 600);
+  ASSERT_TRUE(fs::is_regular_file(first));
+  ASSERT_TRUE(fs::is_regular_file(second));
+  EXPECT_EQ(Checkpointing::newest_checkpoint(run.string(), self), second.string());
+
+  // A writer killed while writing step 900: its temporary file is left behind, half written.
+  const fs::path part = run / ("." + Checkpointing::file_name("checkpoint", 900) + ".part");
+  fs::copy_file(second, part);
+  fs::resize_file(part, fs::file_size(second) / 2);
+  EXPECT_EQ(Checkpointing::newest_checkpoint(run.string(), self), second.string()) << "picked the .part file";
+  // A complete-looking copy under the temporary name is not picked either (only checkpoint_<step>.h5 is).
+  fs::copy_file(second, part, fs::copy_options::overwrite_existing);
+  EXPECT_EQ(Checkpointing::newest_checkpoint(run.string(), self), second.string()) << "picked the .part file";
+
+  // The newest checkpoint truncated (a disk full, a copy cut short): the previous one is picked, and the
+  // truncated one is reported as skipped with its reason.
+  fs::resize_file(second, fs::file_size(second) / 2);
+  std::vector<std::string> skipped;
+  EXPECT_EQ(Checkpointing::newest_checkpoint(run.string(), self, &skipped), first.string());
+  ASSERT_EQ(skipped.size(), 1u);
+  EXPECT_TRUE(mentions(skipped[0], second.filename().string()));
+
+  // A newest file without the final "complete" attribute (a writer stopped before its last write).
+  const fs::path third = run / Checkpointing::file_name("checkpoint", 1200);
+  fs::copy_file(first, third);
+  H5(third).remove("/", "complete");
+  skipped.clear();
+  EXPECT_EQ(Checkpointing::newest_checkpoint(run.string(), self, &skipped), first.string());
+  ASSERT_EQ(skipped.size(), 2u);
+  EXPECT_TRUE(mentions(skipped[0], "incomplete"));
+
+  // The one picked restarts.
+  Quiet quiet;
+  Simulation sim(config_for(*dir_ / "interrupted-resumed"), self, true, first.string());
+  EXPECT_EQ(sim.step_count(), 300);
+}
+
+// ---- the real executable: SIGTERM, exit 10, --resume ----
+
+fs::path rondel_binary() { return fs::canonical("/proc/self/exe").parent_path().parent_path() / "rondel"; }
+
+// Starts `rondel ARGS` in `dir` with a clean MPI environment (a singleton even under mpirun), stdout and
+// stderr to dir/<tag>.out and dir/<tag>.err. Everything is prepared before fork: the child only calls
+// async-signal-safe functions.
+pid_t spawn_rondel(const fs::path& dir, const std::vector<std::string>& args, const std::string& tag) {
+  static std::vector<std::string> env_store, arg_store;
+  env_store.clear();
+  for (char** e = environ; *e; ++e) {
+    const std::string var(*e);
+    const std::string name = var.substr(0, var.find('='));
+    if (name.rfind("OMPI_", 0) == 0 || name.rfind("PMIX_", 0) == 0 || name.rfind("PMI_", 0) == 0) continue;
+    env_store.push_back(var);
+  }
+  arg_store = {rondel_binary().string()};
+  arg_store.insert(arg_store.end(), args.begin(), args.end());
+  std::vector<char*> envp, argv;
+  for (auto& s : env_store) envp.push_back(s.data());
+  envp.push_back(nullptr);
+  for (auto& s : arg_store) argv.push_back(s.data());
+  argv.push_back(nullptr);
+  const std::string out = (dir / (tag + ".out")).string(), err = (dir / (tag + ".err")).string();
+  const std::string cwd = dir.string();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int o = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int e = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int in = open("/dev/null", O_RDONLY);
+    if (o < 0 || e < 0 || in < 0 || chdir(cwd.c_str()) != 0) _exit(127);
+    dup2(in, 0);
+    dup2(o, 1);
+    dup2(e, 2);
+    execve(argv[0], argv.data(), envp.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+// Waits for the child; its exit code, 128 + signal when killed, -1 on a timeout (then it is killed).
+int wait_for(pid_t pid, double seconds) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  int status = 0;
+  while (std::chrono::steady_clock::now() < end) {
+    const pid_t r = waitpid(pid, &status, WNOHANG);
+    if (r == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    if (r < 0) return -2;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, &status, 0);
+  return -1;
+}
+
+std::size_t line_count(const fs::path& p) {
+  std::ifstream in(p);
+  std::size_t n = 0;
+  for (std::string l; std::getline(in, l);) ++n;
+  return n;
+}
+
+std::vector<fs::path> checkpoints_in(const fs::path& dir) {
+  std::vector<fs::path> out;
+  if (fs::is_directory(dir))
+    for (const auto& e : fs::directory_iterator(dir)) {
+      const std::string n = e.path().filename().string();
+      if (n.rfind("checkpoint_", 0) == 0 && e.path().extension() == ".h5") out.push_back(e.path());
+    }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// 1000 discs resting on the floor of a box: about 4 s of work on one core, so the run is still going when
+// the signal comes.
+const char* kLongRun = R"(
+[run]
+steps = 90000
+progress = false
+[diagnostics]
+every = 500
+[domain]
+xlo = 0
+xhi = 0.08
+ylo = 0
+yhi = 0.06
+[gravity]
+y = -9.81
+[linear]
+k_n = 1e6
+e = 0.5
+[coulomb]
+k_s = 7.5e5
+mu = 0.5
+[contact]
+rolling = wang
+[wang]
+k_r = 2e5
+mu_r = 0.1
+[walls]
+box = bottom left right
+[scene]
+type = lattice_square
+nx = 40
+ny = 25
+radius = 0.00099
+spacing = 0.002
+x0 = 0.001
+y0 = 0.001
+omega = 5
+)";
+
+TEST(CheckpointSignal, SigtermWritesACheckpointAndResumeFinishesTheRun) {
+  ASSERT_TRUE(fs::exists(rondel_binary())) << rondel_binary();
+  CkTempDir dir;
+  const fs::path out = dir / "run";
+  std::ofstream(dir / "long.ini") << kLongRun;
+
+  const pid_t pid = spawn_rondel(dir.path(), {"long.ini", "--run.output=" + out.string()}, "first");
+  ASSERT_GT(pid, 0);
+  // Wait until the time loop runs (diagnostics rows past step 0: the signal handlers are installed), then
+  // a little longer, and send SIGTERM.
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (line_count(out / "diagnostics.csv") < 3 && std::chrono::steady_clock::now() < give_up &&
+         waitpid(pid, nullptr, WNOHANG) == 0)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  std::this_thread::sleep_for(std::chrono::milliseconds(700));
+  ASSERT_EQ(kill(pid, SIGTERM), 0) << "the run ended before the signal (make kLongRun longer)";
+  const int code = wait_for(pid, 120);
+  const std::string err = slurp(dir / "first.err");
+  ASSERT_EQ(code, 10) << "stderr: " << err;
+  const auto written = checkpoints_in(out);
+  ASSERT_EQ(written.size(), 1u) << "one checkpoint, at the step of the signal";
+  const StateHeader h = read_state_header(written[0].string(), Communicator(MPI_COMM_SELF));
+  EXPECT_GT(h.step, 0);
+  EXPECT_LT(h.step, 90000) << "the run was not stopped early";
+  const std::string summary = slurp(out / "summary.txt");
+  EXPECT_TRUE(mentions(summary, "stopped by a signal"));
+  EXPECT_TRUE(mentions(summary, "--resume " + out.string()));
+  EXPECT_TRUE(mentions(slurp(out / "log.txt"), "stopped by SIGTERM at step " + std::to_string(h.step)));
+  std::cout << "[ signal   ] SIGTERM stopped the run at step " << h.step << " of 90000\n";
+
+  // --resume without the INI: the checkpoint's configuration; the run goes on to run.steps = 90000.
+  const pid_t again = spawn_rondel(dir.path(), {"--resume", out.string()}, "resume");
+  ASSERT_GT(again, 0);
+  const int code2 = wait_for(again, 180);
+  ASSERT_EQ(code2, 0) << "stderr: " << slurp(dir / "resume.err");
+  EXPECT_TRUE(mentions(slurp(out / "summary.txt"), "status: complete"));
+  EXPECT_TRUE(mentions(slurp(out / "log.txt"), "resumed at step " + std::to_string(h.step)));
+  const auto after = checkpoints_in(out);
+  ASSERT_FALSE(after.empty());
+  EXPECT_EQ(after.back().filename().string(), Checkpointing::file_name("checkpoint", 90000));
+  const std::string resumed_final = slurp(out / "final.csv");
+
+  // The same run without interruption ends in the same bits.
+  const fs::path straight = dir / "straight";
+  const pid_t ref = spawn_rondel(dir.path(), {"long.ini", "--run.output=" + straight.string()}, "straight");
+  ASSERT_EQ(wait_for(ref, 180), 0) << slurp(dir / "straight.err");
+  const std::string straight_final = slurp(straight / "final.csv");
+  EXPECT_GT(std::count(straight_final.begin(), straight_final.end(), '\n'), 1000);
+  EXPECT_TRUE(resumed_final == straight_final) << "final.csv after SIGTERM + --resume differs from the uninterrupted run";
+}
+
+}  // namespace
+}  // namespace rondel
