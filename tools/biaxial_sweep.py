@@ -47,6 +47,18 @@ def wall_seconds(outdir):
     return float("nan")
 
 
+def probe_dt(cmd, outdir):
+    """The run's time step (it depends on the laws, e.g. delta): one step into OUTDIR.probe."""
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    out = subprocess.run(cmd + ["--run.steps=1", f"--run.output={outdir}.probe", "--run.overwrite=true",
+                                "--output.checkpoint_at_end=false"],
+                         capture_output=True, text=True, env=env, cwd=ROOT).stdout
+    for line in out.splitlines():
+        if line.startswith("time step "):
+            return float(line.split()[2])
+    return DT
+
+
 def done(outdir):
     return os.path.exists(os.path.join(outdir, "summary.txt"))
 
@@ -72,8 +84,8 @@ def main(argv=None):
     a = ap.parse_args(argv)
     os.makedirs(a.out, exist_ok=True)
 
-    def shear_steps(rate):
-        return a.steps or int(math.ceil(math.log(1.0 / (1.0 - a.strain)) / (rate * DT)))
+    def shear_steps(rate, dt):
+        return a.steps or int(math.ceil(math.log(1.0 / (1.0 - a.strain)) / (rate * dt)))
 
     cases = []
     for p in [float(x) for x in a.pressures.split(",")]:
@@ -113,9 +125,10 @@ def main(argv=None):
         # prepare stage's jiang_plastic delta 0.4, mu 0.25), so all cases start alike.
         law = ["--run.reset_history=true"] + (["--contact.rolling=none"] if m == "none" else
                                                [f"--contact.rolling={m}", f"--jiang.delta={dlt:g}"])
-        cmd = [a.rondel, a.shear, f"--scene.file={preps[p]}", f"--run.output={d}", "--run.overwrite=true",
-               "--run.progress=false", f"--run.steps={shear_steps(r)}", f"--walls.servo_gain={a.gain}",
+        cmd = [a.rondel, a.shear, f"--scene.file={preps[p]}", "--run.progress=false", f"--walls.servo_gain={a.gain}",
                f"--walls.control=top:strain_rate:{r:g} left:servo:{p:g} right:servo:{p:g}"] + law + a.extra
+        dt = probe_dt(cmd, d)
+        cmd += [f"--run.output={d}", "--run.overwrite=true", f"--run.steps={shear_steps(r, dt)}"]
         jobs.append((cmd, d + ".log", d))
     with cf.ThreadPoolExecutor(a.jobs) as ex:
         for (cmd, log, d), (rc, t) in zip(jobs, ex.map(lambda j: run(j[0], j[1]), jobs)):
