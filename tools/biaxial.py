@@ -97,6 +97,8 @@ def main(argv=None):
     ap.add_argument("--stress", choices=["wall", "loveweber"], default="wall",
                     help="s1, s3 from the box walls (default) or the Love-Weber average")
     ap.add_argument("--no-plot", action="store_true", help="CSV only")
+    ap.add_argument("--no-envelope", action="store_true",
+                    help="no strength envelope (the runs differ in more than the confining stress)")
     a = ap.parse_args(argv)
 
     labels = a.labels.split(",") if a.labels else [
@@ -140,7 +142,7 @@ def main(argv=None):
     # Strength envelope over distinct confining stresses (peak states).
     ps = np.array([r["confining"] for *_, r in runs])
     env = None
-    if len(ps) >= 2 and ps.max() > 1.3 * ps.min():  # distinct confining stresses (not servo scatter)
+    if not a.no_envelope and len(ps) >= 2 and ps.max() > 1.3 * ps.min():  # distinct confining stresses (not servo scatter)
         s = np.array([r["s_peak"] for *_, r in runs])
         t = np.array([0.5 * r["q_peak"] for *_, r in runs])
         env = envelope(s, t)

@@ -173,7 +173,15 @@ def main(argv=None):
     paths = [os.path.join(x["dir"], "measures.csv") for x in rows]
     if paths:
         biaxial.main(paths + ["--out", os.path.join(a.out, "curves"), "--window", str(a.window),
-                              "--labels", ",".join(os.path.basename(x["dir"]) for x in rows)])
+                              "--labels", ",".join(os.path.basename(x["dir"]) for x in rows), "--no-envelope"])
+        # Strength envelope per (model, delta, rate) with several confining stresses.
+        env = {}
+        for x in rows:
+            env.setdefault((x["model"], x["delta"], x["rate"]), []).append(x)
+        for (m, dlt, r), xs in env.items():
+            if len({x["p_kPa"] for x in xs}) >= 2:
+                biaxial.main([os.path.join(x["dir"], "measures.csv") for x in xs] +
+                             ["--out", os.path.join(a.out, f"envelope_{m}_d{dlt:g}_r{r:g}"), "--window", str(a.window)])
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
