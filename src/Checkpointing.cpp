@@ -95,15 +95,19 @@ std::string Checkpointing::newest_checkpoint(const std::string& directory, const
       if (n.rfind("checkpoint_", 0) == 0 && e.path().extension() == ".h5") found.push_back(e.path());
     }
   std::sort(found.rbegin(), found.rend());
+  std::vector<std::string> reasons;
   for (const fs::path& p : found) {
     try {
       read_state_header(p.string(), comm);
       return p.string();
     } catch (const InputError& e) {
-      if (skipped) skipped->push_back(p.string() + ": " + e.what());
+      reasons.push_back(p.string() + ": " + e.what());
+      if (skipped) skipped->push_back(reasons.back());
     }
   }
-  throw InputError("--resume " + directory + ": no complete checkpoint (checkpoint_<step>.h5) in that directory");
+  std::string why = found.empty() ? " (there is none)" : "; passed over:";
+  for (const auto& r : reasons) why += "\n  " + r;
+  throw InputError("--resume " + directory + ": no complete checkpoint (checkpoint_<step>.h5) in that directory" + why);
 }
 
 }  // namespace rondel

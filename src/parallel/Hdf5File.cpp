@@ -26,6 +26,23 @@ constexpr int components() {
   return (std::is_same_v<T, Vec2> || std::is_same_v<T, ContactKey>) ? 2 : 1;
 }
 
+// Order-independent checksum of rows: the wrapping sum over rows of a mix of the row's global index and
+// the FNV-1a hash of its bytes.
+std::uint64_t mix(std::uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+std::uint64_t row_checksum(const char* bytes, std::size_t row_bytes, std::uint64_t rows, std::uint64_t first) {
+  std::uint64_t sum = 0;
+  for (std::uint64_t r = 0; r < rows; ++r) {
+    std::uint64_t h = 0xcbf29ce484222325ULL;
+    for (std::size_t b = 0; b < row_bytes; ++b) h = (h ^ static_cast<unsigned char>(bytes[r * row_bytes + b])) * 0x100000001b3ULL;
+    sum += mix(h + 0x9e3779b97f4a7c15ULL * (first + r + 1));
+  }
+  return sum;
+}
+
 struct Handle {
   hid_t id;
   herr_t (*close)(hid_t);
@@ -36,7 +53,7 @@ struct Handle {
 
 }  // namespace
 
-Hdf5File::Hdf5File(const std::string& path, Mode mode, const Communicator& comm) : path_(path) {
+Hdf5File::Hdf5File(const std::string& path, Mode mode, const Communicator& comm) : path_(path), comm_(comm.comm()) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become exceptions with the file's name
   Handle fapl{H5Pcreate(H5P_FILE_ACCESS), H5Pclose};
   H5Pset_fapl_mpio(fapl.id, comm.comm(), MPI_INFO_NULL);
@@ -52,6 +69,12 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode, const Communicator& comm)
 Hdf5File::~Hdf5File() {
   if (xfer_ >= 0) H5Pclose(xfer_);
   if (file_ >= 0) H5Fclose(file_);
+}
+
+std::uint64_t Hdf5File::reduce_sum(std::uint64_t local) const {
+  std::uint64_t out = 0;
+  MPI_Allreduce(&local, &out, 1, MPI_UINT64_T, MPI_SUM, comm_);
+  return out;
 }
 
 void Hdf5File::fail(const std::string& what) const { throw InputError("HDF5 file '" + path_ + "': " + what); }
@@ -145,17 +168,22 @@ void Hdf5File::write(const std::string& name, const std::vector<T>& local, std::
   Handle set{H5Dcreate2(file_, name.c_str(), memory_type<T>(), space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
              H5Dclose};
   if (set.id < 0) fail("cannot create dataset " + name);
-  if (total == 0) return;  // nothing to write (and no storage to write to); the same on every rank
   const hsize_t n_local = local.size() * components<T>() / width;
   hsize_t start[2] = {offset, 0}, count[2] = {n_local, static_cast<hsize_t>(width)};
   H5Sselect_hyperslab(space.id, H5S_SELECT_SET, start, nullptr, count, nullptr);
   Handle mem{H5Screate_simple(rank, count, nullptr), H5Sclose};
   if (n_local == 0) H5Sselect_none(mem.id), H5Sselect_none(space.id);
-  if (H5Dwrite(set.id, memory_type<T>(), mem.id, space.id, xfer_, local.data()) < 0) fail("cannot write dataset " + name);
+  if (total > 0 && H5Dwrite(set.id, memory_type<T>(), mem.id, space.id, xfer_, local.data()) < 0) fail("cannot write dataset " + name);
+  const std::uint64_t sum = reduce_sum(row_checksum(reinterpret_cast<const char*>(local.data()),
+                                                    width / components<T>() * sizeof(T), n_local, offset));
+  Handle scalar{H5Screate(H5S_SCALAR), H5Sclose};
+  Handle attr{H5Acreate2(set.id, "checksum", H5T_STD_U64LE, scalar.id, H5P_DEFAULT, H5P_DEFAULT), H5Aclose};
+  if (attr.id < 0 || H5Awrite(attr.id, H5T_NATIVE_UINT64, &sum) < 0) fail("cannot write the checksum of " + name);
 }
 
 template <class T>
-std::vector<T> Hdf5File::read(const std::string& name, std::uint64_t offset, std::uint64_t count, int width) const {
+std::vector<T> Hdf5File::read(const std::string& name, std::uint64_t offset, std::uint64_t count, int width,
+                              bool partitioned) const {
   width *= components<T>();
   Handle set{H5Dopen2(file_, name.c_str(), H5P_DEFAULT), H5Dclose};
   if (set.id < 0) fail("has no dataset " + name);
@@ -167,12 +195,18 @@ std::vector<T> Hdf5File::read(const std::string& name, std::uint64_t offset, std
       offset + count > dims[0])
     fail("dataset " + name + " has an unexpected shape");
   std::vector<T> out(count * width / components<T>());
-  if (dims[0] == 0) return out;
   hsize_t start[2] = {offset, 0}, cnt[2] = {count, static_cast<hsize_t>(width)};
   H5Sselect_hyperslab(space.id, H5S_SELECT_SET, start, nullptr, cnt, nullptr);
   Handle mem{H5Screate_simple(rank, cnt, nullptr), H5Sclose};
   if (count == 0) H5Sselect_none(mem.id), H5Sselect_none(space.id);
-  if (H5Dread(set.id, memory_type<T>(), mem.id, space.id, xfer_, out.data()) < 0) fail("cannot read dataset " + name);
+  if (dims[0] > 0 && H5Dread(set.id, memory_type<T>(), mem.id, space.id, xfer_, out.data()) < 0) fail("cannot read dataset " + name);
+  const std::uint64_t local = row_checksum(reinterpret_cast<const char*>(out.data()), width / components<T>() * sizeof(T),
+                                           count, offset);
+  const std::uint64_t sum = partitioned ? reduce_sum(local) : local;
+  std::uint64_t stored = 0;
+  Handle attr{H5Aopen(set.id, "checksum", H5P_DEFAULT), H5Aclose};
+  if (attr.id < 0 || H5Aread(attr.id, H5T_NATIVE_UINT64, &stored) < 0) fail("dataset " + name + " has no checksum");
+  if (stored != sum) fail("dataset " + name + " fails its checksum: the file is corrupted");
   return out;
 }
 
@@ -182,11 +216,11 @@ template void Hdf5File::write(const std::string&, const std::vector<std::int64_t
 template void Hdf5File::write(const std::string&, const std::vector<std::int32_t>&, std::uint64_t, std::uint64_t, int);
 template void Hdf5File::write(const std::string&, const std::vector<std::uint32_t>&, std::uint64_t, std::uint64_t, int);
 template void Hdf5File::write(const std::string&, const std::vector<ContactKey>&, std::uint64_t, std::uint64_t, int);
-template std::vector<double> Hdf5File::read(const std::string&, std::uint64_t, std::uint64_t, int) const;
-template std::vector<Vec2> Hdf5File::read(const std::string&, std::uint64_t, std::uint64_t, int) const;
-template std::vector<std::int64_t> Hdf5File::read(const std::string&, std::uint64_t, std::uint64_t, int) const;
-template std::vector<std::int32_t> Hdf5File::read(const std::string&, std::uint64_t, std::uint64_t, int) const;
-template std::vector<std::uint32_t> Hdf5File::read(const std::string&, std::uint64_t, std::uint64_t, int) const;
-template std::vector<ContactKey> Hdf5File::read(const std::string&, std::uint64_t, std::uint64_t, int) const;
+template std::vector<double> Hdf5File::read(const std::string&, std::uint64_t, std::uint64_t, int, bool) const;
+template std::vector<Vec2> Hdf5File::read(const std::string&, std::uint64_t, std::uint64_t, int, bool) const;
+template std::vector<std::int64_t> Hdf5File::read(const std::string&, std::uint64_t, std::uint64_t, int, bool) const;
+template std::vector<std::int32_t> Hdf5File::read(const std::string&, std::uint64_t, std::uint64_t, int, bool) const;
+template std::vector<std::uint32_t> Hdf5File::read(const std::string&, std::uint64_t, std::uint64_t, int, bool) const;
+template std::vector<ContactKey> Hdf5File::read(const std::string&, std::uint64_t, std::uint64_t, int, bool) const;
 
 }  // namespace rondel

@@ -37,15 +37,21 @@ class Hdf5File {
   template <class T>
   void write(const std::string& name, const std::vector<T>& local, std::uint64_t total, std::uint64_t offset,
              int width = 1);
-  // Collective block read of rows [offset, offset + count).
+  // Collective block read of rows [offset, offset + count). Every dataset carries a checksum of its rows
+  // (order-independent, so it does not depend on how the rows were split over ranks); it is verified
+  // after reading: `partitioned` when the ranks' blocks cover the dataset once, otherwise (every rank reads
+  // the whole dataset) each rank checks its own copy. A mismatch is an InputError naming the file.
   template <class T>
-  std::vector<T> read(const std::string& name, std::uint64_t offset, std::uint64_t count, int width = 1) const;
+  std::vector<T> read(const std::string& name, std::uint64_t offset, std::uint64_t count, int width = 1,
+                      bool partitioned = true) const;
   // Rows of a dataset (0 when absent).
   std::uint64_t rows(const std::string& name) const;
 
  private:
   [[noreturn]] void fail(const std::string& what) const;
+  std::uint64_t reduce_sum(std::uint64_t local) const;
   std::string path_;
+  MPI_Comm comm_;
   hid_t file_ = -1;
   hid_t xfer_ = -1;
 };

@@ -210,12 +210,14 @@ void read_state_rows(const std::string& path, ContactTable& pairs, ContactTable&
 WallSet read_state_walls(const std::string& path, const Communicator& comm) {
   Hdf5File f(path, Hdf5File::Mode::read, comm);
   const std::uint64_t n = f.rows("/walls/kind");
-  const auto kind = f.read<std::int32_t>("/walls/kind", 0, n);
-  const auto p0 = f.read<Vec2>("/walls/p0", 0, n), p1 = f.read<Vec2>("/walls/p1", 0, n);
-  const auto normal = f.read<Vec2>("/walls/normal", 0, n), velocity = f.read<Vec2>("/walls/velocity", 0, n);
-  const auto force = f.read<Vec2>("/walls/force", 0, n);
-  const auto normal_force = f.read<double>("/walls/normal_force", 0, n);
-  const auto contacts = f.read<std::int64_t>("/walls/contacts", 0, n);
+  // Every rank reads the whole (small) wall table and checks its own copy.
+  const auto kind = f.read<std::int32_t>("/walls/kind", 0, n, 1, false);
+  const auto p0 = f.read<Vec2>("/walls/p0", 0, n, 1, false), p1 = f.read<Vec2>("/walls/p1", 0, n, 1, false);
+  const auto normal = f.read<Vec2>("/walls/normal", 0, n, 1, false);
+  const auto velocity = f.read<Vec2>("/walls/velocity", 0, n, 1, false);
+  const auto force = f.read<Vec2>("/walls/force", 0, n, 1, false);
+  const auto normal_force = f.read<double>("/walls/normal_force", 0, n, 1, false);
+  const auto contacts = f.read<std::int64_t>("/walls/contacts", 0, n, 1, false);
   WallSet walls(n);
   for (std::uint64_t w = 0; w < n; ++w) {
     walls[w].kind = kind[w] == 0 ? Wall::Kind::line : Wall::Kind::segment;
