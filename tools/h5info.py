@@ -4,10 +4,11 @@
     tools/h5info.py FILE.h5 [--config]        (or /usr/bin/python3 tools/h5info.py ...)
 
 Kind, step, time, dt, laws, history slots, disc count, contact counts (rows, rows with history, loaded
-contacts), every dataset with its type and shape, the walls, the ledger and the run metadata; --config
-also prints the stored configuration. Exits 1 with a message naming the file when it is not a readable
-Rondel file (missing, not HDF5, no format = rondel attribute, truncated), 0 otherwise; an incomplete file
-or another format version is reported and exits 2.
+contacts), every dataset with its type and shape, the walls, the ledger and the run metadata, and it
+verifies every dataset's checksum; --config also prints the stored configuration. Exits 1 with a message
+naming the file when it is not a readable Rondel file (missing, not HDF5, no format = rondel attribute,
+truncated, a dataset failing its checksum), 0 otherwise; an incomplete file or another format version is
+reported and exits 2.
 
 Needs h5py and numpy (Debian: python3-h5py python3-numpy; tools/setup.sh installs them).
 """
@@ -37,6 +38,43 @@ def text(value):
 def fail(path, why, code=1):
     print(f"h5info: '{path}': {why}", file=sys.stderr)
     sys.exit(code)
+
+
+M64 = (1 << 64) - 1
+
+
+def checksum(data):
+    """The dataset checksum of FORMAT.md: sum over rows r of mix(FNV-1a(row bytes) + G (r + 1)) mod 2^64."""
+    n = data.shape[0]
+    if n == 0:
+        return 0
+    rows = np.ascontiguousarray(data).view(np.uint8).reshape(n, -1)
+    with np.errstate(over="ignore"):
+        h = np.full(n, 0xcbf29ce484222325, dtype=np.uint64)
+        for b in range(rows.shape[1]):
+            h = (h ^ rows[:, b].astype(np.uint64)) * np.uint64(0x100000001b3)
+        z = h + np.uint64(0x9e3779b97f4a7c15) * np.arange(1, n + 1, dtype=np.uint64)
+        z = (z ^ (z >> np.uint64(30))) * np.uint64(0xbf58476d1ce4e5b9)
+        z = (z ^ (z >> np.uint64(27))) * np.uint64(0x94d049bb133111eb)
+        z = z ^ (z >> np.uint64(31))
+    return int(z.sum(dtype=np.uint64)) & M64
+
+
+def verify_checksums(f):
+    """(datasets checked, [names failing or without a checksum])."""
+    checked, bad = 0, []
+
+    def visit(name, obj):
+        nonlocal checked
+        if not isinstance(obj, h5py.Dataset):
+            return
+        checked += 1
+        if "checksum" not in obj.attrs:
+            bad.append(f"/{name} (no checksum)")
+        elif int(obj.attrs["checksum"]) != checksum(obj[()]):
+            bad.append(f"/{name}")
+    f.visititems(visit)
+    return checked, bad
 
 
 def describe(name, obj):
@@ -136,8 +174,12 @@ def main():
             if "run_metadata" in f:
                 meta = {k: text(v) for k, v in f["run_metadata"].attrs.items()}
                 print("  run metadata: " + ", ".join(f"{k} {v}" for k, v in meta.items()))
+            checked, bad = verify_checksums(f)
         except (KeyError, OSError, ValueError, StopIteration) as e:
             fail(path, f"damaged Rondel file, cannot read its contents ({e})")
+        if bad:
+            fail(path, f"corrupted: {len(bad)} of {checked} datasets fail their checksum: {', '.join(bad)}")
+        print(f"  checksums: {checked} datasets verified")
         if args.config:
             print("  configuration:")
             for line in str(a.get("config", "")).splitlines():
