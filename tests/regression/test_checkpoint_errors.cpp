@@ -496,6 +496,64 @@ TEST_F(CheckpointErrors, InterruptedCheckpointIsNeverPicked) {
   EXPECT_EQ(sim.step_count(), 300);
 }
 
+// run.overwrite = true replaces an earlier run: its checkpoints must not be taken for the new run's.
+TEST_F(CheckpointErrors, CheckpointsOfAnOverwrittenRunAreNeverPicked) {
+  const fs::path run = *dir_ / "overwritten";
+  const Communicator self(MPI_COMM_SELF);
+  {
+    Quiet quiet;
+    Simulation old_run(config_for(run, "wang", {"--run.overwrite=true"}), self, true);
+    for (int s = 0; s < 600; ++s) old_run.step();
+    old_run.write_checkpoint();
+  }
+  {
+    Quiet quiet;
+    Simulation new_run(config_for(run, "jiang_plastic", {"--run.overwrite=true"}), self, true);
+    for (int s = 0; s < 300; ++s) new_run.step();
+    new_run.write_checkpoint();
+  }
+  const fs::path stale = run / Checkpointing::file_name("checkpoint", 600);
+  EXPECT_FALSE(fs::exists(stale)) << "run.overwrite = true left the replaced run's " << stale.filename();
+  std::string picked;
+  try {
+    picked = Checkpointing::newest_checkpoint(run.string(), self);
+  } catch (const InputError& e) {
+    ADD_FAILURE() << e.what();
+  }
+  EXPECT_EQ(picked, (run / Checkpointing::file_name("checkpoint", 300)).string())
+      << "--resume would continue the run that run.overwrite replaced (other laws, step 600)";
+}
+
+// The XDMF side-car lists every snapshot of the directory, those written before a restart included.
+TEST_F(CheckpointErrors, SnapshotSeriesSurvivesAResume) {
+  const fs::path run = *dir_ / "snapshots";
+  const Communicator self(MPI_COMM_SELF);
+  const std::vector<std::string> every{"--run.overwrite=true", "--output.snapshot_every=100", "--diagnostics.every=100"};
+  {
+    Quiet quiet;
+    auto more = every;
+    more.push_back("--run.steps=400");
+    Simulation first(config_for(run, "wang", more), self, true);
+    first.run();
+  }
+  const fs::path checkpoint = run / Checkpointing::file_name("checkpoint", 400);
+  ASSERT_TRUE(fs::is_regular_file(checkpoint));
+  {
+    Quiet quiet;
+    auto more = every;
+    more.push_back("--run.steps=600");
+    Simulation resumed(config_for(run, "wang", more), self, true, checkpoint.string());
+    resumed.run();
+  }
+  const std::string xdmf = slurp(run / "snapshots.xdmf");
+  for (int step = 100; step <= 600; step += 100) {
+    const std::string name = Checkpointing::file_name("snapshot", step);
+    EXPECT_TRUE(fs::is_regular_file(run / name)) << name;
+    EXPECT_NE(xdmf.find(name + ":/discs/position"), std::string::npos)
+        << "snapshots.xdmf does not list " << name << " (written before the restart at step 400)";
+  }
+}
+
 // ---- the real executable: SIGTERM, exit 10, --resume ----
 
 fs::path rondel_binary() { return fs::canonical("/proc/self/exe").parent_path().parent_path() / "rondel"; }
