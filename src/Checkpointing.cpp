@@ -44,6 +44,35 @@ std::string Checkpointing::write_checkpoint(const StateHeader& header, DiscStore
   return final_path.string();
 }
 
+void Checkpointing::adopt_snapshots(std::int64_t step) {
+  std::vector<fs::path> found;
+  for (const auto& e : fs::directory_iterator(dir_)) {
+    const std::string n = e.path().filename().string();
+    if (n.rfind("snapshot_", 0) == 0 && e.path().extension() == ".h5") found.push_back(e.path());
+  }
+  std::sort(found.begin(), found.end());
+  snapshots_.clear();
+  for (const fs::path& p : found) {
+    try {
+      const StateHeader h = read_state_header(p.string(), comm_);
+      if (h.step > step) continue;
+      snapshots_.push_back({p.filename().string(), h.step, static_cast<std::int64_t>(state_file_discs(p.string(), comm_)), h.time});
+    } catch (const InputError&) {
+      // not a complete snapshot: left out of the series
+    }
+  }
+}
+
+void Checkpointing::remove_old_files() const {
+  if (!comm_.root()) return;
+  for (const auto& e : fs::directory_iterator(dir_)) {
+    const std::string n = e.path().filename().string();
+    const bool ours = ((n.rfind("checkpoint_", 0) == 0 || n.rfind("snapshot_", 0) == 0) && e.path().extension() == ".h5") ||
+                      n.rfind(".checkpoint_", 0) == 0 || n == "snapshots.xdmf";
+    if (ours) fs::remove(e.path());
+  }
+}
+
 std::string Checkpointing::write_snapshot(const StateHeader& header, DiscStore& discs, const WallSet& walls,
                                           std::int64_t n_discs) {
   const std::string name = file_name("snapshot", header.step);

@@ -26,6 +26,10 @@ class Checkpointing {
   static std::string newest_checkpoint(const std::string& directory, const Communicator& comm,
                                        std::vector<std::string>* skipped = nullptr);
   static std::string file_name(const char* prefix, std::int64_t step);
+  // A resumed run keeps the snapshots already in the directory up to `step` in its XDMF series (collective).
+  void adopt_snapshots(std::int64_t step);
+  // A replaced run (run.overwrite) leaves no checkpoint or snapshot that could be taken for the new one's.
+  void remove_old_files() const;
 
  private:
   void write_xdmf() const;

@@ -27,6 +27,9 @@ void Simulation::prepare_output(bool resuming) {
   if (comm_.any(!writable))
     throw ConfigError("run.output = '" + config_.output + "' cannot be written (permissions, or a file of that name)");
   files_ = std::make_unique<Checkpointing>(config_.output, config_.checkpoint_keep, config_.snapshot_fields, comm_);
+  if (resuming) files_->adopt_snapshots(step_);
+  else files_->remove_old_files();
+  comm_.barrier();
   if (!comm_.root()) return;
   std::error_code ec;
   for (const char* stale : {"final.csv", "summary.txt"}) fs::remove(dir / stale, ec);

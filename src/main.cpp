@@ -1,6 +1,7 @@
 // rondel: a 2D discrete element code for discs.
 //   mpirun -n N rondel FILE.ini [--section.key=value ...]
 //   mpirun -n N rondel [FILE.ini] --resume OUTPUT_DIR [--section.key=value ...]
+#include <algorithm>
 #include <cstring>
 #include <exception>
 #include <iostream>
@@ -48,7 +49,10 @@ int main(int argc, char** argv) {
     }
     if (!resume.empty() && !has_file) {
       // No INI: the configuration stored in the checkpoint, with the command line's overrides.
+      // It continues in DIR itself, unless the command line names another run.output.
       std::vector<std::string> args(argv + 1, argv + argc);
+      const bool named = std::any_of(args.begin(), args.end(), [](const std::string& a) { return a.rfind("--run.output", 0) == 0; });
+      if (!named) args.push_back("--run.output=" + resume);
       config = rondel::parse_config_text(rondel::read_state_header(checkpoint, comm).config, args);
     } else {
       config = rondel::parse_config(argc, argv);

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Sets up and builds Rondel (tools/setup.sh), then runs the default scene, inputs/deposition.ini, on one MPI
-# rank and prints where the results are.
+# Sets up and builds Rondel (tools/setup.sh), then runs the default scene, inputs/deposition.ini, on two MPI
+# ranks and prints where the results are.
 #   bash tools/run_default.sh [OUTPUT_DIR]     (default rondel-output/deposition, replaced on a re-run)
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -17,9 +17,9 @@ if [ "$out" = "$default_out" ] && [ -e "$out" ]; then
   args+=(--run.overwrite=true)
 fi
 
-echo "tools/run_default.sh: mpirun -n 1 build/rondel ${args[*]}"
+echo "tools/run_default.sh: mpirun -n 2 build/rondel ${args[*]}"
 status=0
-mpirun -n 1 build/rondel "${args[@]}" || status=$?
+mpirun -n 2 --oversubscribe build/rondel "${args[@]}" || status=$?
 if [ "$status" -ne 0 ]; then
   echo "tools/run_default.sh: ERROR: rondel exited with code ${status} (1 configuration or input error," \
     "3 unstable run, 4 internal error)" >&2

@@ -166,6 +166,10 @@ StateHeader read_state_header(const std::string& path, const Communicator& comm)
   return h;
 }
 
+std::uint64_t state_file_discs(const std::string& path, const Communicator& comm) {
+  return Hdf5File(path, Hdf5File::Mode::read, comm).rows("/discs/position");
+}
+
 void read_state_discs(const std::string& path, DiscStore& discs, const Communicator& comm) {
   Hdf5File f(path, Hdf5File::Mode::read, comm);
   const std::uint64_t total = f.rows("/discs/gid");

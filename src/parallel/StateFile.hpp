@@ -36,6 +36,8 @@ void write_state_file(const std::string& path, const StateHeader& header, DiscSt
 // Collective reads. The header is checked (format name and version, completeness); discs and rows come as
 // this rank's block of the file, to be sent to their owners by the caller.
 StateHeader read_state_header(const std::string& path, const Communicator& comm);
+// Number of discs the file holds.
+std::uint64_t state_file_discs(const std::string& path, const Communicator& comm);
 void read_state_discs(const std::string& path, DiscStore& discs, const Communicator& comm);
 void read_state_rows(const std::string& path, ContactTable& pairs, ContactTable& wall_rows, const Communicator& comm);
 WallSet read_state_walls(const std::string& path, const Communicator& comm);
