@@ -1,6 +1,7 @@
 #include "core/ConfigSchema.hpp"
 
 #include <cstdint>
+#include <sstream>
 #include <string>
 
 namespace rondel {
@@ -11,6 +12,12 @@ namespace {
 template <class T>
 po::typed_value<T>* def(T v) {
   return po::value<T>()->default_value(v);
+}
+// Doubles print their shortest form in --help ("0.2", not "0.20000000000000001").
+po::typed_value<double>* def(double v) {
+  std::ostringstream text;
+  text << v;
+  return po::value<double>()->default_value(v, text.str());
 }
 po::typed_value<std::string>* def(const char* v) { return po::value<std::string>()->default_value(v); }
 template <class T>

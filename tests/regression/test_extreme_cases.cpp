@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "Simulation.hpp"
+#include "support/TempDir.hpp"
 #include "core/Config.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"
@@ -30,31 +31,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class TempDir {
- public:
-  TempDir() {
-    std::string tmpl = (fs::temp_directory_path() / "rondel-extreme-XXXXXX").string();
-    if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-    path_ = tmpl;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  fs::path operator/(const std::string& name) const { return path_ / name; }
 
- private:
-  fs::path path_;
-};
-
-void write_file(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using test::read_file;
+using test::TempDir;
+using test::write_file;
 
 ::testing::AssertionResult names(const std::string& message, const std::string& what) {
   if (message.find(what) != std::string::npos) return ::testing::AssertionSuccess();

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "Simulation.hpp"
+#include "support/TempDir.hpp"
 
 namespace rondel {
 namespace {
@@ -52,22 +53,8 @@ std::string num(double v) {
 }
 
 // A scratch directory for the scene file, removed when the test ends.
-class ScratchDir {
- public:
-  ScratchDir() {
-    static std::atomic<int> counter{0};
-    path_ = fs::temp_directory_path() /
-            ("rondel_test_impact_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
+struct ScratchDir : test::TempDir {
+  ScratchDir() : test::TempDir("rondel-test-impact") {}
 };
 
 struct ImpactResult {

@@ -20,28 +20,16 @@
 #include <vector>
 
 #include "Simulation.hpp"
+#include "support/TempDir.hpp"
 
 namespace rondel {
 namespace {
 
 namespace fs = std::filesystem;
 
-class ScratchDir {
- public:
-  ScratchDir() {
-    static std::atomic<int> counter{0};
-    path_ = fs::temp_directory_path() /
-            ("rondel_test_reversibility_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
+// A scratch directory for the scene file, removed when the test ends.
+struct ScratchDir : test::TempDir {
+  ScratchDir() : test::TempDir("rondel-test-reversibility") {}
 };
 
 constexpr int kSide = 6;             // 36 discs on a 6 x 6 grid

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "Simulation.hpp"
+#include "support/TempDir.hpp"
 
 namespace rondel {
 namespace {
@@ -140,22 +141,8 @@ Law equal_cap(const std::string& name, bool damped = false) {
 }
 
 // A scratch directory for the scene file, removed when the test ends.
-class ScratchDir {
- public:
-  ScratchDir() {
-    static std::atomic<int> counter{0};
-    path_ = fs::temp_directory_path() /
-            ("rondel_test_rolling_wall_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
+struct ScratchDir : test::TempDir {
+  ScratchDir() : test::TempDir("rondel-test-rolling-wall") {}
 };
 
 // The single disc on the bottom wall, ready to step.
