@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "BenchSupport.hpp"
 #include "Simulation.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"
@@ -64,19 +65,6 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-long peak_rss_kib() {
-  std::ifstream in("/proc/self/status");
-  std::string key;
-  long value = 0;
-  while (in >> key) {
-    if (key == "VmHWM:") {
-      in >> value;
-      return value;
-    }
-    std::getline(in, key);
-  }
-  return 0;
-}
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -199,7 +187,7 @@ int main(int argc, char** argv) {
         if (again.step_count() != step) throw rondel::InputError("rondel_bench_io: the restart is at another step");
       }
     }
-    const double rss = comm.sum(static_cast<double>(peak_rss_kib()) * 1024.0);
+    const double rss = comm.sum(static_cast<double>(rondel::peak_rss_kib()) * 1024.0);
     if (comm.root()) {
       const double mb = file_bytes / 1e6;
       const double interval = static_cast<double>(o.every) * step_time;

@@ -13,6 +13,7 @@
 #include <iostream>
 #include <string>
 
+#include "BenchSupport.hpp"
 #include "Simulation.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"
@@ -68,19 +69,6 @@ void box_of(const std::string& file, double& lo, double& hi) {
   throw rondel::InputError("rondel_bench: '" + file + "' has no 'Periodic box x, y in [lo, hi]' comment");
 }
 
-long peak_rss_kib() {
-  std::ifstream in("/proc/self/status");
-  std::string key;
-  long value = 0;
-  while (in >> key) {
-    if (key == "VmHWM:") {
-      in >> value;
-      return value;
-    }
-    std::getline(in, key);
-  }
-  return 0;
-}
 
 }  // namespace
 
@@ -121,7 +109,7 @@ int main(int argc, char** argv) {
     const double comm_time = comm.max(sim.comm_seconds() - comm_before);
     const double store = comm.sum(static_cast<double>(sim.discs().memory_bytes() + sim.pairs().memory_bytes() +
                                                       sim.wall_rows().memory_bytes()));
-    const double rss = comm.sum(static_cast<double>(peak_rss_kib()) * 1024.0);
+    const double rss = comm.sum(static_cast<double>(rondel::peak_rss_kib()) * 1024.0);
     if (comm.root())
       std::printf("rondel_bench: %ld discs, rolling %s, %ld timed steps (after %ld warm-up), dt %.3g s "
                   "(critical %.3g s, %s mode), %d rank(s)\n"
