@@ -51,8 +51,11 @@ ProgressLine::ProgressLine(std::int64_t total_steps, std::int64_t n_discs, bool 
 void ProgressLine::update(std::int64_t step) {
   if (!enabled_ || total_ <= 0) return;
   if (!tty_ && step < next_plain_) return;
-  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  if (tty_ && step % 50 != 0 && step != total_) return;
+  const auto now = std::chrono::steady_clock::now();
+  // On a terminal the line is redrawn at most four times a second (mpirun forwards output through a pty).
+  if (tty_ && step != total_ && now - last_draw_ < std::chrono::milliseconds(250)) return;
+  last_draw_ = now;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
   const double rate = elapsed > 0 ? step / elapsed : 0.0;
   const double eta = rate > 0 ? (total_ - step) / rate : 0.0;
   std::printf("%sstep %lld/%lld (%3.0f%%)  %.3g steps/s  %.3g disc-steps/s  ETA %.0f s%s", tty_ ? "\r" : "",

@@ -49,7 +49,7 @@ class ProgressLine {
   std::int64_t total_, discs_;
   bool enabled_, tty_;
   std::int64_t next_plain_ = 0;
-  std::chrono::steady_clock::time_point start_;
+  std::chrono::steady_clock::time_point start_, last_draw_;
 };
 
 }  // namespace rondel
