@@ -492,7 +492,8 @@ RunSummary Simulation::run() {
     std::ofstream(fs::path(config_.output) / "summary.txt")
         << s.str() << (sum.stop_signal ? "\nstatus: stopped by a signal; resume with --resume " + config_.output + "\n"
                                        : std::string("\nstatus: complete\n"));
-    log("results in " + config_.output + "/ (config.ini, log.txt, diagnostics.csv, final.csv, summary.txt)");
+    log("results in " + config_.output + "/ (config.ini, log.txt, diagnostics.csv, measures.csv, final.csv, summary.txt" +
+        (sum.last_checkpoint.empty() ? std::string(")") : ", checkpoint_*.h5)"));
   }
   return sum;
 }
