@@ -15,7 +15,7 @@ const Wall* side(const WallSet& walls, int s) {
 }
 }  // namespace
 
-bool Boundaries::controlled(const WallSet& walls) const {
+bool Boundaries::controlled(const WallSet& walls) {
   return std::any_of(walls.begin(), walls.end(), [](const Wall& w) { return w.control != Wall::Control::velocity; });
 }
 

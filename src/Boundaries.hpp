@@ -30,7 +30,8 @@ class Boundaries {
   Boundaries(double servo_gain, double servo_max_speed, double c_n = 0.0)
       : gain_(servo_gain), v_max_(servo_max_speed), c_n_(c_n) {}
 
-  bool controlled(const WallSet& walls) const;
+  // True when a wall is servo- or strain-rate-controlled (then loads are measured every step).
+  static bool controlled(const WallSet& walls);
   void measure(WallSet& walls, const ContactTable& wall_rows, std::size_t n_owned, const Communicator& comm) const;
   void steer(WallSet& walls, const ContactParamTable& params, const Domain& domain, double thickness, double dt) const;
   static BoxGeometry box(const WallSet& walls, const Domain& domain);

@@ -40,8 +40,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
   pairs_ = make_contact_table(laws_);
   wall_rows_ = make_contact_table(laws_);
   walls_ = config_.walls;
-  controlled_walls_ = std::any_of(walls_.begin(), walls_.end(),
-                                  [](const Wall& w) { return w.control != Wall::Control::velocity; });
+  controlled_walls_ = Boundaries::controlled(walls_);
   box0_ = Boundaries::box(walls_, config_.domain);
   for (ContactParams* p : {&config_.params.pair(0, 0), &config_.params.wall(0)})
     if (p->e_n > 0.0) p->zeta_n = zeta_from_restitution(p->e_n);

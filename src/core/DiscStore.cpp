@@ -1,8 +1,6 @@
 #include "core/DiscStore.hpp"
 
-#include <algorithm>
 #include <numbers>
-#include <numeric>
 #include <stdexcept>
 
 namespace rondel {
@@ -51,17 +49,6 @@ void DiscStore::remove_owned(const std::vector<bool>& drop) {
     kept = out;
   });
   n_owned_ = kept;
-}
-
-void DiscStore::sort_owned_by_gid() {
-  truncate_to_owned();
-  std::vector<std::size_t> order(n_owned_);
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(), [this](std::size_t a, std::size_t b) { return gid[a] < gid[b]; });
-  for_each_field([&order](const char*, unsigned, auto& field) {
-    auto copy = field;
-    for (std::size_t i = 0; i < order.size(); ++i) field[i] = copy[order[i]];
-  });
 }
 
 std::size_t DiscStore::memory_bytes() const {

@@ -47,8 +47,6 @@ class DiscStore {
   void set_owned_count(std::size_t n) { n_owned_ = n; }
   // Removes the owned discs whose flag in `drop` is set (ghosts are dropped too), keeping the order.
   void remove_owned(const std::vector<bool>& drop);
-  // Reorders owned discs by ascending gid (canonical order for output and deterministic builds).
-  void sort_owned_by_gid();
   std::size_t memory_bytes() const;
 
   // Visits every field with its name, its uses and its vector.
