@@ -420,8 +420,8 @@ RunSummary Simulation::run() {
   log("neighbour skin " + fmt(neighbours_.skin()) + " m; output in " + (write_files_ ? config_.output : "(none)") +
       (step_ > 0 ? "; resumed at step " + std::to_string(step_) : ""));
   log("resolved configuration:\n" + config_.resolved_text);
-  const std::int64_t first = step_, todo = std::max<std::int64_t>(0, config_.steps - step_);
-  ProgressLine progress(todo, n_discs, write_files_ && config_.progress && comm_.root());
+  const std::int64_t first = step_, remaining = std::max<std::int64_t>(0, config_.steps - step_);
+  ProgressLine progress(remaining, n_discs, write_files_ && config_.progress && comm_.root());
   StopSignal::install();
   RunSummary sum;
   const auto start = std::chrono::steady_clock::now();
