@@ -16,13 +16,32 @@ const Wall* side(const WallSet& walls, int s) {
 }  // namespace
 
 bool Boundaries::controlled(const WallSet& walls) {
-  return std::any_of(walls.begin(), walls.end(), [](const Wall& w) { return w.control != Wall::Control::velocity; });
+  return std::any_of(walls.begin(), walls.end(),
+                     [](const Wall& w) { return w.control != Wall::Control::velocity || w.shear_velocity != 0.0; });
 }
 
-void Boundaries::measure(WallSet& walls, const ContactTable& wall_rows, std::size_t n_owned,
-                         const Communicator& comm) const {
+bool Boundaries::any_rough(const WallSet& walls) {
+  return std::any_of(walls.begin(), walls.end(), [](const Wall& w) { return w.rough; });
+}
+
+void Boundaries::measure(WallSet& walls, const DiscStore& discs, const ContactTable& pairs,
+                         const ContactTable& wall_rows, const Communicator& comm) const {
+  const std::size_t n_owned = discs.n_owned();
   std::vector<std::array<ExactSum, 3>> sums(walls.size());
   std::vector<std::int64_t> counts(walls.size(), 0);
+  if (any_rough(walls)) {
+    for (std::size_t r = 0; r < pairs.size(); ++r) {
+      if (static_cast<std::size_t>(pairs.i1[r]) >= n_owned || !(pairs.F_n[r] > 0.0)) continue;
+      const std::uint32_t a = discs.flags[pairs.i1[r]], b = discs.flags[pairs.i2[r]];
+      if (is_attached(a) == is_attached(b)) continue;  // free-free, or two glued discs (of different walls)
+      const std::size_t w = attached_wall(is_attached(a) ? a : b);
+      const Vec2 on_wall = is_attached(a) ? pairs.f1[r] : -pairs.f1[r];
+      sums[w][0] += on_wall.x;
+      sums[w][1] += on_wall.y;
+      sums[w][2] += -dot(on_wall, walls[w].normal);
+      ++counts[w];
+    }
+  }
   for (std::size_t r = 0; r < wall_rows.size(); ++r) {
     if (static_cast<std::size_t>(wall_rows.i1[r]) >= n_owned || !(wall_rows.F_n[r] > 0.0)) continue;
     const auto w = static_cast<std::size_t>(wall_rows.i2[r]);
@@ -55,11 +74,13 @@ double Boundaries::stress(const Wall& w, const BoxGeometry& g, double thickness)
   return w.normal_force / (length * thickness);
 }
 
-void Boundaries::steer(WallSet& walls, const ContactParamTable& params, const Domain& domain, double thickness,
-                       double dt) const {
+void Boundaries::steer(WallSet& walls, const Domain& domain, double thickness, double dt) const {
   const BoxGeometry g = box(walls, domain);
   for (Wall& w : walls) {
-    if (w.control == Wall::Control::velocity) continue;
+    if (w.control == Wall::Control::velocity) {
+      if (w.shear_velocity != 0.0) w.velocity = w.shear_velocity * w.tangent();
+      continue;
+    }
     double v_n = 0.0;
     const bool vertical = w.box_side == 1 || w.box_side == 2;
     if (w.control == Wall::Control::strain_rate) {
@@ -67,11 +88,10 @@ void Boundaries::steer(WallSet& walls, const ContactParamTable& params, const Do
     } else {
       const double length = vertical ? g.height : g.width;
       const double error = w.target_stress * length * thickness - w.normal_force;
-      const double k_n = params.wall(0).k_n;
-      v_n = gain_ * error / (static_cast<double>(std::max<std::int64_t>(w.contacts, 1)) * (k_n * dt + c_n_));
+      v_n = gain_ * error / (static_cast<double>(std::max<std::int64_t>(w.contacts, 1)) * (k_n_ * dt + c_n_));
       v_n = std::clamp(v_n, -v_max_, v_max_);
     }
-    w.velocity = v_n * w.normal;
+    w.velocity = v_n * w.normal + w.shear_velocity * w.tangent();
   }
 }
 

@@ -3,6 +3,7 @@
 
 #include "core/ContactParams.hpp"
 #include "core/ContactTable.hpp"
+#include "core/DiscStore.hpp"
 #include "core/Domain.hpp"
 #include "core/Wall.hpp"
 #include "parallel/Communicator.hpp"
@@ -17,7 +18,8 @@ namespace rondel {
 //    a wall step v dt changes each contact's force by k_n v dt through the spring and by c_n v at once
 //    through the dashpot, so with gain < 1 one step closes at most that fraction of the force error (the
 //    dashpot term matters: without it the wall chatters between +-v_max at the dashpot's response);
-//    a strain-rate wall moves with v_n = rate x (distance to the opposite box wall).
+//    a strain-rate wall moves with v_n = rate x (distance to the opposite box wall); a shear velocity
+//    (walls.control 'side:shear:V') adds V along the wall.
 //  - box geometry: the sample's width and height between the box walls (for stresses and strains).
 struct BoxGeometry {
   double width = 0.0, height = 0.0;
@@ -26,20 +28,25 @@ struct BoxGeometry {
 
 class Boundaries {
  public:
-  // `c_n`: the largest normal dashpot coefficient of a disc-wall contact (heaviest disc).
-  Boundaries(double servo_gain, double servo_max_speed, double c_n = 0.0)
-      : gain_(servo_gain), v_max_(servo_max_speed), c_n_(c_n) {}
+  // `k_n`, `c_n`: the stiffest normal spring and the largest normal dashpot coefficient of a contact that
+  // loads a wall (the heaviest disc; with rough walls also disc-disc contacts with the glued discs).
+  Boundaries(double servo_gain, double servo_max_speed, double k_n = 0.0, double c_n = 0.0)
+      : gain_(servo_gain), v_max_(servo_max_speed), k_n_(k_n), c_n_(c_n) {}
 
-  // True when a wall is servo- or strain-rate-controlled (then loads are measured every step).
+  // True when a wall is servo- or strain-rate-controlled or shears (then loads are measured every step).
   static bool controlled(const WallSet& walls);
-  void measure(WallSet& walls, const ContactTable& wall_rows, std::size_t n_owned, const Communicator& comm) const;
-  void steer(WallSet& walls, const ContactParamTable& params, const Domain& domain, double thickness, double dt) const;
+  static bool any_rough(const WallSet& walls);
+  // A wall's load: its own contacts plus, for a rough wall, the contacts of free discs with the discs glued
+  // to it (the pair rows with exactly one glued disc), each counted once over the ranks (booked rows).
+  void measure(WallSet& walls, const DiscStore& discs, const ContactTable& pairs, const ContactTable& wall_rows,
+               const Communicator& comm) const;
+  void steer(WallSet& walls, const Domain& domain, double thickness, double dt) const;
   static BoxGeometry box(const WallSet& walls, const Domain& domain);
   // Normal stress on a box wall [Pa]: its normal force over (length x thickness); 0 when not a box wall.
   static double stress(const Wall& w, const BoxGeometry& g, double thickness);
 
  private:
-  double gain_, v_max_, c_n_;
+  double gain_, v_max_, k_n_, c_n_;
 };
 
 }  // namespace rondel

@@ -12,7 +12,7 @@ namespace rondel {
 
 std::string MeasuresRow::header() {
   return "step,time,width,height,wall_sxx,wall_syy,sxx,syy,sxy,s1,s3,eps_axial,eps_lateral,eps_vol,void_ratio,"
-         "coordination,rotation_mean,rotation_std,sliding_fraction,rolling_yield_fraction";
+         "coordination,rotation_mean,rotation_std,sliding_fraction,rolling_yield_fraction,wall_tau,shear_disp";
 }
 
 std::string MeasuresRow::csv() const {
@@ -23,7 +23,8 @@ std::string MeasuresRow::csv() const {
   s << time;
   s.precision(12);
   for (double v : {width, height, wall_sxx, wall_syy, sxx, syy, sxy, s1, s3, eps_axial, eps_lateral, eps_vol,
-                   void_ratio, coordination, rotation_mean, rotation_std, sliding_fraction, rolling_yield_fraction})
+                   void_ratio, coordination, rotation_mean, rotation_std, sliding_fraction, rolling_yield_fraction, wall_tau,
+                   shear_disp})
     s << ',' << v;
   return s.str();
 }
@@ -32,7 +33,7 @@ MeasuresRow Simulation::measures(const ContactSummary& contacts) {
   MeasuresRow m;
   m.step = step_;
   m.time = time_;
-  boundaries_.measure(walls_, wall_rows_, discs_.n_owned(), comm_);
+  boundaries_.measure(walls_, discs_, pairs_, wall_rows_, comm_);
   const BoxGeometry g = Boundaries::box(walls_, config_.domain);
   m.width = g.width;
   m.height = g.height;
@@ -44,6 +45,13 @@ MeasuresRow Simulation::measures(const ContactSummary& contacts) {
   }
   m.wall_sxx = nx ? sx / nx : 0.0;
   m.wall_syy = ny ? sy / ny : 0.0;
+  const Wall *bottom = nullptr, *top = nullptr;
+  for (const Wall& w : walls_) {
+    if (w.box_side == 0) bottom = &w;
+    if (w.box_side == 3) top = &w;
+  }
+  if (top) m.wall_tau = -top->force.x / (g.width * config_.thickness);
+  if (top && bottom) m.shear_disp = top->p0.x - bottom->p0.x;
 
   // Love-Weber: booked rows only, so each contact counts once over all ranks.
   ExactSum xx, yy, xy, yx;
@@ -77,16 +85,20 @@ MeasuresRow Simulation::measures(const ContactSummary& contacts) {
   m.eps_vol = 1.0 - (g.width * g.height) / (box0_.width * box0_.height);
 
   ExactSum solid, theta, theta2;
+  std::int64_t n_free = 0;
   for (std::size_t i = 0; i < n_owned; ++i) {
     solid += std::numbers::pi * discs_.radius[i] * discs_.radius[i];
+    if (discs_.flags[i] & kFlagFixed) continue;
+    ++n_free;
     theta += discs_.theta[i];
     theta2 += discs_.theta[i] * discs_.theta[i];
   }
   const double a_solid = comm_.exact_sum(solid);
   const double n = static_cast<double>(comm_.sum(static_cast<std::int64_t>(n_owned)));
+  const double n_rot = std::max(1.0, static_cast<double>(comm_.sum(n_free)));
   m.void_ratio = (area - a_solid) / a_solid;
-  m.rotation_mean = comm_.exact_sum(theta) / n;
-  m.rotation_std = std::sqrt(std::max(0.0, comm_.exact_sum(theta2) / n - m.rotation_mean * m.rotation_mean));
+  m.rotation_mean = comm_.exact_sum(theta) / n_rot;
+  m.rotation_std = std::sqrt(std::max(0.0, comm_.exact_sum(theta2) / n_rot - m.rotation_mean * m.rotation_mean));
   const double loaded = static_cast<double>(comm_.sum(contacts.contacts));
   m.coordination = 2.0 * static_cast<double>(comm_.sum(contacts.contacts - contacts.wall_contacts)) / n;
   m.sliding_fraction = loaded > 0 ? static_cast<double>(comm_.sum(contacts.sliding)) / loaded : 0.0;

@@ -5,17 +5,19 @@
 namespace rondel {
 
 // Macroscopic measures of the assembly (compression positive, stresses per thickness [Pa]):
-//  - box: the sample between the box walls (width, height), the walls' normal stresses;
+//  - box: the sample between the box walls (width, height), the walls' normal stresses; the shear stress
+//    on the top wall wall_tau = -F_x / (W t) (positive when the discs resist its motion in +x) and the
+//    shear displacement shear_disp = x of the top wall - x of the bottom wall (0 at the start of a stage);
 //  - Love-Weber average stress sigma = -(1/(A t)) [sum over disc pairs d (x) f1 + sum over wall contacts
 //    a1 n (x) f1] with A the box area (the domain's without box walls), its principal values s1 >= s3;
 //  - strains from the box: axial (vertical) (H0 - H)/H0, lateral (W0 - W)/W0, volumetric 1 - A/A0;
 //  - planar void ratio (A - A_solid)/A_solid, coordination, mean and spread of the disc rotations theta,
-//    fractions of loaded contacts sliding (|F_t| = mu F_n) and yielded in rolling (|M| at the law's cap).
+//    (of the free discs: glued discs are part of their wall), fractions of loaded contacts sliding (|F_t| = mu F_n) and yielded in rolling (|M| at the law's cap).
 struct MeasuresRow {
   std::int64_t step = 0;
   double time = 0.0;
   double width = 0.0, height = 0.0;
-  double wall_sxx = 0.0, wall_syy = 0.0;
+  double wall_sxx = 0.0, wall_syy = 0.0, wall_tau = 0.0, shear_disp = 0.0;
   double sxx = 0.0, syy = 0.0, sxy = 0.0, s1 = 0.0, s3 = 0.0;
   double eps_axial = 0.0, eps_lateral = 0.0, eps_vol = 0.0;
   double void_ratio = 0.0, coordination = 0.0;

@@ -41,6 +41,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
   wall_rows_ = make_contact_table(laws_);
   walls_ = config_.walls;
   controlled_walls_ = Boundaries::controlled(walls_);
+  rough_walls_ = Boundaries::any_rough(walls_);
   box0_ = Boundaries::box(walls_, config_.domain);
   for (ContactParams* p : {&config_.params.pair(0, 0), &config_.params.wall(0)})
     if (p->e_n > 0.0) p->zeta_n = zeta_from_restitution(p->e_n);
@@ -66,7 +67,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
   pairs_.slot = pair_history;
   wall_rows_.slot = wall_history;
   assembly_.assemble(discs_, config_.gravity, pairs_, wall_rows_);
-  if (controlled_walls_) boundaries_.measure(walls_, wall_rows_, discs_.n_owned(), comm_);
+  if (controlled_walls_) boundaries_.measure(walls_, discs_, pairs_, wall_rows_, comm_);
   ledger_.start(kinetic_energy());
 }
 
@@ -87,7 +88,44 @@ void Simulation::build_discs() {
                        "] x [" + fmt(config_.domain.ylo) + ", " + fmt(config_.domain.yhi) + "]");
     discs_.add(d.gid, 0, d.radius, config_.density, config_.thickness, x, d.v, d.omega);
   }
+  if (rough_walls_) glue_to_rough_walls();
   setup_neighbours();
+}
+
+void Simulation::glue_to_rough_walls() {
+  // Every rank holds the whole scene here. A disc goes to the first rough wall within the depth; it then
+  // moves with that wall (velocity = the wall's, no rotation) and is integrated no more.
+  double R_max = 0.0;
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) R_max = std::max(R_max, discs_.radius[i]);
+  const double depth = config_.rough_depth > 0.0 ? config_.rough_depth : 2.0 * comm_.max(R_max);
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
+    for (std::size_t w = 0; w < walls_.size(); ++w) {
+      if (!walls_[w].rough || !(walls_[w].proximity(discs_.position[i]).dist < depth)) continue;
+      discs_.flags[i] = attached_flags(w);
+      discs_.velocity[i] = walls_[w].velocity;
+      discs_.omega[i] = 0.0;
+      break;
+    }
+  }
+}
+
+void Simulation::move_glued_discs() {
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
+    if (!is_attached(discs_.flags[i])) continue;
+    const Vec2 v = walls_[attached_wall(discs_.flags[i])].velocity;
+    discs_.velocity[i] = v;
+    discs_.position[i] += dt_ * v;
+    config_.domain.wrap(discs_.position[i]);
+  }
+}
+
+double Simulation::glued_work_half() const {
+  // Work of the walls on the free discs through the glued ones over half a step: a glued disc moves with its
+  // wall, so the free discs receive -F.v dt (F: their contact force on it); halves of the trapezoid.
+  double W = 0.0;
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i)
+    if (is_attached(discs_.flags[i])) W -= 0.5 * dot(discs_.force[i], discs_.velocity[i]) * dt_;
+  return W;
 }
 
 void Simulation::setup_neighbours() {
@@ -139,13 +177,22 @@ void Simulation::make_decomposition(bool replicated) {
 }
 
 void Simulation::setup_boundaries() {
-  // The servo's dashpot term uses the heaviest disc (the largest c_n: the most cautious gain).
+  // The servo's spring and dashpot terms use the stiffest and most damped contact that can load a wall:
+  // disc-wall contacts of the heaviest disc and, with rough walls, its contacts with glued discs.
   double m_max = 0.0;
   for (std::size_t i = 0; i < discs_.n_owned(); ++i) m_max = std::max(m_max, discs_.mass[i]);
   m_max = comm_.max(m_max);
-  const ContactParams& p = config_.params.wall(0);
-  const double c_n = p.c_n_fixed >= 0.0 ? p.c_n_fixed : 2.0 * p.zeta_n * std::sqrt(m_max * p.k_n);
-  boundaries_ = Boundaries(config_.servo_gain, config_.servo_max_speed, c_n);
+  auto dashpot = [](const ContactParams& p, double m) {
+    return p.c_n_fixed >= 0.0 ? p.c_n_fixed : 2.0 * p.zeta_n * std::sqrt(m * p.k_n);
+  };
+  const ContactParams& w = config_.params.wall(0);
+  double k_n = w.k_n, c_n = dashpot(w, m_max);
+  if (rough_walls_) {
+    const ContactParams& p = config_.params.pair(0, 0);
+    k_n = std::max(k_n, p.k_n);
+    c_n = std::max(c_n, dashpot(p, 0.5 * m_max));
+  }
+  boundaries_ = Boundaries(config_.servo_gain, config_.servo_max_speed, k_n, c_n);
 }
 
 void Simulation::resolve_time_step() {
@@ -234,8 +281,9 @@ void Simulation::step() {
   // 1. Half kick and drift of owned discs (wrapping into the periodic box).
   const double W_g = Integrator::half_kick_drift(discs_, config_.domain, dt_, config_.gravity);
   // 2. Move walls: servo and strain-rate walls steer from the last step's exact wall loads.
-  if (controlled_walls_) boundaries_.steer(walls_, config_.params, config_.domain, config_.thickness, dt_);
+  if (controlled_walls_) boundaries_.steer(walls_, config_.domain, config_.thickness, dt_);
   for (auto& w : walls_) w.move(dt_);
+  if (rough_walls_) move_glued_discs();
   // 3. Rebuild the neighbour list when a disc (global max) has moved more than half the skin.
   const double moved = neighbours_.max_displacement(discs_, config_.domain);
   const auto t0 = std::chrono::steady_clock::now();
@@ -255,8 +303,10 @@ void Simulation::step() {
   const auto t2 = std::chrono::steady_clock::now();
   if (comm_.any(work.worst_overlap > 0.0)) report_overlap(work);
   comm_seconds_ += seconds_since(t2);
+  if (rough_walls_) work.W_w += glued_work_half();  // the last step's reaction forces
   assembly_.assemble(discs_, config_.gravity, pairs_, wall_rows_);
-  if (controlled_walls_) boundaries_.measure(walls_, wall_rows_, discs_.n_owned(), comm_);
+  if (rough_walls_) work.W_w += glued_work_half();  // this step's
+  if (controlled_walls_) boundaries_.measure(walls_, discs_, pairs_, wall_rows_, comm_);
   // 7. Second half kick.
   Integrator::half_kick(discs_, dt_);
   ledger_.add(work, W_g);
@@ -278,8 +328,10 @@ EnergyLedger Simulation::global_ledger() const {
 }
 
 double Simulation::kinetic_energy() const {
+  // Of the free discs: fixed and glued discs move as their walls prescribe (their motion is boundary work).
   ExactSum ke;
   for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
+    if (discs_.flags[i] & kFlagFixed) continue;
     ke += 0.5 * discs_.mass[i] * dot(discs_.velocity[i], discs_.velocity[i]);
     ke += 0.5 * discs_.inertia[i] * discs_.omega[i] * discs_.omega[i];
   }
@@ -292,6 +344,7 @@ DiagnosticsRow Simulation::diagnostics() {
   row.time = time_;
   ExactSum ke_t, ke_r;
   for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
+    if (discs_.flags[i] & kFlagFixed) continue;
     ke_t += 0.5 * discs_.mass[i] * dot(discs_.velocity[i], discs_.velocity[i]);
     ke_r += 0.5 * discs_.inertia[i] * discs_.omega[i] * discs_.omega[i];
   }
@@ -415,6 +468,15 @@ RunSummary Simulation::run() {
   log("Rondel: " + std::to_string(n_discs) + " discs, " + std::to_string(walls_.size()) + " walls, " +
       std::to_string(comm_.size()) + " rank(s); laws: normal " + config_.normal_law + ", tangential " +
       config_.tangential_law + ", rolling " + config_.rolling_law);
+  if (rough_walls_) {
+    std::vector<std::int64_t> glued(walls_.size(), 0);
+    for (std::size_t i = 0; i < discs_.n_owned(); ++i)
+      if (is_attached(discs_.flags[i])) ++glued[attached_wall(discs_.flags[i])];
+    std::string line = "rough walls:";
+    for (std::size_t w = 0; w < walls_.size(); ++w)
+      if (walls_[w].rough) line += " wall " + std::to_string(w) + " carries " + std::to_string(comm_.sum(glued[w])) + " glued discs;";
+    log(line.substr(0, line.size() - 1));
+  }
   log("time step " + fmt(dt_) + " s = " + fmt(dt_ / critical_.dt, 4) + " x critical " + fmt(critical_.dt) +
       " s, limited by the " + critical_.mode + " mode (" + critical_.pair + ")");
   log("neighbour skin " + fmt(neighbours_.skin()) + " m; output in " + (write_files_ ? config_.output : "(none)") +

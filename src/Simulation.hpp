@@ -83,6 +83,10 @@ class Simulation {
 
  private:
   void build_discs();
+  // Rough walls (walls.rough): glue the discs near them at the start of a stage; move them with their wall.
+  void glue_to_rough_walls();
+  void move_glued_discs();
+  double glued_work_half() const;
   void setup_neighbours();
   void setup_boundaries();
   void distribute_discs();
@@ -127,6 +131,7 @@ class Simulation {
   std::unique_ptr<Checkpointing> files_;
   Boundaries boundaries_{0.2, 0.1};
   bool controlled_walls_ = false;
+  bool rough_walls_ = false;
   BoxGeometry box0_;          // the box at the start of the run (reference of the strains)
   ContactSummary summary_;    // of the last diagnostics
   std::ofstream measures_;

@@ -157,28 +157,38 @@ void read_walls(const Reader& r, Config& c) {
     c.walls.push_back(w);
     c.box_walls.push_back(side);
   }
+  auto box_wall = [&](const std::string& name, const char* key, const std::string& spec) -> Wall& {
+    for (Wall& w : c.walls)
+      if (w.box_side >= 0 && name == sides[w.box_side]) return w;
+    throw ConfigError("key '" + std::string(key) + "': '" + name + "' in '" + spec + "' is not a side listed in walls.box");
+  };
   std::istringstream control(r.get<std::string>("walls.control"));
   for (std::string spec; control >> spec;) {
     const auto a = spec.find(':'), z = spec.rfind(':');
     if (a == std::string::npos || a == z)
-      throw ConfigError("key 'walls.control': '" + spec + "' is not 'side:servo:STRESS' or 'side:strain_rate:RATE'");
+      throw ConfigError("key 'walls.control': '" + spec + "' is not 'side:servo:STRESS', 'side:strain_rate:RATE' or 'side:shear:VELOCITY'");
     const std::string name = spec.substr(0, a), mode = spec.substr(a + 1, z - a - 1);
     const auto parsed = numbers(spec.substr(z + 1), "walls.control");
     if (parsed.size() != 1) throw ConfigError("key 'walls.control': '" + spec + "' needs one number after the mode");
     const double value = parsed[0];
-    Wall* wall = nullptr;
-    for (Wall& w : c.walls)
-      if (w.box_side >= 0 && name == sides[w.box_side]) wall = &w;
-    if (!wall) throw ConfigError("key 'walls.control': '" + name + "' is not a side listed in walls.box");
+    Wall& wall = box_wall(name, "walls.control", spec);
+    if ((mode == "servo" || mode == "strain_rate") && wall.control != Wall::Control::velocity)
+      throw ConfigError("key 'walls.control': '" + spec + "': wall '" + name + "' already has a servo or strain rate (one per wall)");
     if (mode == "servo") {
       check(value > 0.0, "walls.control", "a servo stress > 0 [Pa]", spec);
-      wall->control = Wall::Control::servo, wall->target_stress = value;
+      wall.control = Wall::Control::servo, wall.target_stress = value;
     } else if (mode == "strain_rate") {
-      wall->control = Wall::Control::strain_rate, wall->strain_rate = value;
+      wall.control = Wall::Control::strain_rate, wall.strain_rate = value;
+    } else if (mode == "shear") {
+      wall.shear_velocity = value;
     } else {
-      throw ConfigError("key 'walls.control': mode '" + mode + "' in '" + spec + "' is not servo or strain_rate");
+      throw ConfigError("key 'walls.control': mode '" + mode + "' in '" + spec + "' is not servo, strain_rate or shear");
     }
   }
+  std::istringstream rough(r.get<std::string>("walls.rough"));
+  for (std::string name; rough >> name;) box_wall(name, "walls.rough", name).rough = true;
+  c.rough_depth = r.get<double>("walls.rough_depth");
+  non_negative(c.rough_depth, "walls.rough_depth");
   c.servo_gain = r.get<double>("walls.servo_gain");
   check(c.servo_gain > 0.0 && c.servo_gain < 1.0, "walls.servo_gain", "must be in (0, 1)", num(c.servo_gain));
   c.servo_max_speed = r.get<double>("walls.servo_max_speed");

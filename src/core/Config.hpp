@@ -72,6 +72,7 @@ struct Config {
   WallSet walls;
   std::vector<std::string> box_walls;
   double servo_gain = 0.2, servo_max_speed = 0.1;
+  double rough_depth = 0.0;  // [m] glue discs whose centre is closer than this to a rough wall; 0 = 2 R_max
   SceneConfig scene;
 
   std::string source_file;    // the INI file ("" when none)

@@ -125,8 +125,12 @@ po::options_description config_schema() {
   walls.add_options()
       ("walls.box", def(""), "[-] box sides that are walls: any of bottom left right top")
       ("walls.box_region", def(""), "[m] 'xlo xhi ylo yhi' of the box walls; empty = the domain")
-      ("walls.control", def(""), "[-] box wall motions 'side:servo:STRESS' [Pa] or 'side:strain_rate:RATE' [1/s, > 0 "
-                                 "compresses], e.g. 'top:strain_rate:0.05 left:servo:2e5 right:servo:2e5'")
+      ("walls.control", def(""), "[-] box wall motions 'side:servo:STRESS' [Pa], 'side:strain_rate:RATE' [1/s, > 0 "
+                                 "compresses] and 'side:shear:VELOCITY' [m/s, along +x for bottom/top, +y for left/right], "
+                                 "e.g. 'top:strain_rate:0.05 left:servo:2e5 right:servo:2e5' or 'top:servo:1e5 top:shear:0.01'")
+      ("walls.rough", def(""), "[-] rough box walls: any of bottom left right top; at the start of a stage the discs "
+                               "whose centre lies within walls.rough_depth of such a wall are glued to it (they move with it)")
+      ("walls.rough_depth", def(0.0), "[m] glue depth of walls.rough; 0 = the largest disc diameter")
       ("walls.servo_gain", def(0.2), "[-] servo gain in (0, 1): fraction of the force error closed per step")
       ("walls.servo_max_speed", def(0.1), "[m/s] largest servo wall speed")
       ("walls.lines", def(""), "[m, m/s] infinite lines 'px py nx ny [vx vy]; ...' (n points to the discs)")

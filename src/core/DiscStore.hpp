@@ -17,8 +17,19 @@ enum DiscFieldUse : unsigned {
 };
 
 enum DiscFlag : std::uint32_t {
-  kFlagFixed = 1u,  // not integrated (a prescribed, immobile disc)
+  kFlagFixed = 1u,     // not integrated (a prescribed disc: immobile, or moved by its wall)
+  kFlagAttached = 2u,  // glued to a wall (walls.rough): translates with it; bits 8-23 hold the wall index
 };
+constexpr bool is_attached(std::uint32_t f) { return (f & kFlagAttached) != 0u; }
+constexpr std::size_t attached_wall(std::uint32_t f) { return (f >> 8) & 0xffffu; }
+constexpr std::uint32_t attached_flags(std::size_t wall) {
+  return kFlagFixed | kFlagAttached | (static_cast<std::uint32_t>(wall) << 8);
+}
+// True when two discs form one rigid body (both fixed and glued to the same wall, or both plain fixed):
+// their contact exerts no work and is not searched.
+constexpr bool same_rigid_body(std::uint32_t a, std::uint32_t b) {
+  return (a & kFlagFixed) && (b & kFlagFixed) && (a & ~kFlagFixed) == (b & ~kFlagFixed);
+}
 
 // Structure of arrays: owned discs first (indices [0, n_owned)), then ghosts.
 class DiscStore {

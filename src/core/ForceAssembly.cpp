@@ -45,7 +45,8 @@ void ForceAssembly::assemble(DiscStore& discs, Vec2 gravity, const ContactTable&
                              const ContactTable& wall_rows) const {
   const std::size_t n = discs.n_owned();
   for (std::size_t i = 0; i < n; ++i) {
-    Vec2 F = discs.mass[i] * gravity;
+    const std::uint32_t flags = discs.flags[i];
+    Vec2 F = (flags & kFlagFixed) ? Vec2{} : discs.mass[i] * gravity;
     double T = 0.0;
     for (std::uint32_t e = start_[i]; e < start_[i + 1]; ++e) {
       const std::uint32_t r = row_[e];
@@ -64,8 +65,10 @@ void ForceAssembly::assemble(DiscStore& discs, Vec2 gravity, const ContactTable&
           break;
       }
     }
-    if (discs.flags[i] & kFlagFixed) {
-      F = {};
+    if (flags & kFlagFixed) {
+      // A fixed disc does not move under its load; a disc glued to a wall keeps its contact force (the
+      // reaction the wall carries, used by the energy ledger), without gravity.
+      if (!is_attached(flags)) F = {};
       T = 0.0;
     }
     discs.force[i] = F;

@@ -14,7 +14,8 @@ namespace rondel {
 class ForceAssembly {
  public:
   void build(const DiscStore& discs, const ContactTable& pairs, const ContactTable& wall_rows);
-  // force = m g + sum of contributions; torque = sum of contributions. Fixed discs get zero.
+  // force = m g + sum of contributions; torque = sum of contributions. Fixed discs get zero, except that a
+  // disc glued to a wall keeps its contact force (no gravity, no torque).
   void assemble(DiscStore& discs, Vec2 gravity, const ContactTable& pairs, const ContactTable& wall_rows) const;
 
  private:

@@ -39,6 +39,7 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
           const std::size_t j = cell_items_[b];
           if (discs.gid[j] <= discs.gid[i]) continue;  // each pair once, from its lower gid
           if (i >= n_owned && j >= n_owned) continue;
+          if (same_rigid_body(discs.flags[i], discs.flags[j])) continue;
           const Vec2 d = domain.separation(discs.position[i], discs.position[j]);
           const double reach = discs.radius[i] + discs.radius[j] + skin_;
           if (dot(d, d) < reach * reach)
@@ -61,6 +62,7 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return discs.gid[a] < discs.gid[b]; });
   wall_rows.clear();
   for (std::size_t i : order) {
+    if (is_attached(discs.flags[i])) continue;  // a glued disc is part of a wall: walls do not meet walls
     for (std::size_t w = 0; w < walls.size(); ++w) {
       if (walls[w].proximity(discs.position[i]).dist < discs.radius[i] + skin_)
         wall_rows.push({discs.gid[i], static_cast<std::int64_t>(w)}, static_cast<std::int32_t>(i),

@@ -18,6 +18,9 @@ struct Wall {
   double target_stress = 0.0;  // servo: normal stress to hold [Pa] = force / (wall length x thickness)
   double strain_rate = 0.0;    // strain_rate: [1/s], > 0 compresses (the wall moves along its normal)
   int box_side = -1;           // 0 bottom, 1 left, 2 right, 3 top for walls of walls.box; -1 otherwise
+  double shear_velocity = 0.0;  // box walls: a velocity along the wall [m/s], +x (bottom, top) or +y (left,
+                                // right), added to the servo or strain-rate motion
+  bool rough = false;           // walls.rough: the discs near it at the start of a stage are glued to it
   // The last step's load from the discs, summed exactly over ranks: total force on the wall, its
   // component against the normal (>= 0 when discs push), and the number of loaded contacts.
   Vec2 force;
@@ -35,6 +38,8 @@ struct Wall {
     Vec2 n;  // unit vector from the disc centre towards the wall (the contact's n, disc 1 -> wall)
   };
   Proximity proximity(Vec2 x) const;
+  // The direction of shear_velocity: +x for bottom and top walls, +y for left and right ones.
+  Vec2 tangent() const { return (box_side == 1 || box_side == 2) ? Vec2{0.0, 1.0} : Vec2{1.0, 0.0}; }
 
   void move(double dt) {
     const Vec2 dx = dt * velocity;

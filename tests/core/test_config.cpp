@@ -228,6 +228,27 @@ TEST(Config, BadWallRecordsAreRefused) {
   EXPECT_TRUE(refused_naming(kValid, {"--walls.segments=0.1 0.1 0.1 0.1"}, "walls.segments"));
 }
 
+TEST(Config, RoughWallsAndShearControls) {
+  // Parsed: a servo and a shear velocity on one wall, and a rough wall.
+  const Config c = parse_config_text(kValid, {"--walls.box=bottom top", "--walls.control=top:servo:1e5 top:shear:0.02",
+                                              "--walls.rough=bottom top", "--walls.rough_depth=0.003"});
+  ASSERT_EQ(c.walls.size(), 2u);
+  EXPECT_EQ(c.walls[1].control, Wall::Control::servo);
+  EXPECT_EQ(c.walls[1].target_stress, 1e5);
+  EXPECT_EQ(c.walls[1].shear_velocity, 0.02);
+  EXPECT_TRUE(c.walls[0].rough && c.walls[1].rough);
+  EXPECT_EQ(c.rough_depth, 0.003);
+  // Refused, naming the key: a side that is not a box wall, two normal controls on one wall, an unknown
+  // mode, a negative depth.
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.box=bottom", "--walls.rough=top"}, "walls.rough"));
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.box=bottom top", "--walls.control=top:servo:1e5 top:strain_rate:0.1"},
+                             "walls.control"));
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.box=bottom top", "--walls.control=top:slide:0.1"}, "walls.control"));
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.box=bottom top", "--walls.rough_depth=-1"}, "walls.rough_depth"));
+  const std::string message = config_error(kValid, {"--walls.box=bottom", "--walls.rough=top"});
+  EXPECT_NE(message.find("'top'"), std::string::npos) << message;
+}
+
 TEST(Config, SceneFractionsMustSumToOne) {
   const std::vector<std::string> random = {"--scene.type=random", "--scene.count=10", "--scene.distribution=list",
                                            "--scene.sizes=0.004 0.005"};

@@ -391,5 +391,11 @@ TEST(Checkpoint, RestartIsBitwiseWithServoWall) {
   restart_cases("jiang_plastic", {"--walls.control=bottom:servo:2000", "--walls.servo_max_speed=0.2"});
 }
 
+// A rough wall that shears: the discs glued to the right wall (their flags) ride up with it at 0.05 m/s
+// while the pile is pushed against them; the glue and the wall's motion continue through the restart.
+TEST(Checkpoint, RestartIsBitwiseWithRoughShearingWall) {
+  restart_cases("wang", {"--walls.rough=right", "--walls.rough_depth=0.0025", "--walls.control=right:shear:0.05"});
+}
+
 }  // namespace
 }  // namespace rondel
