@@ -1,0 +1,520 @@
+#!/usr/bin/python3
+"""Pictures of one Rondel state file (checkpoint or snapshot, FORMAT.md) as PNG (+ CSV).
+
+    python3 tools/picture.py FILE_OR_RUN_DIR --kind rotation|forces|ranks --out PREFIX
+                             [--field theta|omega] [--dpi 120] [--title TEXT] [--width 8]
+                             [--line-width W] [--vmax V] [--palette]
+
+Kinds (every kind draws the walls of /walls as black lines: kind 0 lines across the view, kind 1
+segments from p0 to p1; periodic box edges are drawn dashed):
+  rotation  discs as circles to scale, coloured by the accumulated rotation /discs/theta [rad]
+            (--field omega: the angular velocity [rad/s]) on a diverging colour map centred at 0
+            (limits +-V, V = --vmax or the 99th percentile of |value|); fixed discs (/discs/flags
+            bit 0) grey. Writes PREFIX.png.
+  forces    the contact-force network of a checkpoint: for each /contacts row with F_n > 0 a line
+            between the two disc centres, width proportional to F_n / mean F_n, over faint discs.
+            Periodic boundaries: the branch vector is the minimum image, the segment is drawn from
+            disc 1 to disc 1 + branch and, when it wraps, mirrored from disc 2, so no line crosses
+            the box. Loaded wall contacts (/wall_contacts) are drawn from the disc centre to the
+            nearest point of the wall. The width factor (--line-width, points per mean F_n) defaults
+            to one that makes the 99th percentile of F_n 0.8 mean disc diameters wide. Writes
+            PREFIX.png, PREFIX.csv (gid1,gid2,F_n of the drawn disc-disc contacts, file order) and,
+            when there are loaded wall contacts, PREFIX_walls.csv (gid,wall,F_n).
+  ranks     discs coloured by the owner rank /discs/rank (snapshots written with 'rank' in
+            output.snapshot_fields), categorical colours, legend with rank and disc count.
+            Writes PREFIX.png and PREFIX.csv (rank,count).
+
+FILE may be a run directory: its newest snapshot_*.h5 is used (forces: its newest checkpoint_*.h5;
+rotation and ranks fall back to the newest checkpoint when there is no snapshot).
+The figure is --width inches wide (height from the view's aspect), so the PNG is width*dpi pixels wide;
+--palette writes an 8-bit palette PNG (about 3x smaller, for documentation; needs Pillow).
+Vectorised: discs are one EllipseCollection (units='xy'), contacts one LineCollection, so 100k discs
+take a few seconds. Exit status 1 with a message naming the file on any error (missing file, not a
+Rondel file, dataset missing).
+
+Needs Debian's /usr/bin/python3 with python3-h5py, python3-numpy, python3-matplotlib (--palette:
+python3-pil). Test: tests/tools/test_picture_tool.py (ctest tools.picture).
+"""
+import argparse
+import configparser
+import csv
+import glob
+import os
+import sys
+
+try:
+    import h5py
+    import numpy as np
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import EllipseCollection, LineCollection
+    from matplotlib.colors import ListedColormap, Normalize
+    from matplotlib.patches import Patch
+except ImportError as e:  # pragma: no cover - depends on the machine
+    sys.exit(f"picture: the Python module {e.name} is missing for {sys.executable}: run the tool with "
+             "Debian's /usr/bin/python3 after apt-get install python3-h5py python3-numpy python3-matplotlib")
+
+KINDS = ("rotation", "forces", "ranks")
+
+
+class PictureError(Exception):
+    """An error to report to the user as 'picture: MESSAGE' with exit status 1."""
+
+
+# ----------------------------------------------------------------------------------------- reading
+
+def text(value):
+    """An HDF5 attribute as Python text or number."""
+    if isinstance(value, bytes):
+        return value.decode("ascii", "replace")
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+def newest(directory, prefix):
+    """The newest PREFIX_<step>.h5 of DIRECTORY (names sort by zero-padded step), or None."""
+    files = sorted(glob.glob(os.path.join(directory, f"{prefix}_*.h5")))
+    return files[-1] if files else None
+
+
+def resolve(path, kind):
+    """The state file to draw: PATH itself, or the newest suitable file of the run directory PATH."""
+    if not os.path.exists(path):
+        raise PictureError(f"'{path}': no such file or directory")
+    if not os.path.isdir(path):
+        return path
+    order = ("checkpoint",) if kind == "forces" else ("snapshot", "checkpoint")
+    for prefix in order:
+        found = newest(path, prefix)
+        if found:
+            return found
+    wanted = " or ".join(f"{p}_*.h5" for p in order)
+    raise PictureError(f"'{path}': the directory holds no {wanted}")
+
+
+def parse_domain(config_text):
+    """[domain] of the stored configuration: dict xlo, xhi, ylo, yhi (float), periodic_x, periodic_y (bool).
+
+    Missing keys give None (bounds) and False (periodic)."""
+    cp = configparser.ConfigParser(interpolation=None, strict=False)
+    cp.optionxform = str
+    try:
+        cp.read_string(config_text or "")
+    except configparser.Error as e:
+        raise PictureError(f"the config attribute is not readable INI text: {e}")
+    sec = cp["domain"] if cp.has_section("domain") else {}
+    dom = {}
+    for k in ("xlo", "xhi", "ylo", "yhi"):
+        v = sec.get(k, "").strip() if sec else ""
+        dom[k] = float(v) if v else None
+    for k in ("periodic_x", "periodic_y"):
+        v = (sec.get(k, "") if sec else "").strip().lower()
+        dom[k] = v in ("1", "true", "yes", "on")
+    for axis in ("x", "y"):
+        if dom[f"periodic_{axis}"] and (dom[f"{axis}lo"] is None or dom[f"{axis}hi"] is None):
+            raise PictureError(f"periodic in {axis} but [domain] {axis}lo/{axis}hi are missing from config")
+    return dom
+
+
+class State:
+    """The datasets of one Rondel file that the pictures use (numpy arrays, None when absent)."""
+
+    def __init__(self, path):
+        self.path = path
+        try:
+            f = h5py.File(path, "r")
+        except OSError as e:
+            raise PictureError(f"'{path}': not a readable HDF5 file ({e})")
+        with f:
+            fmt = text(f.attrs.get("format", ""))
+            if fmt != "rondel":
+                raise PictureError(f"'{path}': not a Rondel file (root attribute format is "
+                                   f"{fmt!r}, expected 'rondel')")
+            if "complete" not in f.attrs:
+                raise PictureError(f"'{path}': the file is incomplete (no 'complete' attribute: it was cut short)")
+            self.kind = text(f.attrs.get("kind", "?"))
+            self.step = int(text(f.attrs.get("step", -1)))
+            self.time = float(text(f.attrs.get("time", float("nan"))))
+            self.domain = parse_domain(text(f.attrs.get("config", "")))
+
+            def get(name):
+                return f[name][()] if name in f and isinstance(f[name], h5py.Dataset) else None
+
+            self.position = get("discs/position")
+            self.radius = get("discs/radius")
+            self.gid = get("discs/gid")
+            self.theta = get("discs/theta")
+            self.omega = get("discs/omega")
+            self.rank = get("discs/rank")
+            self.flags = get("discs/flags")
+            self.contact_key = get("contacts/key")
+            self.contact_Fn = get("contacts/F_n")
+            self.wall_key = get("wall_contacts/key")
+            self.wall_Fn = get("wall_contacts/F_n")
+            self.wall_kind = get("walls/kind")
+            self.wall_p0 = get("walls/p0")
+            self.wall_p1 = get("walls/p1")
+            self.wall_normal = get("walls/normal")
+        for name in ("position", "radius"):
+            if getattr(self, name) is None:
+                self.missing(f"/discs/{name}", name)
+        self.position = np.asarray(self.position, dtype=float).reshape(-1, 2)
+        self.radius = np.asarray(self.radius, dtype=float)
+
+    def missing(self, dataset, field=None, extra=""):
+        """Raise the error for a missing dataset, naming the key that writes it."""
+        hint = ""
+        if field and self.kind == "snapshot":
+            hint = (f"; snapshots hold it when '{field}' is listed in output.snapshot_fields "
+                    f"(e.g. --output.snapshot_fields='position radius {field}')")
+        elif field == "rank":
+            hint = ("; the owner rank is only in snapshots: run with output.snapshot_every > 0 and "
+                    "'rank' in output.snapshot_fields")
+        raise PictureError(f"'{self.path}' ({self.kind}) has no dataset {dataset}{hint}{extra}")
+
+    def fixed(self):
+        """Boolean mask of fixed discs (flags bit 0); all False without /discs/flags."""
+        if self.flags is None:
+            return np.zeros(len(self.radius), dtype=bool)
+        return (np.asarray(self.flags).astype(np.int64) & 1) != 0
+
+    def rows_of(self, gids):
+        """Row of each gid in /discs (rows are in ascending gid)."""
+        if self.gid is None:
+            self.missing("/discs/gid", "gid", " (needed to place contacts)")
+        gid = np.asarray(self.gid)
+        gids = np.asarray(gids, dtype=gid.dtype)
+        rows = np.searchsorted(gid, gids)
+        rows = np.clip(rows, 0, len(gid) - 1)
+        bad = gid[rows] != gids
+        if bad.any():
+            raise PictureError(f"'{self.path}': contact gid {int(gids[bad][0])} is not in /discs/gid")
+        return rows
+
+
+# ------------------------------------------------------------------------------------------ geometry
+
+def minimum_image(d, domain):
+    """Branch vectors D (n, 2) reduced to the minimum image along the periodic axes of DOMAIN."""
+    d = np.array(d, dtype=float, copy=True).reshape(-1, 2)
+    for i, axis in enumerate(("x", "y")):
+        if domain.get(f"periodic_{axis}"):
+            length = domain[f"{axis}hi"] - domain[f"{axis}lo"]
+            d[:, i] -= length * np.round(d[:, i] / length)
+    return d
+
+
+def contact_segments(p1, p2, domain):
+    """Line segments of contacts between centres P1 (n, 2) and P2 (n, 2).
+
+    The branch vector b = minimum image of p2 - p1; each contact gives the segment p1 -> p1 + b and, when
+    b differs from p2 - p1 (the contact wraps a periodic boundary), also its mirror p2 - b -> p2.
+    Returns (segments (m, 2, 2), contact index (m,) of each segment)."""
+    p1 = np.asarray(p1, dtype=float).reshape(-1, 2)
+    p2 = np.asarray(p2, dtype=float).reshape(-1, 2)
+    raw = p2 - p1
+    b = minimum_image(raw, domain)
+    seg = np.stack([p1, p1 + b], axis=1)
+    idx = np.arange(len(p1))
+    wraps = np.any(np.abs(b - raw) > 0.0, axis=1)
+    if wraps.any():
+        mirror = np.stack([p2[wraps] - b[wraps], p2[wraps]], axis=1)
+        seg = np.concatenate([seg, mirror])
+        idx = np.concatenate([idx, idx[wraps]])
+    return seg, idx
+
+
+def wall_points(p, wall, kind, p0, p1, normal):
+    """Nearest point of wall WALL[k] to disc centre P[k]: the foot on a line (kind 0) or the closest point
+    of a segment (kind 1)."""
+    p = np.asarray(p, dtype=float).reshape(-1, 2)
+    wall = np.asarray(wall, dtype=int)
+    a, b, n = p0[wall], p1[wall], normal[wall]
+    foot_line = p - n * np.sum((p - a) * n, axis=1)[:, None]
+    ab = b - a
+    L2 = np.sum(ab * ab, axis=1)
+    t = np.clip(np.sum((p - a) * ab, axis=1) / np.where(L2 > 0, L2, 1.0), 0.0, 1.0)
+    foot_seg = a + ab * t[:, None]
+    return np.where((np.asarray(kind)[wall] == 1)[:, None], foot_seg, foot_line)
+
+
+def view_limits(state):
+    """(xmin, xmax, ymin, ymax): the discs' extent (with a margin), the domain along periodic axes."""
+    p, r = state.position, state.radius
+    if len(r):
+        lo = np.min(p - r[:, None], axis=0)
+        hi = np.max(p + r[:, None], axis=0)
+    else:
+        lo, hi = np.zeros(2), np.ones(2)
+    if state.wall_kind is not None and len(state.wall_kind):
+        seg = np.asarray(state.wall_kind) == 1
+        if seg.any():
+            pts = np.concatenate([state.wall_p0[seg], state.wall_p1[seg]])
+            lo, hi = np.minimum(lo, pts.min(axis=0)), np.maximum(hi, pts.max(axis=0))
+    dom = state.domain
+    for i, axis in enumerate(("x", "y")):
+        if dom.get(f"periodic_{axis}"):
+            lo[i], hi[i] = dom[f"{axis}lo"], dom[f"{axis}hi"]
+    span = np.maximum(hi - lo, 1e-12)
+    margin = 0.03 * span.max()
+    return lo[0] - margin, hi[0] + margin, lo[1] - margin, hi[1] + margin
+
+
+# ------------------------------------------------------------------------------------------ drawing
+
+def new_figure(limits, width_in, extra_right=0.0, side_axes=False):
+    """A figure WIDTH_IN inches wide, equal-aspect axes set to LIMITS; EXTRA_RIGHT inches for a colour bar
+    or legend (SIDE_AXES: returns also an empty axes of that width for a legend)."""
+    x0, x1, y0, y1 = limits
+    aspect = (y1 - y0) / (x1 - x0)
+    plot_w = width_in - extra_right - 0.9
+    height_in = float(np.clip(plot_w * aspect + 0.9, 2.5, 2.5 * width_in))
+    fig = plt.figure(figsize=(width_in, height_in), layout="constrained")
+    if side_axes:
+        ax, side = fig.subplots(1, 2, gridspec_kw=dict(width_ratios=[width_in - extra_right, extra_right]))
+        side.set_axis_off()
+    else:
+        ax, side = fig.add_subplot(), None
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    return (fig, ax, side) if side_axes else (fig, ax)
+
+
+def draw_discs(ax, pos, radius, **kw):
+    """All discs as one EllipseCollection in data units (to scale)."""
+    d = 2.0 * np.asarray(radius, dtype=float)
+    coll = EllipseCollection(d, d, np.zeros_like(d), units="xy", offsets=np.asarray(pos).reshape(-1, 2),
+                             offset_transform=ax.transData, **kw)
+    ax.add_collection(coll)
+    return coll
+
+
+def draw_walls(ax, state):
+    """Walls as black lines (lines across the view, segments p0-p1) and periodic box edges dashed."""
+    if state.wall_kind is not None and len(state.wall_kind):
+        kind = np.asarray(state.wall_kind)
+        for w in np.flatnonzero(kind == 0):
+            p0, n = state.wall_p0[w], state.wall_normal[w]
+            ax.axline(tuple(p0), tuple(p0 + np.array([-n[1], n[0]])), color="black", lw=1.5, zorder=5)
+        seg = kind == 1
+        if seg.any():
+            ax.add_collection(LineCollection(np.stack([state.wall_p0[seg], state.wall_p1[seg]], axis=1),
+                                             colors="black", linewidths=1.5, zorder=5))
+    dom = state.domain
+    style = dict(color="0.3", lw=0.8, ls="--", zorder=5)
+    if dom.get("periodic_x"):
+        ax.axvline(dom["xlo"], **style)
+        ax.axvline(dom["xhi"], **style)
+    if dom.get("periodic_y"):
+        ax.axhline(dom["ylo"], **style)
+        ax.axhline(dom["yhi"], **style)
+
+
+def title_of(state, args, what):
+    if args.title:
+        return args.title
+    return f"{what}: {os.path.basename(state.path)} ({state.kind}, step {state.step}, t = {state.time:.4g} s)"
+
+
+def save(fig, prefix, args):
+    """Write PREFIX.png; with --palette as an 8-bit palette PNG (about 3x smaller, needs Pillow)."""
+    png = prefix + ".png"
+    os.makedirs(os.path.dirname(os.path.abspath(png)), exist_ok=True)
+    fig.savefig(png, dpi=args.dpi)
+    plt.close(fig)
+    if args.palette:
+        try:
+            from PIL import Image
+        except ImportError:
+            raise PictureError("--palette needs Pillow (Debian: python3-pil)")
+        with Image.open(png) as im:
+            rgb = im.convert("RGB")
+        # libimagequant keeps colour-map gradients smooth; Pillow without it: fast octree.
+        from PIL import features
+        Q = getattr(Image, "Quantize", Image)
+        method = Q.LIBIMAGEQUANT if features.check_feature("libimagequant") else Q.FASTOCTREE
+        rgb.quantize(256, method=method).save(png, optimize=True)
+    return png
+
+
+def picture_rotation(state, args):
+    field = args.field
+    values = getattr(state, field)
+    if values is None:
+        state.missing(f"/discs/{field}", field)
+    values = np.asarray(values, dtype=float)
+    fixed = state.fixed()
+    free = ~fixed
+    if args.vmax is not None:
+        vmax = float(args.vmax)
+    else:
+        vmax = float(np.percentile(np.abs(values[free]), 99)) if free.any() else 0.0
+    if not np.isfinite(vmax) or vmax <= 0:
+        vmax = float(np.max(np.abs(values[free]))) if free.any() else 0.0
+    if not np.isfinite(vmax) or vmax <= 0:
+        vmax = 1.0
+    fig, ax = new_figure(view_limits(state), args.width, extra_right=1.2)
+    norm = Normalize(vmin=-vmax, vmax=vmax)
+    coll = draw_discs(ax, state.position[free], state.radius[free], cmap="RdBu_r", norm=norm,
+                      edgecolors="none")
+    coll.set_array(values[free])
+    if fixed.any():
+        draw_discs(ax, state.position[fixed], state.radius[fixed], facecolors="0.55", edgecolors="none")
+    draw_walls(ax, state)
+    unit = "rad" if field == "theta" else "rad/s"
+    label = "accumulated rotation theta [rad] (counter-clockwise +)" if field == "theta" \
+        else "angular velocity omega [rad/s] (counter-clockwise +)"
+    cb = fig.colorbar(coll, ax=ax, extend="both", shrink=0.9)
+    cb.set_label(label)
+    what = "rotation" if field == "theta" else "angular velocity"
+    ax.set_title(title_of(state, args, what), fontsize=10)
+    note = f"colour limits +-{vmax:.3g} {unit}"
+    if fixed.any():
+        note += f"; {int(fixed.sum())} fixed discs grey"
+    ax.text(0.01, 0.99, note, transform=ax.transAxes, va="top", ha="left", fontsize=8,
+            bbox=dict(facecolor="white", alpha=0.7, edgecolor="none"))
+    return [save(fig, args.out, args)]
+
+
+def picture_forces(state, args):
+    if state.contact_key is None or state.contact_Fn is None:
+        raise PictureError(f"'{state.path}' ({state.kind}) has no /contacts/key and /contacts/F_n: the force "
+                           "network needs a checkpoint (checkpoint_*.h5; output.checkpoint_at_end = true "
+                           "writes one after the last step)")
+    key = np.asarray(state.contact_key).reshape(-1, 2)
+    Fn = np.asarray(state.contact_Fn, dtype=float)
+    loaded = Fn > 0
+    key, Fn = key[loaded], Fn[loaded]
+    wkey = wFn = None
+    if state.wall_key is not None and state.wall_Fn is not None and state.wall_kind is not None:
+        wkey = np.asarray(state.wall_key).reshape(-1, 2)
+        wFn = np.asarray(state.wall_Fn, dtype=float)
+        wl = wFn > 0
+        wkey, wFn = wkey[wl], wFn[wl]
+    all_F = Fn if wFn is None else np.concatenate([Fn, wFn])
+    mean_F = float(all_F.mean()) if len(all_F) else 1.0
+
+    limits = view_limits(state)
+    fig, ax = new_figure(limits, args.width, extra_right=0.0)
+    draw_discs(ax, state.position, state.radius, facecolors="0.85", edgecolors="0.7", linewidths=0.2,
+               zorder=1)
+    # Width scale: proportional to F_n / mean F_n, the factor chosen so that the 99th percentile of F_n
+    # gets a line 0.8 mean disc diameters wide (in points), unless --line-width gives the factor.
+    fig.canvas.draw()
+    bbox = ax.get_window_extent()
+    pts_per_m = bbox.width / fig.dpi * 72.0 / (limits[1] - limits[0])
+    if args.line_width is not None:
+        base = args.line_width
+    else:
+        diam_pt = 2.0 * (state.radius.mean() if len(state.radius) else 0.0) * pts_per_m
+        f99 = float(np.percentile(all_F, 99)) / mean_F if len(all_F) else 1.0
+        base = float(np.clip(0.8 * diam_pt / max(f99, 1e-12), 0.05, 4.0))
+    if len(Fn):
+        rows = state.rows_of(key.ravel()).reshape(-1, 2)
+        seg, idx = contact_segments(state.position[rows[:, 0]], state.position[rows[:, 1]], state.domain)
+        ax.add_collection(LineCollection(seg, linewidths=base * Fn[idx] / mean_F, colors="firebrick",
+                                         capstyle="round", zorder=3))
+    if wFn is not None and len(wFn):
+        wrow = state.rows_of(wkey[:, 0])
+        p = state.position[wrow]
+        q = wall_points(p, wkey[:, 1], state.wall_kind, state.wall_p0, state.wall_p1, state.wall_normal)
+        ax.add_collection(LineCollection(np.stack([p, q], axis=1), linewidths=base * wFn / mean_F,
+                                         colors="navy", capstyle="round", zorder=3))
+    draw_walls(ax, state)
+    ax.set_title(title_of(state, args, "contact forces"), fontsize=10)
+    n_w = 0 if wFn is None else len(wFn)
+    ax.text(0.01, 0.99, f"{len(Fn)} loaded disc contacts (red), {n_w} wall contacts (blue); "
+            f"width = {base:.2g} pt x F_n / mean F_n, mean F_n = {mean_F:.3g} N",
+            transform=ax.transAxes, va="top", ha="left", fontsize=8,
+            bbox=dict(facecolor="white", alpha=0.7, edgecolor="none"))
+    out = [save(fig, args.out, args)]
+    with open(args.out + ".csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["gid1", "gid2", "F_n"])
+        for (a, b), F in zip(key.tolist(), Fn.tolist()):
+            w.writerow([a, b, repr(F)])
+    out.append(args.out + ".csv")
+    if wFn is not None and len(wFn):
+        with open(args.out + "_walls.csv", "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(["gid", "wall", "F_n"])
+            for (a, b), F in zip(wkey.tolist(), wFn.tolist()):
+                w.writerow([a, b, repr(F)])
+        out.append(args.out + "_walls.csv")
+    return out
+
+
+def rank_counts(rank):
+    """(ranks, counts) of the owner ranks present, ascending rank."""
+    r, c = np.unique(np.asarray(rank, dtype=np.int64), return_counts=True)
+    return r, c
+
+
+def picture_ranks(state, args):
+    if state.rank is None:
+        state.missing("/discs/rank", "rank")
+    rank = np.asarray(state.rank, dtype=np.int64)
+    ranks, counts = rank_counts(rank)
+    base = plt.get_cmap("tab10" if len(ranks) <= 10 else "tab20")
+    colours = [base(i % base.N) for i in range(len(ranks))]
+    fig, ax, side = new_figure(view_limits(state), args.width, extra_right=1.7, side_axes=True)
+    cat = np.searchsorted(ranks, rank)
+    coll = draw_discs(ax, state.position, state.radius, cmap=ListedColormap(colours),
+                      norm=Normalize(vmin=-0.5, vmax=len(ranks) - 0.5), edgecolors="none")
+    coll.set_array(cat.astype(float))
+    draw_walls(ax, state)
+    handles = [Patch(facecolor=colours[i], label=f"rank {int(r)}: {int(c)} discs")
+               for i, (r, c) in enumerate(zip(ranks, counts))]
+    side.legend(handles=handles, loc="upper left", fontsize=8,
+              title=f"{len(ranks)} ranks", title_fontsize=8, frameon=False)
+    ax.set_title(title_of(state, args, "owner rank"), fontsize=10)
+    out = [save(fig, args.out, args)]
+    with open(args.out + ".csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["rank", "count"])
+        for r, c in zip(ranks.tolist(), counts.tolist()):
+            w.writerow([r, c])
+    out.append(args.out + ".csv")
+    return out
+
+
+# --------------------------------------------------------------------------------------------- main
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description="Pictures of a Rondel checkpoint or snapshot (PNG + CSV).",
+                                 epilog="See the module docstring (head of tools/picture.py) for details.")
+    ap.add_argument("file", help="a snapshot_*.h5 / checkpoint_*.h5, or a run directory (newest file)")
+    ap.add_argument("--kind", required=True, choices=KINDS)
+    ap.add_argument("--out", required=True, help="output prefix: writes PREFIX.png (and PREFIX.csv)")
+    ap.add_argument("--field", default="theta", choices=("theta", "omega"),
+                    help="rotation: colour by theta (accumulated rotation, default) or omega")
+    ap.add_argument("--dpi", type=float, default=120.0, help="PNG resolution (default 120)")
+    ap.add_argument("--width", type=float, default=8.0, help="figure width in inches (default 8)")
+    ap.add_argument("--title", default=None, help="figure title (default: kind, file, step, time)")
+    ap.add_argument("--vmax", type=float, default=None,
+                    help="rotation: colour limits +-VMAX (default: 99th percentile of |value|)")
+    ap.add_argument("--line-width", type=float, default=None,
+                    help="forces: line width [pt] of a contact with the mean F_n (default: from disc size)")
+    ap.add_argument("--palette", action="store_true",
+                    help="write an 8-bit palette PNG (about 3x smaller; needs Pillow)")
+    args = ap.parse_args(argv)
+    try:
+        path = resolve(args.file, args.kind)
+        state = State(path)
+        draw = {"rotation": picture_rotation, "forces": picture_forces, "ranks": picture_ranks}[args.kind]
+        written = draw(state, args)
+    except PictureError as e:
+        print(f"picture: {e}", file=sys.stderr)
+        return 1
+    print(f"picture: {path} ({state.kind}, step {state.step}, {len(state.radius)} discs) -> "
+          + ", ".join(written))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
