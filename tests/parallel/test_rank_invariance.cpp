@@ -70,6 +70,18 @@ TEST(RankInvariance, PeriodicPackingBitwiseEqualToOneRank) {
   check_scene("periodic", periodic_ini(), 3000, 250, true);
 }
 
+// 1. (c) Plane shear: the packing of (b), periodic in x only, between rough walls (the bottom and top rows are
+// glued to them); the top wall is a servo and both walls shear in opposite directions, so glued discs cross
+// the periodic seam and the rank borders and free discs press on glued ghosts.
+TEST(RankInvariance, RoughShearCellBitwiseEqualToOneRank) {
+  std::string ini = periodic_ini();
+  const std::string from = "periodic_y = true";
+  ini.replace(ini.find(from), from.size(), "periodic_y = false");
+  ini += "[walls]\nbox = bottom top\nrough = bottom top\n"
+         "control = top:servo:5e3 top:shear:0.3 bottom:shear:-0.3\n";
+  check_scene("rough shear", ini, 3000, 250, true);
+}
+
 // --- VALIDATION.md section 8: a rolling disc and a two-disc impact at a subdomain boundary ---------------
 
 constexpr double kR = 0.002, kDensity = 2650.0, kG = 9.81, kKn = 1e7;
