@@ -55,6 +55,9 @@ except ImportError as e:  # pragma: no cover - depends on the machine
     sys.exit(f"picture: the Python module {e.name} is missing for {sys.executable}: run the tool with "
              "Debian's /usr/bin/python3 after apt-get install python3-h5py python3-numpy python3-matplotlib")
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from h5info import text  # noqa: E402  (an HDF5 attribute as Python text or number)
+
 KINDS = ("rotation", "forces", "ranks")
 
 
@@ -63,14 +66,6 @@ class PictureError(Exception):
 
 
 # ----------------------------------------------------------------------------------------- reading
-
-def text(value):
-    """An HDF5 attribute as Python text or number."""
-    if isinstance(value, bytes):
-        return value.decode("ascii", "replace")
-    if isinstance(value, np.generic):
-        return value.item()
-    return value
 
 
 def newest(directory, prefix):
@@ -432,21 +427,20 @@ def picture_forces(state, args):
             f"width = {base:.2g} pt x F_n / mean F_n, mean F_n = {mean_F:.3g} N",
             transform=ax.transAxes, va="top", ha="left", fontsize=8,
             bbox=dict(facecolor="white", alpha=0.7, edgecolor="none"))
-    out = [save(fig, args.out, args)]
-    with open(args.out + ".csv", "w", newline="") as f:
+    out = [save(fig, args.out, args), write_keyed_forces(args.out + ".csv", ["gid1", "gid2", "F_n"], key, Fn)]
+    if wFn is not None and len(wFn):
+        out.append(write_keyed_forces(args.out + "_walls.csv", ["gid", "wall", "F_n"], wkey, wFn))
+    return out
+
+
+def write_keyed_forces(path, header, key, Fn):
+    """Rows (key[0], key[1], F_n) with F_n exact (repr); returns the path."""
+    with open(path, "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["gid1", "gid2", "F_n"])
+        w.writerow(header)
         for (a, b), F in zip(key.tolist(), Fn.tolist()):
             w.writerow([a, b, repr(F)])
-    out.append(args.out + ".csv")
-    if wFn is not None and len(wFn):
-        with open(args.out + "_walls.csv", "w", newline="") as f:
-            w = csv.writer(f)
-            w.writerow(["gid", "wall", "F_n"])
-            for (a, b), F in zip(wkey.tolist(), wFn.tolist()):
-                w.writerow([a, b, repr(F)])
-        out.append(args.out + "_walls.csv")
-    return out
+    return path
 
 
 def rank_counts(rank):

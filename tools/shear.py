@@ -50,6 +50,9 @@ import sys
 
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from h5info import text  # noqa: E402  (an HDF5 attribute as Python text or number)
+
 FORMAT_VERSION = 1
 FLAG_ATTACHED = 2
 
@@ -138,13 +141,6 @@ def steady_state(gamma, mu, gmin=None):
 # ----------------------------------------------------------------------------------------------------------
 # Part 2: profiles from snapshots
 
-
-def text(value):
-    if isinstance(value, bytes):
-        return value.decode("ascii", "replace")
-    if isinstance(value, np.generic):
-        return value.item()
-    return value
 
 
 def parse_config(txt):
