@@ -48,6 +48,17 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
   const bool restart = !restart_file.empty();
   if (restart) {
     load_checkpoint(restart_file);
+    // The glue travels in the discs' flags: a wall that carries glued discs stays rough whatever the
+    // configuration says (a resumed run continues the same boundary).
+    std::vector<std::int64_t> glued(walls_.size() + 1, 0);  // the last counts discs glued to no such wall
+    for (std::size_t i = 0; i < discs_.n_owned(); ++i)
+      if (is_attached(discs_.flags[i])) ++glued[std::min(attached_wall(discs_.flags[i]), walls_.size())];
+    if (comm_.sum(glued.back()) > 0)
+      throw InputError("'" + restart_file + "' has discs glued to a wall index beyond its " +
+                       std::to_string(walls_.size()) + " walls (/discs/flags)");
+    for (std::size_t w = 0; w < walls_.size(); ++w)
+      if (comm_.sum(glued[w]) > 0) walls_[w].rough = true;
+    rough_walls_ = Boundaries::any_rough(walls_);
   } else {
     build_discs();
     resolve_time_step();
@@ -473,8 +484,12 @@ RunSummary Simulation::run() {
     for (std::size_t i = 0; i < discs_.n_owned(); ++i)
       if (is_attached(discs_.flags[i])) ++glued[attached_wall(discs_.flags[i])];
     std::string line = "rough walls:";
-    for (std::size_t w = 0; w < walls_.size(); ++w)
-      if (walls_[w].rough) line += " wall " + std::to_string(w) + " carries " + std::to_string(comm_.sum(glued[w])) + " glued discs;";
+    for (std::size_t w = 0; w < walls_.size(); ++w) {
+      if (!walls_[w].rough) continue;
+      const std::int64_t n = comm_.sum(glued[w]);
+      line += " wall " + std::to_string(w) + " carries " + std::to_string(n) + " glued discs" +
+              (n == 0 ? " (warning: none; glue happens at the start of a stage, within walls.rough_depth of the wall)" : "") + ";";
+    }
     log(line.substr(0, line.size() - 1));
   }
   log("time step " + fmt(dt_) + " s = " + fmt(dt_ / critical_.dt, 4) + " x critical " + fmt(critical_.dt) +
