@@ -58,6 +58,42 @@ void Boundaries::measure(WallSet& walls, const DiscStore& discs, const ContactTa
   }
 }
 
+void Boundaries::glue(DiscStore& discs, const WallSet& walls, double depth) {
+  for (std::size_t i = 0; i < discs.n_owned(); ++i) {
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+      if (!walls[w].rough || !(walls[w].proximity(discs.position[i]).dist < depth)) continue;
+      discs.flags[i] = attached_flags(w);
+      discs.velocity[i] = walls[w].velocity;
+      discs.omega[i] = 0.0;
+      break;
+    }
+  }
+}
+
+void Boundaries::move_glued(DiscStore& discs, const WallSet& walls, const Domain& domain, double dt) {
+  for (std::size_t i = 0; i < discs.n_owned(); ++i) {
+    if (!is_attached(discs.flags[i])) continue;
+    const Vec2 v = walls[attached_wall(discs.flags[i])].velocity;
+    discs.velocity[i] = v;
+    discs.position[i] += dt * v;
+    domain.wrap(discs.position[i]);
+  }
+}
+
+double Boundaries::glued_work_half(const DiscStore& discs, double dt) {
+  double W = 0.0;
+  for (std::size_t i = 0; i < discs.n_owned(); ++i)
+    if (is_attached(discs.flags[i])) W -= 0.5 * dot(discs.force[i], discs.velocity[i]) * dt;
+  return W;
+}
+
+std::vector<std::int64_t> Boundaries::glued_counts(const DiscStore& discs, std::size_t n_walls) {
+  std::vector<std::int64_t> glued(n_walls + 1, 0);
+  for (std::size_t i = 0; i < discs.n_owned(); ++i)
+    if (is_attached(discs.flags[i])) ++glued[std::min(attached_wall(discs.flags[i]), n_walls)];
+  return glued;
+}
+
 BoxGeometry Boundaries::box(const WallSet& walls, const Domain& domain) {
   BoxGeometry g;
   const Wall *bottom = side(walls, 0), *left = side(walls, 1), *right = side(walls, 2), *top = side(walls, 3);

@@ -1,5 +1,7 @@
 #pragma once
 #include <array>
+#include <cstdint>
+#include <vector>
 
 #include "core/ContactParams.hpp"
 #include "core/ContactTable.hpp"
@@ -42,6 +44,18 @@ class Boundaries {
                const Communicator& comm) const;
   void steer(WallSet& walls, const Domain& domain, double thickness, double dt) const;
   static BoxGeometry box(const WallSet& walls, const Domain& domain);
+
+  // Rough walls (walls.rough). glue(): at the start of a stage, each owned disc whose centre lies within
+  // `depth` of a rough wall (the first one) is glued to it: it moves with that wall, does not rotate and is
+  // integrated no more. move_glued(): the glued discs' step with their walls' velocities.
+  // glued_work_half(): half of the trapezoid of the walls' work on the free discs through the glued ones,
+  // -F.v dt / 2 summed over the owned glued discs (F: the free discs' force on them, ForceAssembly).
+  // glued_counts(): owned discs glued to each wall; one entry more counts those glued to a wall index
+  // beyond `n_walls` (a damaged file).
+  static void glue(DiscStore& discs, const WallSet& walls, double depth);
+  static void move_glued(DiscStore& discs, const WallSet& walls, const Domain& domain, double dt);
+  static double glued_work_half(const DiscStore& discs, double dt);
+  static std::vector<std::int64_t> glued_counts(const DiscStore& discs, std::size_t n_walls);
   // Normal stress on a box wall [Pa]: its normal force over (length x thickness); 0 when not a box wall.
   static double stress(const Wall& w, const BoxGeometry& g, double thickness);
 

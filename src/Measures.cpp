@@ -29,6 +29,92 @@ std::string MeasuresRow::csv() const {
   return s.str();
 }
 
+// The run's reports on Simulation's state (collective): the global ledger, kinetic energies, the rows of
+// diagnostics.csv and of measures.csv.
+
+EnergyLedger Simulation::global_ledger() const {
+  // Each rank integrates the work of the rows it books; the run's ledger is their sum (KE0 and the energy
+  // scale are global already).
+  EnergyLedger g = ledger_;
+  for (double* w : {&g.W_g, &g.W_w, &g.W_n, &g.W_t, &g.W_r, &g.D_slip, &g.D_r_plastic, &g.D_r_dashpot, &g.E_r_break}) {
+    ExactSum local;
+    local += *w;
+    *w = comm_.exact_sum(local);
+  }
+  return g;
+}
+
+void Simulation::kinetic_sums(ExactSum& trans, ExactSum& rot) const {
+  // Of the free discs: fixed and glued discs move as their walls prescribe (their motion is boundary work).
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
+    if (discs_.flags[i] & kFlagFixed) continue;
+    trans += 0.5 * discs_.mass[i] * dot(discs_.velocity[i], discs_.velocity[i]);
+    rot += 0.5 * discs_.inertia[i] * discs_.omega[i] * discs_.omega[i];
+  }
+}
+
+double Simulation::kinetic_energy() const {
+  ExactSum ke, rot;
+  kinetic_sums(ke, rot);
+  ke.merge(rot);
+  return comm_.exact_sum(ke);
+}
+
+DiagnosticsRow Simulation::diagnostics() {
+  DiagnosticsRow row;
+  row.step = step_;
+  row.time = time_;
+  ExactSum ke_t, ke_r;
+  kinetic_sums(ke_t, ke_r);
+  row.ke_trans = comm_.exact_sum(ke_t);
+  row.ke_rot = comm_.exact_sum(ke_r);
+  std::int64_t contacts = 0, wall_contacts = 0;
+  double worst = 0.0;
+  for (std::size_t r = 0; r < pairs_.size(); ++r) {
+    if (!(pairs_.F_n[r] > 0.0) || static_cast<std::size_t>(pairs_.i1[r]) >= discs_.n_owned()) continue;
+    ++contacts;
+    const auto i = static_cast<std::size_t>(pairs_.i1[r]), j = static_cast<std::size_t>(pairs_.i2[r]);
+    const Vec2 d = config_.domain.separation(discs_.position[i], discs_.position[j]);
+    const double u = discs_.radius[i] + discs_.radius[j] - std::sqrt(dot(d, d));
+    worst = std::max(worst, u / std::min(discs_.radius[i], discs_.radius[j]));
+  }
+  for (std::size_t r = 0; r < wall_rows_.size(); ++r) {
+    if (!(wall_rows_.F_n[r] > 0.0)) continue;
+    ++wall_contacts;
+    const auto i = static_cast<std::size_t>(wall_rows_.i1[r]);
+    worst = std::max(worst, (discs_.radius[i] - walls_[wall_rows_.i2[r]].proximity(discs_.position[i]).dist) / discs_.radius[i]);
+  }
+  row.contacts = comm_.sum(contacts);
+  row.wall_contacts = comm_.sum(wall_contacts);
+  const std::int64_t n = comm_.sum(static_cast<std::int64_t>(discs_.n_owned()));
+  row.coordination = n > 0 ? 2.0 * row.contacts / n : 0.0;
+  row.max_overlap = comm_.max(worst);
+  EnergyLedger g = global_ledger();
+  row.W_g = g.W_g;
+  row.W_w = g.W_w;
+  row.W_n = g.W_n;
+  row.W_t = g.W_t;
+  row.W_r = g.W_r;
+  const ContactSummary stored =
+      kernel_.stored(KernelContext{discs_, config_.domain, walls_, config_.params, dt_}, pairs_, wall_rows_);
+  summary_ = stored;
+  ExactSum stored_sum;
+  stored_sum += stored.total();
+  row.E_stored = comm_.exact_sum(stored_sum);
+  row.imbalance = imbalance_;
+  const double ghosts = comm_.sum(static_cast<double>(exchange_.ghost_count()));
+  row.ghost_fraction = n > 0 ? ghosts / n : 0.0;
+  row.migrated = comm_.sum(static_cast<std::int64_t>(migrated_));
+  row.D_slip = g.D_slip;
+  row.D_r_plastic = g.D_r_plastic;
+  row.D_r_dashpot = g.D_r_dashpot;
+  row.E_r_break = g.E_r_break;
+  row.D_other = -g.W_c() - row.E_stored - row.D_slip - row.D_r_plastic - row.D_r_dashpot - row.E_r_break;
+  row.residual = g.relative_residual(row.ke_trans + row.ke_rot);
+  ledger_.scale = g.scale;
+  return row;
+}
+
 MeasuresRow Simulation::measures(const ContactSummary& contacts) {
   MeasuresRow m;
   m.step = step_;

@@ -50,9 +50,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
     load_checkpoint(restart_file);
     // The glue travels in the discs' flags: a wall that carries glued discs stays rough whatever the
     // configuration says (a resumed run continues the same boundary).
-    std::vector<std::int64_t> glued(walls_.size() + 1, 0);  // the last counts discs glued to no such wall
-    for (std::size_t i = 0; i < discs_.n_owned(); ++i)
-      if (is_attached(discs_.flags[i])) ++glued[std::min(attached_wall(discs_.flags[i]), walls_.size())];
+    const std::vector<std::int64_t> glued = Boundaries::glued_counts(discs_, walls_.size());
     if (comm_.sum(glued.back()) > 0)
       throw InputError("'" + restart_file + "' has discs glued to a wall index beyond its " +
                        std::to_string(walls_.size()) + " walls (/discs/flags)");
@@ -99,44 +97,12 @@ void Simulation::build_discs() {
                        "] x [" + fmt(config_.domain.ylo) + ", " + fmt(config_.domain.yhi) + "]");
     discs_.add(d.gid, 0, d.radius, config_.density, config_.thickness, x, d.v, d.omega);
   }
-  if (rough_walls_) glue_to_rough_walls();
+  if (rough_walls_) {  // every rank holds the whole scene here
+    double R_max = 0.0;
+    for (std::size_t i = 0; i < discs_.n_owned(); ++i) R_max = std::max(R_max, discs_.radius[i]);
+    Boundaries::glue(discs_, walls_, config_.rough_depth > 0.0 ? config_.rough_depth : 2.0 * comm_.max(R_max));
+  }
   setup_neighbours();
-}
-
-void Simulation::glue_to_rough_walls() {
-  // Every rank holds the whole scene here. A disc goes to the first rough wall within the depth; it then
-  // moves with that wall (velocity = the wall's, no rotation) and is integrated no more.
-  double R_max = 0.0;
-  for (std::size_t i = 0; i < discs_.n_owned(); ++i) R_max = std::max(R_max, discs_.radius[i]);
-  const double depth = config_.rough_depth > 0.0 ? config_.rough_depth : 2.0 * comm_.max(R_max);
-  for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
-    for (std::size_t w = 0; w < walls_.size(); ++w) {
-      if (!walls_[w].rough || !(walls_[w].proximity(discs_.position[i]).dist < depth)) continue;
-      discs_.flags[i] = attached_flags(w);
-      discs_.velocity[i] = walls_[w].velocity;
-      discs_.omega[i] = 0.0;
-      break;
-    }
-  }
-}
-
-void Simulation::move_glued_discs() {
-  for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
-    if (!is_attached(discs_.flags[i])) continue;
-    const Vec2 v = walls_[attached_wall(discs_.flags[i])].velocity;
-    discs_.velocity[i] = v;
-    discs_.position[i] += dt_ * v;
-    config_.domain.wrap(discs_.position[i]);
-  }
-}
-
-double Simulation::glued_work_half() const {
-  // Work of the walls on the free discs through the glued ones over half a step: a glued disc moves with its
-  // wall, so the free discs receive -F.v dt (F: their contact force on it); halves of the trapezoid.
-  double W = 0.0;
-  for (std::size_t i = 0; i < discs_.n_owned(); ++i)
-    if (is_attached(discs_.flags[i])) W -= 0.5 * dot(discs_.force[i], discs_.velocity[i]) * dt_;
-  return W;
 }
 
 void Simulation::setup_neighbours() {
@@ -294,7 +260,7 @@ void Simulation::step() {
   // 2. Move walls: servo and strain-rate walls steer from the last step's exact wall loads.
   if (controlled_walls_) boundaries_.steer(walls_, config_.domain, config_.thickness, dt_);
   for (auto& w : walls_) w.move(dt_);
-  if (rough_walls_) move_glued_discs();
+  if (rough_walls_) Boundaries::move_glued(discs_, walls_, config_.domain, dt_);
   // 3. Rebuild the neighbour list when a disc (global max) has moved more than half the skin.
   const double moved = neighbours_.max_displacement(discs_, config_.domain);
   const auto t0 = std::chrono::steady_clock::now();
@@ -314,9 +280,9 @@ void Simulation::step() {
   const auto t2 = std::chrono::steady_clock::now();
   if (comm_.any(work.worst_overlap > 0.0)) report_overlap(work);
   comm_seconds_ += seconds_since(t2);
-  if (rough_walls_) work.W_w += glued_work_half();  // the last step's reaction forces
+  if (rough_walls_) work.W_w += Boundaries::glued_work_half(discs_, dt_);  // the last step's reaction forces
   assembly_.assemble(discs_, config_.gravity, pairs_, wall_rows_);
-  if (rough_walls_) work.W_w += glued_work_half();  // this step's
+  if (rough_walls_) work.W_w += Boundaries::glued_work_half(discs_, dt_);  // this step's
   if (controlled_walls_) boundaries_.measure(walls_, discs_, pairs_, wall_rows_, comm_);
   // 7. Second half kick.
   Integrator::half_kick(discs_, dt_);
@@ -324,88 +290,6 @@ void Simulation::step() {
   ++step_;
   time_ += dt_;
   if (config_.balance_every > 0 && step_ % config_.balance_every == 0) balance_load();
-}
-
-EnergyLedger Simulation::global_ledger() const {
-  // Each rank integrates the work of the rows it books; the run's ledger is their sum (KE0 and the energy
-  // scale are global already).
-  EnergyLedger g = ledger_;
-  for (double* w : {&g.W_g, &g.W_w, &g.W_n, &g.W_t, &g.W_r, &g.D_slip, &g.D_r_plastic, &g.D_r_dashpot, &g.E_r_break}) {
-    ExactSum local;
-    local += *w;
-    *w = comm_.exact_sum(local);
-  }
-  return g;
-}
-
-double Simulation::kinetic_energy() const {
-  // Of the free discs: fixed and glued discs move as their walls prescribe (their motion is boundary work).
-  ExactSum ke;
-  for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
-    if (discs_.flags[i] & kFlagFixed) continue;
-    ke += 0.5 * discs_.mass[i] * dot(discs_.velocity[i], discs_.velocity[i]);
-    ke += 0.5 * discs_.inertia[i] * discs_.omega[i] * discs_.omega[i];
-  }
-  return comm_.exact_sum(ke);
-}
-
-DiagnosticsRow Simulation::diagnostics() {
-  DiagnosticsRow row;
-  row.step = step_;
-  row.time = time_;
-  ExactSum ke_t, ke_r;
-  for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
-    if (discs_.flags[i] & kFlagFixed) continue;
-    ke_t += 0.5 * discs_.mass[i] * dot(discs_.velocity[i], discs_.velocity[i]);
-    ke_r += 0.5 * discs_.inertia[i] * discs_.omega[i] * discs_.omega[i];
-  }
-  row.ke_trans = comm_.exact_sum(ke_t);
-  row.ke_rot = comm_.exact_sum(ke_r);
-  std::int64_t contacts = 0, wall_contacts = 0;
-  double worst = 0.0;
-  for (std::size_t r = 0; r < pairs_.size(); ++r) {
-    if (!(pairs_.F_n[r] > 0.0) || static_cast<std::size_t>(pairs_.i1[r]) >= discs_.n_owned()) continue;
-    ++contacts;
-    const auto i = static_cast<std::size_t>(pairs_.i1[r]), j = static_cast<std::size_t>(pairs_.i2[r]);
-    const Vec2 d = config_.domain.separation(discs_.position[i], discs_.position[j]);
-    const double u = discs_.radius[i] + discs_.radius[j] - std::sqrt(dot(d, d));
-    worst = std::max(worst, u / std::min(discs_.radius[i], discs_.radius[j]));
-  }
-  for (std::size_t r = 0; r < wall_rows_.size(); ++r) {
-    if (!(wall_rows_.F_n[r] > 0.0)) continue;
-    ++wall_contacts;
-    const auto i = static_cast<std::size_t>(wall_rows_.i1[r]);
-    worst = std::max(worst, (discs_.radius[i] - walls_[wall_rows_.i2[r]].proximity(discs_.position[i]).dist) / discs_.radius[i]);
-  }
-  row.contacts = comm_.sum(contacts);
-  row.wall_contacts = comm_.sum(wall_contacts);
-  const std::int64_t n = comm_.sum(static_cast<std::int64_t>(discs_.n_owned()));
-  row.coordination = n > 0 ? 2.0 * row.contacts / n : 0.0;
-  row.max_overlap = comm_.max(worst);
-  EnergyLedger g = global_ledger();
-  row.W_g = g.W_g;
-  row.W_w = g.W_w;
-  row.W_n = g.W_n;
-  row.W_t = g.W_t;
-  row.W_r = g.W_r;
-  const ContactSummary stored =
-      kernel_.stored(KernelContext{discs_, config_.domain, walls_, config_.params, dt_}, pairs_, wall_rows_);
-  summary_ = stored;
-  ExactSum stored_sum;
-  stored_sum += stored.total();
-  row.E_stored = comm_.exact_sum(stored_sum);
-  row.imbalance = imbalance_;
-  const double ghosts = comm_.sum(static_cast<double>(exchange_.ghost_count()));
-  row.ghost_fraction = n > 0 ? ghosts / n : 0.0;
-  row.migrated = comm_.sum(static_cast<std::int64_t>(migrated_));
-  row.D_slip = g.D_slip;
-  row.D_r_plastic = g.D_r_plastic;
-  row.D_r_dashpot = g.D_r_dashpot;
-  row.E_r_break = g.E_r_break;
-  row.D_other = -g.W_c() - row.E_stored - row.D_slip - row.D_r_plastic - row.D_r_dashpot - row.E_r_break;
-  row.residual = g.relative_residual(row.ke_trans + row.ke_rot);
-  ledger_.scale = g.scale;
-  return row;
 }
 
 void Simulation::report_overlap(const LedgerStep& work) const {
@@ -480,9 +364,7 @@ RunSummary Simulation::run() {
       std::to_string(comm_.size()) + " rank(s); laws: normal " + config_.normal_law + ", tangential " +
       config_.tangential_law + ", rolling " + config_.rolling_law);
   if (rough_walls_) {
-    std::vector<std::int64_t> glued(walls_.size(), 0);
-    for (std::size_t i = 0; i < discs_.n_owned(); ++i)
-      if (is_attached(discs_.flags[i])) ++glued[attached_wall(discs_.flags[i])];
+    const std::vector<std::int64_t> glued = Boundaries::glued_counts(discs_, walls_.size());
     std::string line = "rough walls:";
     for (std::size_t w = 0; w < walls_.size(); ++w) {
       if (!walls_[w].rough) continue;

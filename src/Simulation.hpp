@@ -12,6 +12,7 @@
 #include "core/ContactTable.hpp"
 #include "core/Diagnostics.hpp"
 #include "core/DiscStore.hpp"
+#include "core/ExactSum.hpp"
 #include "core/ForceAssembly.hpp"
 #include "core/NeighbourList.hpp"
 #include "parallel/Communicator.hpp"
@@ -83,11 +84,9 @@ class Simulation {
 
  private:
   void build_discs();
-  // Rough walls (walls.rough): glue the discs near them at the start of a stage; move them with their wall.
-  void glue_to_rough_walls();
-  void move_glued_discs();
-  double glued_work_half() const;
   void setup_neighbours();
+  // This rank's translational and rotational kinetic energy of the free discs, added to the sums.
+  void kinetic_sums(ExactSum& trans, ExactSum& rot) const;
   void setup_boundaries();
   void distribute_discs();
   void make_decomposition(bool replicated);
