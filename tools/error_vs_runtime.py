@@ -541,13 +541,18 @@ class ConstantTorqueStop(RollingStopCase):
     def couple(self):
         return self.mu_r * 2 * self.disc.R * self.disc.Fn  # R_eq = 2R at a wall
 
-    def exact_stop(self):
+    def rigid_stop(self):
+        """The couple M, and the rigid-plastic stop s = a KE0/M (kept as self.rigid)."""
         d = self.disc
         M = self.couple()
         self.dt_crit_tool = critical_step_tool(d.R, d.k_n, d.k_s, zeta_t=self.zeta_t)
-        s = d.a * d.KE0 / M
-        self.rigid = s
+        self.rigid = d.a * d.KE0 / M
         self.mean_decel = d.decel(M)
+        return M, self.rigid
+
+    def exact_stop(self):
+        d = self.disc
+        M, s = self.rigid_stop()
         x_c, t_c, om = constant_torque_compliant_stop(d, M)
         self.compliant = x_c
         if om >= 0:
@@ -575,11 +580,7 @@ class ConstantTorqueStopDamped(ConstantTorqueStop):
 
     def exact_stop(self):
         d = self.disc
-        M = self.couple()
-        self.dt_crit_tool = critical_step_tool(d.R, d.k_n, d.k_s, zeta_t=self.zeta_t)
-        s = d.a * d.KE0 / M
-        self.rigid = s
-        self.mean_decel = d.decel(M)
+        M, s = self.rigid_stop()
         shift = d.decel(M) / d.Omega ** 2
         self.compliant = s + shift
         self.notes.append(f"with a damped tangential spring the start-up transient dies out and the motion is the "
