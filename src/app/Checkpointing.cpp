@@ -1,4 +1,4 @@
-#include "Checkpointing.hpp"
+#include "app/Checkpointing.hpp"
 
 #include <algorithm>
 #include <cstdio>

@@ -2,7 +2,7 @@
 // a Rondel file (DESIGN.md section 7, FORMAT.md).
 #include <filesystem>
 
-#include "Simulation.hpp"
+#include "app/Simulation.hpp"
 #include "core/Errors.hpp"
 #include "parallel/StateFile.hpp"
 

@@ -1,11 +1,11 @@
-#include "Measures.hpp"
+#include "app/Measures.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "Boundaries.hpp"
-#include "Simulation.hpp"
+#include "app/Boundaries.hpp"
+#include "app/Simulation.hpp"
 #include "core/ExactSum.hpp"
 
 namespace rondel {

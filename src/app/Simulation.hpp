@@ -4,9 +4,9 @@
 #include <memory>
 #include <string>
 
-#include "Boundaries.hpp"
-#include "Checkpointing.hpp"
-#include "Measures.hpp"
+#include "app/Boundaries.hpp"
+#include "app/Checkpointing.hpp"
+#include "app/Measures.hpp"
 #include "core/Config.hpp"
 #include "core/SceneBuilder.hpp"
 #include "core/ContactTable.hpp"

@@ -1,4 +1,4 @@
-#include "Simulation.hpp"
+#include "app/Simulation.hpp"
 
 #include <algorithm>
 #include <chrono>
