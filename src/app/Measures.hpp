@@ -2,6 +2,14 @@
 #include <cstdint>
 #include <string>
 
+#include "app/Boundaries.hpp"
+#include "core/ContactTable.hpp"
+#include "core/DiscStore.hpp"
+#include "core/Domain.hpp"
+#include "core/Wall.hpp"
+#include "parallel/Communicator.hpp"
+#include "physics/ContactKernel.hpp"
+
 namespace rondel {
 
 // Macroscopic measures of the assembly (compression positive, stresses per thickness [Pa]):
@@ -26,6 +34,28 @@ struct MeasuresRow {
 
   static std::string header();
   std::string csv() const;
+};
+
+// Computes a MeasuresRow from the discs, their rows and the walls (whose loads are measured already);
+// collective. `box0` is the box at the start of the stage, `contacts` the kernel's contact summary.
+class Measures {
+ public:
+  Measures(const Domain& domain, double thickness, const Communicator& comm)
+      : domain_(domain), thickness_(thickness), comm_(comm) {}
+
+  MeasuresRow row(std::int64_t step, double time, const DiscStore& discs, const ContactTable& pairs,
+                  const ContactTable& wall_rows, const WallSet& walls, const BoxGeometry& box0,
+                  const ContactSummary& contacts) const;
+
+ private:
+  void box_stresses(MeasuresRow& m, const WallSet& walls, const BoxGeometry& g) const;
+  void love_weber(MeasuresRow& m, const DiscStore& discs, const ContactTable& pairs, const ContactTable& wall_rows,
+                  const WallSet& walls, double area) const;
+  void disc_statistics(MeasuresRow& m, const DiscStore& discs, double area, const ContactSummary& contacts) const;
+
+  const Domain& domain_;
+  double thickness_;
+  const Communicator& comm_;
 };
 
 }  // namespace rondel

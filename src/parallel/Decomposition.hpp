@@ -29,8 +29,12 @@ class Decomposition {
   // New METIS map from the present per-cell work (no-op for the grid partitioner); parts are relabelled to
   // keep most cells where they were. Returns true when the map changed.
   bool repartition(const std::vector<long>& weights);
-  // Per-cell work of the local owned discs and their booked contacts, summed over ranks.
-  std::vector<long> cell_work(const DiscStore& discs, const ContactTable& pairs) const;
+  // The work measure of the load balance, one definition: each owned disc and each row it books (the row of
+  // its lower-gid disc) is one unit. rank_work(): this rank's units (the imbalance is their max over mean).
+  // cell_work(): the same units per cell, summed over ranks (unless every rank holds the same `replicated`
+  // discs), plus one in every cell, as METIS weights.
+  static double rank_work(const DiscStore& discs, const ContactTable& pairs);
+  std::vector<long> cell_work(const DiscStore& discs, const ContactTable& pairs, bool replicated = false) const;
   // Element-wise sum over ranks of a per-cell array.
   std::vector<long> sum_over_ranks(std::vector<long> values) const;
   // Number of ranks that own no cell.
@@ -38,6 +42,14 @@ class Decomposition {
 
  private:
   void set_map(std::vector<int> map);
+  // f(i) once per owned disc i and once per booked row, with the row's disc 1.
+  template <class F>
+  static void for_each_work_unit(const DiscStore& discs, const ContactTable& pairs, F f) {
+    const std::size_t n = discs.n_owned();
+    for (std::size_t i = 0; i < n; ++i) f(i);
+    for (std::size_t r = 0; r < pairs.size(); ++r)
+      if (static_cast<std::size_t>(pairs.i1[r]) < n) f(static_cast<std::size_t>(pairs.i1[r]));
+  }
 
   const Communicator& comm_;
   CellGrid grid_;
