@@ -22,8 +22,25 @@ std::string MeasuresRow::csv() const {
   s.precision(16);
   s << time;
   s.precision(12);
-  for (double v : {width, height, wall_sxx, wall_syy, sxx, syy, sxy, s1, s3, eps_axial, eps_lateral, eps_vol,
-                   void_ratio, coordination, rotation_mean, rotation_std, sliding_fraction, rolling_yield_fraction, wall_tau,
+  for (double v : {width,
+                   height,
+                   wall_sxx,
+                   wall_syy,
+                   sxx,
+                   syy,
+                   sxy,
+                   s1,
+                   s3,
+                   eps_axial,
+                   eps_lateral,
+                   eps_vol,
+                   void_ratio,
+                   coordination,
+                   rotation_mean,
+                   rotation_std,
+                   sliding_fraction,
+                   rolling_yield_fraction,
+                   wall_tau,
                    shear_disp})
     s << ',' << v;
   return s.str();
@@ -79,7 +96,8 @@ void Measures::love_weber(MeasuresRow& m, const DiscStore& discs, const ContactT
   }
   for (std::size_t r = 0; r < wall_rows.size(); ++r) {
     if (!(wall_rows.F_n[r] > 0.0)) continue;
-    const ContactKinematics k = RowGeometry::wall(discs, walls[wall_rows.i2[r]], static_cast<std::size_t>(wall_rows.i1[r]));
+    const ContactKinematics k =
+        RowGeometry::wall(discs, walls[wall_rows.i2[r]], static_cast<std::size_t>(wall_rows.i1[r]));
     const Vec2 c = k.a1 * k.n, f = wall_rows.f1[r];
     xx += c.x * f.x, yy += c.y * f.y, xy += c.x * f.y, yx += c.y * f.x;
   }

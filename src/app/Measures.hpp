@@ -20,7 +20,8 @@ namespace rondel {
 //    a1 n (x) f1] with A the box area (the domain's without box walls), its principal values s1 >= s3;
 //  - strains from the box: axial (vertical) (H0 - H)/H0, lateral (W0 - W)/W0, volumetric 1 - A/A0;
 //  - planar void ratio (A - A_solid)/A_solid, coordination, mean and spread of the disc rotations theta,
-//    (of the free discs: glued discs are part of their wall), fractions of loaded contacts sliding (|F_t| = mu F_n) and yielded in rolling (|M| at the law's cap).
+//    (of the free discs: glued discs are part of their wall), fractions of loaded contacts sliding (|F_t| = mu F_n) and
+//    yielded in rolling (|M| at the law's cap).
 struct MeasuresRow {
   std::int64_t step = 0;
   double time = 0.0;

@@ -25,8 +25,13 @@ std::string fmt(double v) {
 }  // namespace
 
 Reports::Reports(const Simulation& sim)
-    : sim_(sim), comm_(sim.comm()), discs_(sim.discs()), pairs_(sim.pairs()), wall_rows_(sim.wall_rows()),
-      walls_(sim.walls()), ledger_(sim.ledger()) {}
+    : sim_(sim),
+      comm_(sim.comm()),
+      discs_(sim.discs()),
+      pairs_(sim.pairs()),
+      wall_rows_(sim.wall_rows()),
+      walls_(sim.walls()),
+      ledger_(sim.ledger()) {}
 
 EnergyLedger Reports::global_ledger() const {
   // Each rank integrates the work of the rows it books; the run's ledger is their sum (KE0 and the energy
@@ -124,10 +129,11 @@ void Reports::check_stability(const DiagnosticsRow& row) const {
   if (!std::isfinite(row.ke_trans + row.ke_rot))
     throw InstabilityError("step " + std::to_string(row.step) + ": the kinetic energy is not finite");
   if (row.residual > sim_.config().max_residual)
-    throw InstabilityError("step " + std::to_string(row.step) + ": the energy ledger residual reached " +
-                           fmt(row.residual) + " of the energy scale (run.max_residual = " + fmt(sim_.config().max_residual) +
-                           "): energy grows with no work done, the integration is unstable; the most energetic disc is " +
-                           most_energetic_disc() + "; lower run.dt or run.safety");
+    throw InstabilityError(
+        "step " + std::to_string(row.step) + ": the energy ledger residual reached " + fmt(row.residual) +
+        " of the energy scale (run.max_residual = " + fmt(sim_.config().max_residual) +
+        "): energy grows with no work done, the integration is unstable; the most energetic disc is " +
+        most_energetic_disc() + "; lower run.dt or run.safety");
 }
 
 std::string Reports::state_text() const {

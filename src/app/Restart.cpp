@@ -13,20 +13,19 @@ namespace rondel {
 namespace fs = std::filesystem;
 
 StateHeader Restart::header(const Simulation& sim, const char* kind) {
-  const Config& config_ = sim.config();
-  const BoxGeometry& box0_ = sim.box0();
+  const Config& config = sim.config();
   StateHeader h;
   h.kind = kind;
   h.step = sim.step_count();
   h.time = sim.time();
   h.dt = sim.dt();
-  h.normal_law = config_.normal_law;
-  h.tangential_law = config_.tangential_law;
-  h.rolling_law = config_.rolling_law;
+  h.normal_law = config.normal_law;
+  h.tangential_law = config.tangential_law;
+  h.rolling_law = config.rolling_law;
   h.slots = history_slots(sim.laws());
-  h.config = config_.resolved_text;
-  h.box_width0 = box0_.width;
-  h.box_height0 = box0_.height;
+  h.config = config.resolved_text;
+  h.box_width0 = sim.box0().width;
+  h.box_height0 = sim.box0().height;
   const EnergyLedger g = sim.global_ledger();
   h.ledger = {{"KE0", g.KE0},       {"W_g", g.W_g},       {"W_w", g.W_w},
               {"W_n", g.W_n},       {"W_t", g.W_t},       {"W_r", g.W_r},
@@ -35,19 +34,19 @@ StateHeader Restart::header(const Simulation& sim, const char* kind) {
   return h;
 }
 
-std::vector<SceneDisc> Restart::scene_from_file(const Config& config_, WallSet& walls_) {
+std::vector<SceneDisc> Restart::scene_from_file(const Config& config, WallSet& walls_out) {
   // Every rank reads every disc (the scene is then distributed like any other). A directory means its
   // newest complete checkpoint. Box walls take their positions from the file (a prepared sample keeps its
   // box); contact history starts afresh, and step, time and strains start at zero: a new test stage.
   const Communicator self = Communicator::self();
-  std::string path = config_.scene.file;
+  std::string path = config.scene.file;
   if (fs::is_directory(path)) path = Checkpointing::newest_checkpoint(path, self);
   read_state_header(path, self);
   DiscStore d;
   read_state_discs(path, d, self);
   const WallSet walls = read_state_walls(path, self);
-  if (walls.size() == walls_.size())
-    for (std::size_t w = 0; w < walls.size(); ++w) walls_[w].p0 = walls[w].p0, walls_[w].p1 = walls[w].p1;
+  if (walls.size() == walls_out.size())
+    for (std::size_t w = 0; w < walls.size(); ++w) walls_out[w].p0 = walls[w].p0, walls_out[w].p1 = walls[w].p1;
   std::vector<SceneDisc> out;
   for (std::size_t i = 0; i < d.n_owned(); ++i)
     out.push_back({d.gid[i], d.position[i], d.radius[i], d.velocity[i], d.omega[i]});
@@ -72,8 +71,8 @@ void Restart::check_laws_match() const {
     for (const auto& x : v) s += (s.empty() ? "" : ",") + x;
     return s.empty() ? std::string("none") : s;
   };
-  throw InputError("'" + path + "' was written with laws normal " + h.normal_law + ", tangential " +
-                   h.tangential_law + ", rolling " + h.rolling_law + " (history slots " + list(h.slots) +
+  throw InputError("'" + path + "' was written with laws normal " + h.normal_law + ", tangential " + h.tangential_law +
+                   ", rolling " + h.rolling_law + " (history slots " + list(h.slots) +
                    ") but the configuration selects " + config_.normal_law + ", " + config_.tangential_law + ", " +
                    config_.rolling_law + " (" + list(slots) +
                    "): select the same laws, or set run.reset_history = true to start without its contact history");
@@ -90,18 +89,18 @@ void Restart::read_discs(DiscStore& discs) const {
   if (comm_.sum(static_cast<std::int64_t>(discs.n_owned())) == 0) throw InputError("'" + path_ + "' holds no discs");
 }
 
-void Restart::read_walls(WallSet& walls_) const {
+void Restart::read_walls(WallSet& into) const {
   const WallSet walls = read_state_walls(path_, comm_);
-  if (walls.size() != walls_.size())
+  if (walls.size() != into.size())
     throw InputError("'" + path_ + "' has " + std::to_string(walls.size()) + " walls but the configuration defines " +
-                     std::to_string(walls_.size()));
+                     std::to_string(into.size()));
   for (std::size_t w = 0; w < walls.size(); ++w) {  // positions and loads from the file, controls from the config
-    walls_[w].p0 = walls[w].p0;
-    walls_[w].p1 = walls[w].p1;
-    walls_[w].velocity = walls[w].velocity;
-    walls_[w].force = walls[w].force;
-    walls_[w].normal_force = walls[w].normal_force;
-    walls_[w].contacts = walls[w].contacts;
+    into[w].p0 = walls[w].p0;
+    into[w].p1 = walls[w].p1;
+    into[w].velocity = walls[w].velocity;
+    into[w].force = walls[w].force;
+    into[w].normal_force = walls[w].normal_force;
+    into[w].contacts = walls[w].contacts;
   }
 }
 

@@ -26,9 +26,12 @@ void RunFiles::prepare(bool resuming, std::int64_t step) {
                       "' already exists and is not empty; choose another directory or set run.overwrite = true");
   if (comm_.any(!writable))
     throw ConfigError("run.output = '" + config_.output + "' cannot be written (permissions, or a file of that name)");
-  checkpoints_ = std::make_unique<Checkpointing>(config_.output, config_.checkpoint_keep, config_.snapshot_fields, comm_);
-  if (resuming) checkpoints_->adopt_snapshots(step);
-  else checkpoints_->remove_old_files();
+  checkpoints_ =
+      std::make_unique<Checkpointing>(config_.output, config_.checkpoint_keep, config_.snapshot_fields, comm_);
+  if (resuming)
+    checkpoints_->adopt_snapshots(step);
+  else
+    checkpoints_->remove_old_files();
   comm_.barrier();
   if (!comm_.root()) return;
   std::error_code ec;
@@ -63,8 +66,7 @@ std::string RunFiles::write_checkpoint(const StateHeader& header, DiscStore& dis
   return path;
 }
 
-void RunFiles::write_snapshot(const StateHeader& header, DiscStore& discs, const WallSet& walls,
-                              std::int64_t n_discs) {
+void RunFiles::write_snapshot(const StateHeader& header, DiscStore& discs, const WallSet& walls, std::int64_t n_discs) {
   checkpoints_->write_snapshot(header, discs, walls, n_discs);
 }
 
@@ -72,8 +74,9 @@ void RunFiles::write_results(const std::string& final_state, const std::string& 
   if (!comm_.root()) return;
   std::ofstream(fs::path(config_.output) / "final.csv") << final_state;
   std::ofstream(fs::path(config_.output) / "summary.txt")
-      << summary << (stopped ? "\nstatus: stopped by a signal; resume with --resume " + config_.output + "\n"
-                             : std::string("\nstatus: complete\n"));
+      << summary
+      << (stopped ? "\nstatus: stopped by a signal; resume with --resume " + config_.output + "\n"
+                  : std::string("\nstatus: complete\n"));
 }
 
 }  // namespace rondel

@@ -47,8 +47,10 @@ void Runner::log_rough_walls() {
   for (std::size_t w = 0; w < walls.size(); ++w) {
     if (!walls[w].rough) continue;
     const std::int64_t n = sim_.comm().sum(glued[w]);
-    line += " wall " + std::to_string(w) + " carries " + std::to_string(n) + " glued discs" +
-            (n == 0 ? " (warning: none; glue happens at the start of a stage, within walls.rough_depth of the wall)" : "") + ";";
+    line +=
+        " wall " + std::to_string(w) + " carries " + std::to_string(n) + " glued discs" +
+        (n == 0 ? " (warning: none; glue happens at the start of a stage, within walls.rough_depth of the wall)" : "") +
+        ";";
   }
   files_.log(line.substr(0, line.size() - 1));
 }
@@ -86,8 +88,7 @@ int Runner::loop(ProgressLine& progress, std::int64_t first) {
     const std::int64_t step = sim_.step_count();
     phases_.restart();
     if (step % config.diag_every == 0 || step == config.steps) record();
-    if (files_.has_directory() && config.snapshot_every > 0 && step % config.snapshot_every == 0)
-      sim_.write_snapshot();
+    if (files_.has_directory() && config.snapshot_every > 0 && step % config.snapshot_every == 0) sim_.write_snapshot();
     phases_.lap(PhaseTimes::output);
     const std::int64_t flags = stop_flags();
     phases_.lap(PhaseTimes::communication);
@@ -150,10 +151,10 @@ void Runner::finish(std::int64_t first, std::int64_t n_discs, const PhaseTimes& 
   sum.ledger_residual = g.relative_residual(sim_.kinetic_energy());
   sum.neighbour_builds = sim_.neighbour_builds();
   std::ostringstream s;
-  s << "summary: " << sum.steps << " steps of " << sum.discs << " discs in " << fmt(sum.wall_seconds, 4)
-    << " s wall, " << fmt(sum.disc_steps_per_second, 4) << " disc-steps/s; dt " << fmt(dt) << " s ("
-    << fmt(dt / critical.dt, 4) << " x critical, " << critical.mode << " mode); ledger residual "
-    << fmt(sum.ledger_residual, 3) << "; " << sum.neighbour_builds << " neighbour builds";
+  s << "summary: " << sum.steps << " steps of " << sum.discs << " discs in " << fmt(sum.wall_seconds, 4) << " s wall, "
+    << fmt(sum.disc_steps_per_second, 4) << " disc-steps/s; dt " << fmt(dt) << " s (" << fmt(dt / critical.dt, 4)
+    << " x critical, " << critical.mode << " mode); ledger residual " << fmt(sum.ledger_residual, 3) << "; "
+    << sum.neighbour_builds << " neighbour builds";
   files_.log(s.str());
   const std::string phases = phases_.line_since(at_start) + " (rank 0)";
   files_.log(phases);

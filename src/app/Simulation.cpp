@@ -30,7 +30,10 @@ std::string fmt(double v, int precision = 6) {
 }  // namespace
 
 Simulation::Simulation(Config config, const Communicator& comm, bool write_files, const std::string& restart_file)
-    : config_(std::move(config)), comm_(comm), write_files_(write_files), neighbours_(0.0),
+    : config_(std::move(config)),
+      comm_(comm),
+      write_files_(write_files),
+      neighbours_(0.0),
       files_(config_, comm_, write_files) {
   laws_.tangential = config_.tangential_law == "coulomb" ? TangentialLaw::coulomb : TangentialLaw::none;
   if (!parse_rolling_law(config_.rolling_law, laws_.rolling))
@@ -88,7 +91,8 @@ void Simulation::keep_rough_walls(const std::string& path) {
 void Simulation::build_discs() {
   const std::string dir = config_.source_file.empty() ? "" : fs::path(config_.source_file).parent_path().string();
   const bool from_file = config_.scene.type == "file";
-  const auto scene = from_file ? Restart::scene_from_file(config_, walls_) : build_scene(config_.scene, config_.domain, dir);
+  const auto scene =
+      from_file ? Restart::scene_from_file(config_, walls_) : build_scene(config_.scene, config_.domain, dir);
   if (from_file) box0_ = Boundaries::box(walls_, config_.domain);
   if (scene.empty())
     throw InputError(config_.scene.type == "csv"
@@ -128,10 +132,12 @@ void Simulation::setup_neighbours() {
   const Domain& d = config_.domain;
   if (d.periodic_x && d.length_x() < 2.0 * range)
     throw ConfigError("domain.xhi - domain.xlo = " + fmt(d.length_x()) + " is below twice the interaction range " +
-                      fmt(range) + " (2 x largest radius + skin): a periodic length must be at least " + fmt(2 * range));
+                      fmt(range) + " (2 x largest radius + skin): a periodic length must be at least " +
+                      fmt(2 * range));
   if (d.periodic_y && d.length_y() < 2.0 * range)
     throw ConfigError("domain.yhi - domain.ylo = " + fmt(d.length_y()) + " is below twice the interaction range " +
-                      fmt(range) + " (2 x largest radius + skin): a periodic length must be at least " + fmt(2 * range));
+                      fmt(range) + " (2 x largest radius + skin): a periodic length must be at least " +
+                      fmt(2 * range));
   for (std::size_t w = 0; w < walls_.size(); ++w)
     for (std::size_t i = 0; i < discs_.n_owned(); ++i)
       if (walls_[w].kind == Wall::Kind::line && walls_[w].proximity(discs_.position[i]).dist < 0.0)
@@ -143,13 +149,14 @@ void Simulation::distribute_discs() {
   // Every rank built the whole scene; each keeps the discs of its cells.
   make_decomposition(true);
   std::vector<bool> elsewhere(discs_.n_owned());
-  for (std::size_t i = 0; i < discs_.n_owned(); ++i) elsewhere[i] = decomposition_->owner(discs_.position[i]) != comm_.rank();
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i)
+    elsewhere[i] = decomposition_->owner(discs_.position[i]) != comm_.rank();
   discs_.remove_owned(elsewhere);
 }
 
 void Simulation::make_decomposition(bool replicated) {
-  const auto partitioner = config_.partitioner == "grid" ? Decomposition::Partitioner::grid
-                                                          : Decomposition::Partitioner::metis;
+  const auto partitioner =
+      config_.partitioner == "grid" ? Decomposition::Partitioner::grid : Decomposition::Partitioner::metis;
   decomposition_ = std::make_unique<Decomposition>(config_.domain, neighbours_.range(R_max_), partitioner, comm_);
   // No contact rows yet: the discs' work only.
   decomposition_->initial_partition(decomposition_->cell_work(discs_, ContactTable{}, replicated));
@@ -188,10 +195,9 @@ void Simulation::resolve_time_step() {
   } else {
     dt_ = config_.dt;
     if (dt_ > critical_.dt && !config_.force_dt)
-      throw ConfigError("run.dt = " + fmt(dt_) + " s is above the critical time step " + fmt(critical_.dt) +
-                        " s (" + critical_.mode + " mode, " + critical_.pair +
-                        "); lower it, leave run.dt = 0 for " + fmt(config_.safety) +
-                        " x critical, or set run.force_dt = true");
+      throw ConfigError("run.dt = " + fmt(dt_) + " s is above the critical time step " + fmt(critical_.dt) + " s (" +
+                        critical_.mode + " mode, " + critical_.pair + "); lower it, leave run.dt = 0 for " +
+                        fmt(config_.safety) + " x critical, or set run.force_dt = true");
   }
 }
 
@@ -219,11 +225,10 @@ void Simulation::check_initial_state() {
              "disc " + std::to_string(discs_.gid[i]) + " and wall " + std::to_string(walls.i2[r]));
   }
   if (count > 0)
-    throw InputError(std::to_string(count) + " initial overlaps exceed scene.max_initial_overlap = " +
-                     fmt(config_.scene.max_initial_overlap) + " of the smaller radius; the worst is " + fmt(worst) +
-                     " between " + where);
+    throw InputError(std::to_string(count) +
+                     " initial overlaps exceed scene.max_initial_overlap = " + fmt(config_.scene.max_initial_overlap) +
+                     " of the smaller radius; the worst is " + fmt(worst) + " between " + where);
 }
-
 
 void Simulation::rebuild() {
   // Discs go to their cell owners with their contact rows; the rows (local and received) then serve as
@@ -297,8 +302,9 @@ void Simulation::step() {
 void Simulation::report_overlap(const LedgerStep& work) const {
   std::string where;
   if (work.worst_overlap > 0.0) {
-    where = work.worst_at_wall ? "disc " + std::to_string(work.worst_key.lo) + " and wall " + std::to_string(work.worst_key.hi)
-                               : "discs " + std::to_string(work.worst_key.lo) + " and " + std::to_string(work.worst_key.hi);
+    where = work.worst_at_wall
+                ? "disc " + std::to_string(work.worst_key.lo) + " and wall " + std::to_string(work.worst_key.hi)
+                : "discs " + std::to_string(work.worst_key.lo) + " and " + std::to_string(work.worst_key.hi);
     where += std::isinf(work.worst_overlap) ? " have coincident centres"
                                             : " overlap by " + fmt(work.worst_overlap) + " of the smaller radius";
   } else {

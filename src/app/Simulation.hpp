@@ -81,14 +81,18 @@ class Simulation {
   const ContactSummary& last_contacts() const { return summary_; }
   // Collective: the macroscopic measures now (Measures.hpp), from the contact summary of diagnostics().
   MeasuresRow measures(const ContactSummary& contacts);
-  MeasuresRow measures() { diagnostics(); return measures(summary_); }
+  MeasuresRow measures() {
+    diagnostics();
+    return measures(summary_);
+  }
   // Every disc as "gid,x,y,vx,vy,theta,omega" in hexadecimal floats, ascending gid (bit-exact), gathered
   // on rank 0 (collective; other ranks get an empty string).
   std::string state_text() const;
 
  private:
   void build_discs();
-  // The largest and smallest radius, the sum of the radii and the count of every disc, once the discs exist (created or loaded).
+  // The largest and smallest radius, the sum of the radii and the count of every disc, once the discs exist (created or
+  // loaded).
   void measure_radii();
   void setup_neighbours();
   void setup_boundaries();
@@ -119,7 +123,7 @@ class Simulation {
   double time_ = 0.0;
   std::int64_t step_ = 0;
   double R_min_ = 0.0, R_max_ = 0.0, R_total_ = 0.0;  // over every disc (measure_radii): extremes, sum
-  std::int64_t n_discs_ = 0;                         // every disc (measure_radii)
+  std::int64_t n_discs_ = 0;                          // every disc (measure_radii)
   std::unique_ptr<Decomposition> decomposition_;
   DiscExchange exchange_;
   bool rebalance_due_ = false;
