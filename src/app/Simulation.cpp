@@ -158,8 +158,7 @@ void Simulation::make_decomposition(bool replicated) {
   const auto partitioner =
       config_.partitioner == "grid" ? Decomposition::Partitioner::grid : Decomposition::Partitioner::metis;
   decomposition_ = std::make_unique<Decomposition>(config_.domain, neighbours_.range(R_max_), partitioner, comm_);
-  // No contact rows yet: the discs' work only.
-  decomposition_->initial_partition(decomposition_->cell_work(discs_, ContactTable{}, replicated));
+  decomposition_->initial_partition(decomposition_->initial_weights(discs_, replicated));
   if (decomposition_->empty_ranks() > 0 && comm_.root())
     std::cerr << "rondel: warning: " << decomposition_->empty_ranks() << " of " << comm_.size()
               << " ranks own no cell and will idle; use fewer ranks for this scene\n";

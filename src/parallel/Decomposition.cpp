@@ -45,15 +45,21 @@ double Decomposition::rank_work(const DiscStore& discs, const ContactTable& pair
   return static_cast<double>(units);
 }
 
-std::vector<long> Decomposition::cell_work(const DiscStore& discs, const ContactTable& pairs, bool replicated) const {
+std::vector<long> Decomposition::cell_work(const DiscStore& discs, const ContactTable& pairs) const {
   // Each unit of rank_work() lands in the cell of its disc, so moving a cell moves exactly its weight. (A
   // border row is also computed by the other rank; that duplicated cost is reported as the ghost fraction.)
-  // Scaled so that the one unit given to every cell (METIS needs positive weights) does not count.
-  constexpr long kScale = 100;
   std::vector<long> work(grid_.size(), 0);
-  for_each_work_unit(discs, pairs, [&](std::size_t i) { work[grid_.cell_of(discs.position[i])] += kScale; });
-  if (!replicated) work = sum_over_ranks(std::move(work));
+  for_each_work_unit(discs, pairs, [&](std::size_t i) { work[grid_.cell_of(discs.position[i])] += kWorkScale; });
+  work = sum_over_ranks(std::move(work));
   for (long& w : work) w += 1;
+  return work;
+}
+
+std::vector<long> Decomposition::initial_weights(const DiscStore& discs, bool replicated) const {
+  std::vector<long> work(grid_.size(), 1);
+  for_each_work_unit(discs, ContactTable{},
+                     [&](std::size_t i) { work[grid_.cell_of(discs.position[i])] += kWorkScale; });
+  if (!replicated) work = sum_over_ranks(std::move(work));
   return work;
 }
 

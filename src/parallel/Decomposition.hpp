@@ -31,10 +31,17 @@ class Decomposition {
   bool repartition(const std::vector<long>& weights);
   // The work measure of the load balance, one definition: each owned disc and each row it books (the row of
   // its lower-gid disc) is one unit. rank_work(): this rank's units (the imbalance is their max over mean).
-  // cell_work(): the same units per cell, summed over ranks (unless every rank holds the same `replicated`
-  // discs), plus one in every cell, as METIS weights.
+  // cell_work(): the same units per cell, kWorkScale each, summed over ranks, plus one in every cell (METIS
+  // needs positive weights; the scale makes that one count for nothing).
+  static constexpr long kWorkScale = 100;
   static double rank_work(const DiscStore& discs, const ContactTable& pairs);
-  std::vector<long> cell_work(const DiscStore& discs, const ContactTable& pairs, bool replicated = false) const;
+  std::vector<long> cell_work(const DiscStore& discs, const ContactTable& pairs) const;
+  // The first partition's weights, before any contact row exists: the discs' units, plus one in every cell
+  // on each rank. `replicated`: every rank holds the whole scene (a new one), the weights are this rank's;
+  // otherwise (a restart) they are summed over ranks, so the floor of a cell is the rank count rather than
+  // cell_work()'s one. That difference is kept: the partition of a restart, and with it the per-rank
+  // ledger shares and the imbalance, ghost and migration columns, stay those of earlier versions.
+  std::vector<long> initial_weights(const DiscStore& discs, bool replicated) const;
   // Element-wise sum over ranks of a per-cell array.
   std::vector<long> sum_over_ranks(std::vector<long> values) const;
   // Number of ranks that own no cell.
