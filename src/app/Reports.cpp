@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "app/Format.hpp"
 #include "app/RowGeometry.hpp"
 #include "app/Simulation.hpp"
 #include "core/Errors.hpp"
@@ -14,15 +15,6 @@
 #include "parallel/ByteBuffer.hpp"
 
 namespace rondel {
-
-namespace {
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
-}  // namespace
 
 Reports::Reports(const Simulation& sim)
     : sim_(sim),

@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "app/Format.hpp"
 #include "app/Reports.hpp"
 #include "app/RunFiles.hpp"
 #include "app/Simulation.hpp"
@@ -13,12 +14,6 @@ namespace rondel {
 namespace {
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-std::string fmt(double v, int precision = 6) {
-  std::ostringstream s;
-  s.precision(precision);
-  s << v;
-  return s.str();
 }
 }  // namespace
 

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "app/Format.hpp"
 #include "app/Reports.hpp"
 #include "app/Restart.hpp"
 #include "app/RowGeometry.hpp"
@@ -19,15 +20,6 @@
 namespace rondel {
 
 namespace fs = std::filesystem;
-
-namespace {
-std::string fmt(double v, int precision = 6) {
-  std::ostringstream s;
-  s.precision(precision);
-  s << v;
-  return s.str();
-}
-}  // namespace
 
 Simulation::Simulation(Config config, const Communicator& comm, bool write_files, const std::string& restart_file)
     : config_(std::move(config)),
