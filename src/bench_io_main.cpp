@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "BenchSupport.hpp"
-#include "Simulation.hpp"
+#include "app/Simulation.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"
 #include "parallel/Hdf5File.hpp"

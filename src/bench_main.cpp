@@ -14,7 +14,7 @@
 #include <string>
 
 #include "BenchSupport.hpp"
-#include "Simulation.hpp"
+#include "app/Simulation.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "Checkpointing.hpp"
-#include "Simulation.hpp"
+#include "app/Checkpointing.hpp"
+#include "app/Simulation.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"
 #include "parallel/StateFile.hpp"

@@ -14,9 +14,12 @@ namespace rondel {
 class ForceAssembly {
  public:
   void build(const DiscStore& discs, const ContactTable& pairs, const ContactTable& wall_rows);
-  // force = m g + sum of contributions; torque = sum of contributions. Fixed discs get zero, except that a
-  // disc glued to a wall keeps its contact force (no gravity, no torque).
-  void assemble(DiscStore& discs, Vec2 gravity, const ContactTable& pairs, const ContactTable& wall_rows) const;
+  // Zero forces; body forces (DESIGN.md section 4, step 4): force = m g, 0 for fixed discs. (There is no
+  // body couple: assemble() starts each torque at 0, so this pass writes the forces only.)
+  static void body_forces(DiscStore& discs, Vec2 gravity);
+  // Step 6: force = the body force of body_forces() + the contributions, torque = the contributions. Fixed
+  // discs then get zero, except that a disc glued to a wall keeps its contact force (no gravity, no torque).
+  void assemble(DiscStore& discs, const ContactTable& pairs, const ContactTable& wall_rows) const;
 
  private:
   enum Side : std::uint8_t { kAsDisc1 = 0, kAsDisc2 = 1, kWall = 2 };

@@ -39,19 +39,27 @@ bool Decomposition::repartition(const std::vector<long>& weights) {
   return cell_rank_ != old;
 }
 
+double Decomposition::rank_work(const DiscStore& discs, const ContactTable& pairs) {
+  std::size_t units = 0;
+  for_each_work_unit(discs, pairs, [&units](std::size_t) { ++units; });
+  return static_cast<double>(units);
+}
+
 std::vector<long> Decomposition::cell_work(const DiscStore& discs, const ContactTable& pairs) const {
-  // Work per cell: its discs and the rows they book (a row is booked by the owner of its lower-gid disc),
-  // the same measure as Simulation::balance_load, so moving a cell moves exactly its weight. (A border row
-  // is also computed by the other rank; that duplicated cost is reported as the ghost fraction.) Scaled
-  // so that the one unit given to every cell (METIS needs positive weights) does not count.
-  constexpr long kScale = 100;
+  // Each unit of rank_work() lands in the cell of its disc, so moving a cell moves exactly its weight. (A
+  // border row is also computed by the other rank; that duplicated cost is reported as the ghost fraction.)
   std::vector<long> work(grid_.size(), 0);
-  const std::size_t n = discs.n_owned();
-  for (std::size_t i = 0; i < n; ++i) work[grid_.cell_of(discs.position[i])] += kScale;
-  for (std::size_t r = 0; r < pairs.size(); ++r)
-    if (static_cast<std::size_t>(pairs.i1[r]) < n) work[grid_.cell_of(discs.position[pairs.i1[r]])] += kScale;
+  for_each_work_unit(discs, pairs, [&](std::size_t i) { work[grid_.cell_of(discs.position[i])] += kWorkScale; });
   work = sum_over_ranks(std::move(work));
   for (long& w : work) w += 1;
+  return work;
+}
+
+std::vector<long> Decomposition::initial_weights(const DiscStore& discs, bool replicated) const {
+  std::vector<long> work(grid_.size(), 1);
+  for_each_work_unit(discs, ContactTable{},
+                     [&](std::size_t i) { work[grid_.cell_of(discs.position[i])] += kWorkScale; });
+  if (!replicated) work = sum_over_ranks(std::move(work));
   return work;
 }
 

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "Simulation.hpp"
+#include "app/Simulation.hpp"
 #include "core/Errors.hpp"
 #include "core/SceneBuilder.hpp"
 

@@ -34,7 +34,7 @@
 #include <string>
 #include <vector>
 
-#include "Simulation.hpp"
+#include "app/Simulation.hpp"
 #include "core/Config.hpp"
 #include "parallel/Communicator.hpp"
 #include "parallel/Hdf5File.hpp"

@@ -31,8 +31,8 @@
 #include <typeinfo>
 #include <vector>
 
-#include "Checkpointing.hpp"
-#include "Simulation.hpp"
+#include "app/Checkpointing.hpp"
+#include "app/Simulation.hpp"
 #include "core/Config.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"

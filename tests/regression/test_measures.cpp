@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "Simulation.hpp"
+#include "app/Simulation.hpp"
 
 namespace rondel {
 namespace {

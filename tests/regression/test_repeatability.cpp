@@ -1,7 +1,7 @@
 // The same run twice gives the same bits (DESIGN.md section 5).
 #include <gtest/gtest.h>
 
-#include "Simulation.hpp"
+#include "app/Simulation.hpp"
 
 namespace rondel {
 namespace {

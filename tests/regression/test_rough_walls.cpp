@@ -9,7 +9,7 @@
 #include <cmath>
 #include <iostream>
 
-#include "Simulation.hpp"
+#include "app/Simulation.hpp"
 #include "core/ExactSum.hpp"
 #include "support/TempDir.hpp"
 

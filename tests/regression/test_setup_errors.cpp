@@ -16,7 +16,7 @@
 #include <typeinfo>
 #include <vector>
 
-#include "Simulation.hpp"
+#include "app/Simulation.hpp"
 #include "support/TempDir.hpp"
 #include "core/Config.hpp"
 #include "core/Errors.hpp"

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "Simulation.hpp"
+#include "app/Simulation.hpp"
 #include "support/TempDir.hpp"
 
 namespace rondel {

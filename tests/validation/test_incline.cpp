@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "Simulation.hpp"
+#include "app/Simulation.hpp"
 
 namespace rondel {
 namespace {

@@ -1,4 +1,4 @@
-#include "Boundaries.hpp"
+#include "app/Boundaries.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "Checkpointing.hpp"
+#include "app/Checkpointing.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -10,6 +10,19 @@
 namespace rondel {
 
 namespace fs = std::filesystem;
+
+namespace {
+// The files <prefix>*.h5 of `dir`, in ascending name order (= ascending step: the step is zero-padded).
+std::vector<fs::path> h5_files(const fs::path& dir, const char* prefix) {
+  std::vector<fs::path> found;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string n = e.path().filename().string();
+    if (n.rfind(prefix, 0) == 0 && e.path().extension() == ".h5") found.push_back(e.path());
+  }
+  std::sort(found.begin(), found.end());
+  return found;
+}
+}  // namespace
 
 Checkpointing::Checkpointing(std::string directory, int keep, std::vector<std::string> snapshot_fields,
                              const Communicator& comm)
@@ -32,12 +45,7 @@ std::string Checkpointing::write_checkpoint(const StateHeader& header, DiscStore
   comm_.barrier();
   if (comm_.root()) {
     fs::rename(part, final_path);
-    std::vector<fs::path> existing;
-    for (const auto& e : fs::directory_iterator(dir_)) {
-      const std::string n = e.path().filename().string();
-      if (n.rfind("checkpoint_", 0) == 0 && e.path().extension() == ".h5") existing.push_back(e.path());
-    }
-    std::sort(existing.begin(), existing.end());
+    const std::vector<fs::path> existing = h5_files(dir_, "checkpoint_");
     for (std::size_t k = 0; k + static_cast<std::size_t>(keep_) < existing.size(); ++k) fs::remove(existing[k]);
   }
   comm_.barrier();
@@ -45,14 +53,8 @@ std::string Checkpointing::write_checkpoint(const StateHeader& header, DiscStore
 }
 
 void Checkpointing::adopt_snapshots(std::int64_t step) {
-  std::vector<fs::path> found;
-  for (const auto& e : fs::directory_iterator(dir_)) {
-    const std::string n = e.path().filename().string();
-    if (n.rfind("snapshot_", 0) == 0 && e.path().extension() == ".h5") found.push_back(e.path());
-  }
-  std::sort(found.begin(), found.end());
   snapshots_.clear();
-  for (const fs::path& p : found) {
+  for (const fs::path& p : h5_files(dir_, "snapshot_")) {
     try {
       const StateHeader h = read_state_header(p.string(), comm_);
       if (h.step > step) continue;
@@ -118,12 +120,8 @@ void Checkpointing::write_xdmf() const {
 std::string Checkpointing::newest_checkpoint(const std::string& directory, const Communicator& comm,
                                              std::vector<std::string>* skipped) {
   std::vector<fs::path> found;
-  if (fs::is_directory(directory))
-    for (const auto& e : fs::directory_iterator(directory)) {
-      const std::string n = e.path().filename().string();
-      if (n.rfind("checkpoint_", 0) == 0 && e.path().extension() == ".h5") found.push_back(e.path());
-    }
-  std::sort(found.rbegin(), found.rend());
+  if (fs::is_directory(directory)) found = h5_files(directory, "checkpoint_");
+  std::reverse(found.begin(), found.end());  // newest first
   std::vector<std::string> reasons;
   for (const fs::path& p : found) {
     try {

@@ -1,0 +1,138 @@
+#include "app/Measures.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "app/RowGeometry.hpp"
+#include "core/ExactSum.hpp"
+
+namespace rondel {
+
+std::string MeasuresRow::header() {
+  return "step,time,width,height,wall_sxx,wall_syy,sxx,syy,sxy,s1,s3,eps_axial,eps_lateral,eps_vol,void_ratio,"
+         "coordination,rotation_mean,rotation_std,sliding_fraction,rolling_yield_fraction,wall_tau,shear_disp";
+}
+
+std::string MeasuresRow::csv() const {
+  std::ostringstream s;
+  s.precision(12);
+  s << step << ',';
+  s.precision(16);
+  s << time;
+  s.precision(12);
+  for (double v : {width,
+                   height,
+                   wall_sxx,
+                   wall_syy,
+                   sxx,
+                   syy,
+                   sxy,
+                   s1,
+                   s3,
+                   eps_axial,
+                   eps_lateral,
+                   eps_vol,
+                   void_ratio,
+                   coordination,
+                   rotation_mean,
+                   rotation_std,
+                   sliding_fraction,
+                   rolling_yield_fraction,
+                   wall_tau,
+                   shear_disp})
+    s << ',' << v;
+  return s.str();
+}
+
+MeasuresRow Measures::row(std::int64_t step, double time, const DiscStore& discs, const ContactTable& pairs,
+                          const ContactTable& wall_rows, const WallSet& walls, const BoxGeometry& box0,
+                          const ContactSummary& contacts) const {
+  MeasuresRow m;
+  m.step = step;
+  m.time = time;
+  const BoxGeometry g = Boundaries::box(walls, domain_);
+  m.width = g.width;
+  m.height = g.height;
+  box_stresses(m, walls, g);
+  const double area = (g.has_x ? g.width : domain_.length_x()) * (g.has_y ? g.height : domain_.length_y());
+  love_weber(m, discs, pairs, wall_rows, walls, area);
+  m.eps_axial = box0.height > 0.0 ? (box0.height - g.height) / box0.height : 0.0;
+  m.eps_lateral = box0.width > 0.0 ? (box0.width - g.width) / box0.width : 0.0;
+  m.eps_vol = 1.0 - (g.width * g.height) / (box0.width * box0.height);
+  disc_statistics(m, discs, area, contacts);
+  return m;
+}
+
+void Measures::box_stresses(MeasuresRow& m, const WallSet& walls, const BoxGeometry& g) const {
+  double sx = 0.0, sy = 0.0;
+  int nx = 0, ny = 0;
+  for (const Wall& w : walls) {
+    if (w.box_side == 1 || w.box_side == 2) sx += Boundaries::stress(w, g, thickness_), ++nx;
+    if (w.box_side == 0 || w.box_side == 3) sy += Boundaries::stress(w, g, thickness_), ++ny;
+  }
+  m.wall_sxx = nx ? sx / nx : 0.0;
+  m.wall_syy = ny ? sy / ny : 0.0;
+  const Wall *bottom = nullptr, *top = nullptr;
+  for (const Wall& w : walls) {
+    if (w.box_side == 0) bottom = &w;
+    if (w.box_side == 3) top = &w;
+  }
+  if (top) m.wall_tau = -top->force.x / (g.width * thickness_);
+  if (top && bottom) m.shear_disp = top->p0.x - bottom->p0.x;
+}
+
+void Measures::love_weber(MeasuresRow& m, const DiscStore& discs, const ContactTable& pairs,
+                          const ContactTable& wall_rows, const WallSet& walls, double area) const {
+  // Booked rows only, so each contact counts once over all ranks.
+  ExactSum xx, yy, xy, yx;
+  const std::size_t n_owned = discs.n_owned();
+  for (std::size_t r = 0; r < pairs.size(); ++r) {
+    if (static_cast<std::size_t>(pairs.i1[r]) >= n_owned || !(pairs.F_n[r] > 0.0)) continue;
+    const Vec2 d = domain_.separation(discs.position[pairs.i1[r]], discs.position[pairs.i2[r]]);
+    const Vec2 f = pairs.f1[r];
+    xx += d.x * f.x, yy += d.y * f.y, xy += d.x * f.y, yx += d.y * f.x;
+  }
+  for (std::size_t r = 0; r < wall_rows.size(); ++r) {
+    if (!(wall_rows.F_n[r] > 0.0)) continue;
+    const ContactKinematics k =
+        RowGeometry::wall(discs, walls[wall_rows.i2[r]], static_cast<std::size_t>(wall_rows.i1[r]));
+    const Vec2 c = k.a1 * k.n, f = wall_rows.f1[r];
+    xx += c.x * f.x, yy += c.y * f.y, xy += c.x * f.y, yx += c.y * f.x;
+  }
+  const double scale = -1.0 / (area * thickness_);
+  m.sxx = scale * comm_.exact_sum(xx);
+  m.syy = scale * comm_.exact_sum(yy);
+  m.sxy = 0.5 * scale * (comm_.exact_sum(xy) + comm_.exact_sum(yx));
+  const double centre = 0.5 * (m.sxx + m.syy);
+  const double radius = std::sqrt(0.25 * (m.sxx - m.syy) * (m.sxx - m.syy) + m.sxy * m.sxy);
+  m.s1 = centre + radius;
+  m.s3 = centre - radius;
+}
+
+void Measures::disc_statistics(MeasuresRow& m, const DiscStore& discs, double area,
+                               const ContactSummary& contacts) const {
+  ExactSum solid, theta, theta2;
+  std::int64_t n_free = 0;
+  const std::size_t n_owned = discs.n_owned();
+  for (std::size_t i = 0; i < n_owned; ++i) {
+    solid += std::numbers::pi * discs.radius[i] * discs.radius[i];
+    if (discs.flags[i] & kFlagFixed) continue;
+    ++n_free;
+    theta += discs.theta[i];
+    theta2 += discs.theta[i] * discs.theta[i];
+  }
+  const double a_solid = comm_.exact_sum(solid);
+  const double n = static_cast<double>(comm_.sum(static_cast<std::int64_t>(n_owned)));
+  const double n_rot = std::max(1.0, static_cast<double>(comm_.sum(n_free)));
+  m.void_ratio = (area - a_solid) / a_solid;
+  m.rotation_mean = comm_.exact_sum(theta) / n_rot;
+  m.rotation_std = std::sqrt(std::max(0.0, comm_.exact_sum(theta2) / n_rot - m.rotation_mean * m.rotation_mean));
+  const double loaded = static_cast<double>(comm_.sum(contacts.contacts));
+  m.coordination = 2.0 * static_cast<double>(comm_.sum(contacts.contacts - contacts.wall_contacts)) / n;
+  m.sliding_fraction = loaded > 0 ? static_cast<double>(comm_.sum(contacts.sliding)) / loaded : 0.0;
+  m.rolling_yield_fraction = loaded > 0 ? static_cast<double>(comm_.sum(contacts.rolling_yield)) / loaded : 0.0;
+}
+
+}  // namespace rondel

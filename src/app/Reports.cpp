@@ -1,0 +1,158 @@
+// The run's reports on a Simulation's state (collective): the global ledger, kinetic energies, the rows of
+// diagnostics.csv, the stability check and the bit-exact state text.
+#include "app/Reports.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "app/Format.hpp"
+#include "app/RowGeometry.hpp"
+#include "app/Simulation.hpp"
+#include "core/Errors.hpp"
+#include "core/ExactSum.hpp"
+#include "parallel/ByteBuffer.hpp"
+
+namespace rondel {
+
+Reports::Reports(const Simulation& sim)
+    : sim_(sim),
+      comm_(sim.comm()),
+      discs_(sim.discs()),
+      pairs_(sim.pairs()),
+      wall_rows_(sim.wall_rows()),
+      walls_(sim.walls()),
+      ledger_(sim.ledger()) {}
+
+EnergyLedger Reports::global_ledger() const {
+  // Each rank integrates the work of the rows it books; the run's ledger is their sum (KE0 and the energy
+  // scale are global already).
+  EnergyLedger g = ledger_;
+  for (double* w : {&g.W_g, &g.W_w, &g.W_n, &g.W_t, &g.W_r, &g.D_slip, &g.D_r_plastic, &g.D_r_dashpot, &g.E_r_break}) {
+    ExactSum local;
+    local += *w;
+    *w = comm_.exact_sum(local);
+  }
+  return g;
+}
+
+void Reports::kinetic_sums(ExactSum& trans, ExactSum& rot) const {
+  // Of the free discs: fixed and glued discs move as their walls prescribe (their motion is boundary work).
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
+    if (discs_.flags[i] & kFlagFixed) continue;
+    trans += 0.5 * discs_.mass[i] * dot(discs_.velocity[i], discs_.velocity[i]);
+    rot += 0.5 * discs_.inertia[i] * discs_.omega[i] * discs_.omega[i];
+  }
+}
+
+double Reports::kinetic_energy() const {
+  ExactSum ke, rot;
+  kinetic_sums(ke, rot);
+  ke.merge(rot);
+  return comm_.exact_sum(ke);
+}
+
+DiagnosticsRow Reports::diagnostics(const ContactSummary& stored, double& scale) const {
+  DiagnosticsRow row;
+  row.step = sim_.step_count();
+  row.time = sim_.time();
+  ExactSum ke_t, ke_r;
+  kinetic_sums(ke_t, ke_r);
+  row.ke_trans = comm_.exact_sum(ke_t);
+  row.ke_rot = comm_.exact_sum(ke_r);
+  std::int64_t contacts = 0, wall_contacts = 0;
+  double worst = 0.0;
+  for (std::size_t r = 0; r < pairs_.size(); ++r) {
+    if (!(pairs_.F_n[r] > 0.0) || static_cast<std::size_t>(pairs_.i1[r]) >= discs_.n_owned()) continue;
+    ++contacts;
+    const auto i = static_cast<std::size_t>(pairs_.i1[r]), j = static_cast<std::size_t>(pairs_.i2[r]);
+    const double u = RowGeometry::pair(discs_, sim_.config().domain, i, j).u_n;
+    worst = std::max(worst, u / std::min(discs_.radius[i], discs_.radius[j]));
+  }
+  for (std::size_t r = 0; r < wall_rows_.size(); ++r) {
+    if (!(wall_rows_.F_n[r] > 0.0)) continue;
+    ++wall_contacts;
+    const auto i = static_cast<std::size_t>(wall_rows_.i1[r]);
+    worst = std::max(worst, RowGeometry::wall(discs_, walls_[wall_rows_.i2[r]], i).u_n / discs_.radius[i]);
+  }
+  row.contacts = comm_.sum(contacts);
+  row.wall_contacts = comm_.sum(wall_contacts);
+  const std::int64_t n = comm_.sum(static_cast<std::int64_t>(discs_.n_owned()));
+  row.coordination = n > 0 ? 2.0 * row.contacts / n : 0.0;
+  row.max_overlap = comm_.max(worst);
+  EnergyLedger g = global_ledger();
+  row.W_g = g.W_g;
+  row.W_w = g.W_w;
+  row.W_n = g.W_n;
+  row.W_t = g.W_t;
+  row.W_r = g.W_r;
+  ExactSum stored_sum;
+  stored_sum += stored.total();
+  row.E_stored = comm_.exact_sum(stored_sum);
+  row.imbalance = sim_.imbalance();
+  const double ghosts = comm_.sum(static_cast<double>(sim_.ghost_count()));
+  row.ghost_fraction = n > 0 ? ghosts / n : 0.0;
+  row.migrated = comm_.sum(static_cast<std::int64_t>(sim_.migrated()));
+  row.D_slip = g.D_slip;
+  row.D_r_plastic = g.D_r_plastic;
+  row.D_r_dashpot = g.D_r_dashpot;
+  row.E_r_break = g.E_r_break;
+  row.D_other = -g.W_c() - row.E_stored - row.D_slip - row.D_r_plastic - row.D_r_dashpot - row.E_r_break;
+  row.residual = g.relative_residual(row.ke_trans + row.ke_rot);
+  scale = g.scale;
+  return row;
+}
+
+std::string Reports::most_energetic_disc() const {
+  double best = -1.0;
+  std::int64_t gid = -1;
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
+    const double ke = 0.5 * discs_.mass[i] * dot(discs_.velocity[i], discs_.velocity[i]) +
+                      0.5 * discs_.inertia[i] * discs_.omega[i] * discs_.omega[i];
+    if (ke > best || std::isnan(ke)) best = std::isnan(ke) ? INFINITY : ke, gid = discs_.gid[i];
+  }
+  const double top = comm_.max(best);
+  const std::int64_t who = comm_.max(best == top ? gid : std::int64_t{-1});
+  return std::to_string(who) + " (kinetic energy " + fmt(top) + " J)";
+}
+
+void Reports::check_stability(const DiagnosticsRow& row) const {
+  if (!std::isfinite(row.ke_trans + row.ke_rot))
+    throw InstabilityError("step " + std::to_string(row.step) + ": the kinetic energy is not finite");
+  if (row.residual > sim_.config().max_residual)
+    throw InstabilityError(
+        "step " + std::to_string(row.step) + ": the energy ledger residual reached " + fmt(row.residual) +
+        " of the energy scale (run.max_residual = " + fmt(sim_.config().max_residual) +
+        "): energy grows with no work done, the integration is unstable; the most energetic disc is " +
+        most_energetic_disc() + "; lower run.dt or run.safety");
+}
+
+std::string Reports::state_text() const {
+  struct Record {
+    std::int64_t gid;
+    double x, y, vx, vy, theta, omega;
+  };
+  ByteBuffer mine;
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i)
+    mine.put(Record{discs_.gid[i], discs_.position[i].x, discs_.position[i].y, discs_.velocity[i].x,
+                    discs_.velocity[i].y, discs_.theta[i], discs_.omega[i]});
+  const auto all = comm_.gather(mine);
+  if (!comm_.root()) return "";
+  std::vector<Record> records;
+  for (const ByteBuffer& b : all) {
+    ByteReader r(b.bytes.data(), b.bytes.size());
+    while (!r.done()) records.push_back(r.get<Record>());
+  }
+  std::sort(records.begin(), records.end(), [](const Record& a, const Record& b) { return a.gid < b.gid; });
+  std::string out = "gid,x,y,vx,vy,theta,omega\n";
+  char buf[512];
+  for (const Record& d : records) {
+    std::snprintf(buf, sizeof buf, "%lld,%a,%a,%a,%a,%a,%a\n", static_cast<long long>(d.gid), d.x, d.y, d.vx, d.vy,
+                  d.theta, d.omega);
+    out += buf;
+  }
+  return out;
+}
+
+}  // namespace rondel

@@ -1,0 +1,47 @@
+#pragma once
+#include <string>
+
+#include "core/ContactTable.hpp"
+#include "core/Diagnostics.hpp"
+#include "core/DiscStore.hpp"
+#include "core/ExactSum.hpp"
+#include "core/Wall.hpp"
+#include "parallel/Communicator.hpp"
+#include "physics/ContactKernel.hpp"
+#include "physics/EnergyLedger.hpp"
+
+namespace rondel {
+
+class Simulation;
+
+// What the run reports about a Simulation's present state; every function is collective.
+class Reports {
+ public:
+  explicit Reports(const Simulation& sim);
+
+  // The run's ledger: every rank's share summed.
+  EnergyLedger global_ledger() const;
+  // Kinetic energy of the free discs.
+  double kinetic_energy() const;
+  // A row of diagnostics.csv; `stored`: this rank's contact summary (the kernel's stored-energy pass);
+  // `scale` receives the ledger's updated energy scale.
+  DiagnosticsRow diagnostics(const ContactSummary& stored, double& scale) const;
+  // Throws InstabilityError when the kinetic energy is not finite or the ledger residual is too large.
+  void check_stability(const DiagnosticsRow& row) const;
+  // Every disc as "gid,x,y,vx,vy,theta,omega" in hexadecimal floats, ascending gid, on rank 0.
+  std::string state_text() const;
+
+ private:
+  // This rank's translational and rotational kinetic energy of the free discs, added to the sums.
+  void kinetic_sums(ExactSum& trans, ExactSum& rot) const;
+  std::string most_energetic_disc() const;
+
+  const Simulation& sim_;
+  const Communicator& comm_;
+  const DiscStore& discs_;
+  const ContactTable &pairs_, &wall_rows_;
+  const WallSet& walls_;
+  const EnergyLedger& ledger_;
+};
+
+}  // namespace rondel

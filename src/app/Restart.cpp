@@ -1,0 +1,130 @@
+// A run's state in a Rondel file, both ways (DESIGN.md section 7, FORMAT.md): the header written with a
+// checkpoint or snapshot, and a restart or a scene taken back from one.
+#include "app/Restart.hpp"
+
+#include <filesystem>
+
+#include "app/Checkpointing.hpp"
+#include "app/Simulation.hpp"
+#include "core/Errors.hpp"
+
+namespace rondel {
+
+namespace fs = std::filesystem;
+
+StateHeader Restart::header(const Simulation& sim, const char* kind) {
+  const Config& config = sim.config();
+  StateHeader h;
+  h.kind = kind;
+  h.step = sim.step_count();
+  h.time = sim.time();
+  h.dt = sim.dt();
+  h.normal_law = config.normal_law;
+  h.tangential_law = config.tangential_law;
+  h.rolling_law = config.rolling_law;
+  h.slots = history_slots(sim.laws());
+  h.config = config.resolved_text;
+  h.box_width0 = sim.box0().width;
+  h.box_height0 = sim.box0().height;
+  const EnergyLedger g = sim.global_ledger();
+  h.ledger = {{"KE0", g.KE0},       {"W_g", g.W_g},       {"W_w", g.W_w},
+              {"W_n", g.W_n},       {"W_t", g.W_t},       {"W_r", g.W_r},
+              {"D_slip", g.D_slip}, {"D_r_plastic", g.D_r_plastic}, {"D_r_dashpot", g.D_r_dashpot},
+              {"E_r_break", g.E_r_break}, {"scale", g.scale}};
+  return h;
+}
+
+std::vector<SceneDisc> Restart::scene_from_file(const Config& config, WallSet& walls_out) {
+  // Every rank reads every disc (the scene is then distributed like any other). A directory means its
+  // newest complete checkpoint. Box walls take their positions from the file (a prepared sample keeps its
+  // box); contact history starts afresh, and step, time and strains start at zero: a new test stage.
+  const Communicator self = Communicator::self();
+  std::string path = config.scene.file;
+  if (fs::is_directory(path)) path = Checkpointing::newest_checkpoint(path, self);
+  read_state_header(path, self);
+  DiscStore d;
+  read_state_discs(path, d, self);
+  const WallSet walls = read_state_walls(path, self);
+  if (walls.size() == walls_out.size())
+    for (std::size_t w = 0; w < walls.size(); ++w) walls_out[w].p0 = walls[w].p0, walls_out[w].p1 = walls[w].p1;
+  std::vector<SceneDisc> out;
+  for (std::size_t i = 0; i < d.n_owned(); ++i)
+    out.push_back({d.gid[i], d.position[i], d.radius[i], d.velocity[i], d.omega[i]});
+  return out;
+}
+
+Restart::Restart(std::string path, const Config& config, const LawSelection& laws, const Communicator& comm)
+    : path_(std::move(path)), config_(config), laws_(laws), comm_(comm), header_(read_state_header(path_, comm_)) {
+  check_laws_match();
+}
+
+void Restart::check_laws_match() const {
+  const StateHeader& h = header_;
+  const std::string& path = path_;
+  const auto slots = history_slots(laws_);
+  if (h.normal_law == config_.normal_law && h.tangential_law == config_.tangential_law &&
+      h.rolling_law == config_.rolling_law && h.slots == slots)
+    return;
+  if (config_.reset_history) return;
+  auto list = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (const auto& x : v) s += (s.empty() ? "" : ",") + x;
+    return s.empty() ? std::string("none") : s;
+  };
+  throw InputError("'" + path + "' was written with laws normal " + h.normal_law + ", tangential " + h.tangential_law +
+                   ", rolling " + h.rolling_law + " (history slots " + list(h.slots) +
+                   ") but the configuration selects " + config_.normal_law + ", " + config_.tangential_law + ", " +
+                   config_.rolling_law + " (" + list(slots) +
+                   "): select the same laws, or set run.reset_history = true to start without its contact history");
+}
+
+bool Restart::same_laws() const {
+  const StateHeader& h = header_;
+  return h.slots == history_slots(laws_) && h.rolling_law == config_.rolling_law &&
+         h.tangential_law == config_.tangential_law;
+}
+
+void Restart::read_discs(DiscStore& discs) const {
+  read_state_discs(path_, discs, comm_);
+  if (comm_.sum(static_cast<std::int64_t>(discs.n_owned())) == 0) throw InputError("'" + path_ + "' holds no discs");
+}
+
+void Restart::read_walls(WallSet& into) const {
+  const WallSet walls = read_state_walls(path_, comm_);
+  if (walls.size() != into.size())
+    throw InputError("'" + path_ + "' has " + std::to_string(walls.size()) + " walls but the configuration defines " +
+                     std::to_string(into.size()));
+  for (std::size_t w = 0; w < walls.size(); ++w) {  // positions and loads from the file, controls from the config
+    into[w].p0 = walls[w].p0;
+    into[w].p1 = walls[w].p1;
+    into[w].velocity = walls[w].velocity;
+    into[w].force = walls[w].force;
+    into[w].normal_force = walls[w].normal_force;
+    into[w].contacts = walls[w].contacts;
+  }
+}
+
+void Restart::read_rows(ContactTable& pairs, ContactTable& wall_rows, const DiscStore& discs) const {
+  if (!same_laws()) return;
+  read_state_rows(path_, pairs, wall_rows, comm_);
+  route_rows_to_owners(pairs, true, discs, comm_);
+  route_rows_to_owners(wall_rows, false, discs, comm_);
+}
+
+void Restart::read_ledger(EnergyLedger& ledger_) const {
+  const StateHeader& h = header_;
+  // The ledger continues: every rank carries the scale, rank 0 the integrals.
+  for (const auto& [name, value] : h.ledger) {
+    if (name == "KE0") ledger_.KE0 = value;
+    else if (name == "scale") ledger_.scale = value;
+    else if (comm_.root()) {
+      double* field = name == "W_g" ? &ledger_.W_g : name == "W_w" ? &ledger_.W_w : name == "W_n" ? &ledger_.W_n
+                      : name == "W_t" ? &ledger_.W_t : name == "W_r" ? &ledger_.W_r : name == "D_slip" ? &ledger_.D_slip
+                      : name == "D_r_plastic" ? &ledger_.D_r_plastic : name == "D_r_dashpot" ? &ledger_.D_r_dashpot
+                      : name == "E_r_break" ? &ledger_.E_r_break : nullptr;
+      if (field) *field = value;
+    }
+  }
+}
+
+}  // namespace rondel

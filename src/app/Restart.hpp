@@ -1,0 +1,54 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/Config.hpp"
+#include "core/ContactTable.hpp"
+#include "core/DiscStore.hpp"
+#include "core/SceneBuilder.hpp"
+#include "core/Wall.hpp"
+#include "parallel/Communicator.hpp"
+#include "parallel/StateFile.hpp"
+#include "physics/EnergyLedger.hpp"
+#include "physics/LawRegistry.hpp"
+
+namespace rondel {
+
+class Simulation;
+
+// A run's state in a Rondel file (FORMAT.md), both ways: the header a checkpoint or snapshot carries, and
+// what a restart or a scene.type = file stage takes back from one.
+class Restart {
+ public:
+  // Collective (the global ledger): the header of a file of `kind` ("checkpoint", "snapshot") now.
+  static StateHeader header(const Simulation& sim, const char* kind);
+
+  // A checkpoint to continue from: reads its header (collective) and checks that the configuration selects
+  // the same laws (or run.reset_history).
+  Restart(std::string path, const Config& config, const LawSelection& laws, const Communicator& comm);
+  const StateHeader& file_header() const { return header_; }
+  // This rank's share of the discs (throws when the file holds none).
+  void read_discs(DiscStore& discs) const;
+  // Wall positions and loads from the file, controls from the configuration (the counts must agree).
+  void read_walls(WallSet& walls) const;
+  // The contact rows, routed to the owners of their discs (distributed already); none when the laws differ.
+  void read_rows(ContactTable& pairs, ContactTable& wall_rows, const DiscStore& discs) const;
+  // The ledger continues: every rank carries the scale, rank 0 the integrals.
+  void read_ledger(EnergyLedger& ledger) const;
+
+  // scene.type = file: every disc of scene.file (a directory: its newest complete checkpoint), read on each
+  // rank; box walls take their positions from the file. History, step, time and strains start afresh.
+  static std::vector<SceneDisc> scene_from_file(const Config& config, WallSet& walls);
+
+ private:
+  void check_laws_match() const;
+  bool same_laws() const;
+
+  std::string path_;
+  const Config& config_;
+  const LawSelection& laws_;
+  const Communicator& comm_;
+  StateHeader header_;
+};
+
+}  // namespace rondel

@@ -1,0 +1,164 @@
+#include "app/Runner.hpp"
+
+#include <sstream>
+
+#include "app/Format.hpp"
+#include "app/Reports.hpp"
+#include "app/RunFiles.hpp"
+#include "app/Simulation.hpp"
+#include "core/Errors.hpp"
+#include "core/StopSignal.hpp"
+
+namespace rondel {
+
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+}  // namespace
+
+Runner::Runner(Simulation& sim) : sim_(sim), files_(sim.files()), phases_(sim.phases()) {}
+
+void Runner::log_start(std::int64_t n_discs) {
+  const Config& config = sim_.config();
+  const Communicator& comm = sim_.comm();
+  const CriticalStep& critical = sim_.critical();
+  files_.log("Rondel: " + std::to_string(n_discs) + " discs, " + std::to_string(sim_.walls().size()) + " walls, " +
+             std::to_string(comm.size()) + " rank(s); laws: normal " + config.normal_law + ", tangential " +
+             config.tangential_law + ", rolling " + config.rolling_law);
+  if (Boundaries::any_rough(sim_.walls())) log_rough_walls();
+  files_.log("time step " + fmt(sim_.dt()) + " s = " + fmt(sim_.dt() / critical.dt, 4) + " x critical " +
+             fmt(critical.dt) + " s, limited by the " + critical.mode + " mode (" + critical.pair + ")");
+  files_.log("neighbour skin " + fmt(sim_.skin()) + " m; output in " +
+             (files_.has_directory() ? config.output : "(none)") +
+             (sim_.step_count() > 0 ? "; resumed at step " + std::to_string(sim_.step_count()) : ""));
+  files_.log("resolved configuration:\n" + config.resolved_text);
+}
+
+void Runner::log_rough_walls() {
+  const WallSet& walls = sim_.walls();
+  const std::vector<std::int64_t> glued = Boundaries::glued_counts(sim_.discs(), walls.size());
+  std::string line = "rough walls:";
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    if (!walls[w].rough) continue;
+    const std::int64_t n = sim_.comm().sum(glued[w]);
+    line +=
+        " wall " + std::to_string(w) + " carries " + std::to_string(n) + " glued discs" +
+        (n == 0 ? " (warning: none; glue happens at the start of a stage, within walls.rough_depth of the wall)" : "") +
+        ";";
+  }
+  files_.log(line.substr(0, line.size() - 1));
+}
+
+void Runner::record() {
+  const DiagnosticsRow row = sim_.diagnostics();
+  files_.write_diagnostics(row);
+  Reports(sim_).check_stability(row);
+  if (!files_.has_directory()) return;
+  const MeasuresRow m = sim_.measures(sim_.last_contacts());
+  files_.write_measures(m);
+}
+
+void Runner::checkpoint() {
+  files_.add_wall_seconds(seconds_since(last_checkpoint_));
+  last_checkpoint_ = std::chrono::steady_clock::now();
+  sum_.last_checkpoint = sim_.write_checkpoint();
+  checkpointed_ = sim_.step_count();
+}
+
+std::int64_t Runner::stop_flags() {
+  // Every rank agrees on the step of a signal or of a wall-clock checkpoint (rank 0's clock decides).
+  const Config& config = sim_.config();
+  const Communicator& comm = sim_.comm();
+  const double minutes = seconds_since(last_checkpoint_) / 60.0;
+  const bool timed = comm.root() && config.checkpoint_minutes > 0.0 && minutes >= config.checkpoint_minutes;
+  // One reduction for both: the signal number times 2, plus 1 for a due wall-clock checkpoint.
+  return comm.max(2 * static_cast<std::int64_t>(StopSignal::received()) + (timed ? 1 : 0));
+}
+
+int Runner::loop(ProgressLine& progress, std::int64_t first) {
+  const Config& config = sim_.config();
+  while (sim_.step_count() < config.steps) {
+    sim_.step();
+    const std::int64_t step = sim_.step_count();
+    phases_.restart();
+    if (step % config.diag_every == 0 || step == config.steps) record();
+    if (files_.has_directory() && config.snapshot_every > 0 && step % config.snapshot_every == 0) sim_.write_snapshot();
+    phases_.lap(PhaseTimes::output);
+    const std::int64_t flags = stop_flags();
+    phases_.lap(PhaseTimes::communication);
+    const std::int64_t signal = flags / 2;
+    const bool timed_any = (flags % 2) != 0;
+    if (files_.has_directory() &&
+        (signal != 0 || timed_any || (config.checkpoint_every > 0 && step % config.checkpoint_every == 0)))
+      checkpoint();
+    phases_.lap(PhaseTimes::output);
+    progress.update(step - first);
+    phases_.lap(PhaseTimes::other);
+    if (signal != 0) {
+      files_.log(std::string("stopped by ") + StopSignal::name(static_cast<int>(signal)) + " at step " +
+                 std::to_string(step));
+      return static_cast<int>(signal);
+    }
+  }
+  return 0;
+}
+
+RunSummary Runner::run() {
+  const auto n_discs = sim_.comm().sum(static_cast<std::int64_t>(sim_.discs().n_owned()));
+  log_start(n_discs);
+  const Config& config = sim_.config();
+  const std::int64_t first = sim_.step_count(), remaining = std::max<std::int64_t>(0, config.steps - first);
+  ProgressLine progress(remaining, n_discs, files_.has_directory() && config.progress && sim_.comm().root());
+  StopSignal::install();
+  start_ = last_checkpoint_ = std::chrono::steady_clock::now();
+  const PhaseTimes at_start = phases_;
+  try {
+    phases_.restart();
+    if (first == 0) record();
+    phases_.lap(PhaseTimes::output);
+    sum_.stop_signal = loop(progress, first);
+    if (files_.has_directory() && config.checkpoint_at_end && sum_.stop_signal == 0 &&
+        checkpointed_ != sim_.step_count())
+      checkpoint();
+    phases_.lap(PhaseTimes::output);
+  } catch (const InstabilityError& e) {
+    progress.finish();
+    files_.log(std::string("FAILED: ") + e.what());
+    throw;
+  }
+  progress.finish();
+  finish(first, n_discs, at_start);
+  return sum_;
+}
+
+void Runner::finish(std::int64_t first, std::int64_t n_discs, const PhaseTimes& at_start) {
+  const CriticalStep& critical = sim_.critical();
+  const double dt = sim_.dt();
+  RunSummary& sum = sum_;
+  sum.steps = sim_.step_count() - first;
+  sum.discs = n_discs;
+  sum.wall_seconds = seconds_since(start_);
+  sum.disc_steps_per_second = sum.wall_seconds > 0 ? sum.discs * sum.steps / sum.wall_seconds : 0.0;
+  sum.dt = dt;
+  sum.critical = critical;
+  EnergyLedger g = sim_.global_ledger();
+  sum.ledger_residual = g.relative_residual(sim_.kinetic_energy());
+  sum.neighbour_builds = sim_.neighbour_builds();
+  std::ostringstream s;
+  s << "summary: " << sum.steps << " steps of " << sum.discs << " discs in " << fmt(sum.wall_seconds, 4) << " s wall, "
+    << fmt(sum.disc_steps_per_second, 4) << " disc-steps/s; dt " << fmt(dt) << " s (" << fmt(dt / critical.dt, 4)
+    << " x critical, " << critical.mode << " mode); ledger residual " << fmt(sum.ledger_residual, 3) << "; "
+    << sum.neighbour_builds << " neighbour builds";
+  files_.log(s.str());
+  const std::string phases = phases_.line_since(at_start) + " (rank 0)";
+  files_.log(phases);
+  if (!files_.has_directory()) return;
+  const std::string final_state = sim_.state_text();
+  const std::string output = sim_.config().output;
+  files_.write_results(final_state, s.str() + "\n" + phases, sum.stop_signal != 0);
+  files_.log("results in " + output + "/ (config.ini, log.txt, diagnostics.csv, measures.csv, final.csv, summary.txt" +
+             (sum.last_checkpoint.empty() ? std::string(")") : ", checkpoint_*.h5)"));
+}
+
+}  // namespace rondel

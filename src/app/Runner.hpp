@@ -1,0 +1,56 @@
+#pragma once
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+#include "app/PhaseTimes.hpp"
+#include "physics/CriticalTimeStep.hpp"
+
+namespace rondel {
+
+class Simulation;
+class RunFiles;
+class ProgressLine;
+
+struct RunSummary {
+  int stop_signal = 0;          // the signal that stopped the run early (0: it ran to the end)
+  std::string last_checkpoint;  // path of the last checkpoint written ("" if none)
+  std::int64_t steps = 0;
+  std::int64_t discs = 0;
+  double wall_seconds = 0.0;
+  double disc_steps_per_second = 0.0;
+  double dt = 0.0;
+  CriticalStep critical;
+  double ledger_residual = 0.0;
+  std::size_t neighbour_builds = 0;
+};
+
+// The run of a Simulation to run.steps: the opening log lines, the time loop with the schedules of
+// diagnostics, measures, snapshots and checkpoints, the signals (every rank agrees on the step of a stop),
+// the progress line, and the summary with its phase times (log.txt, summary.txt, final.csv).
+class Runner {
+ public:
+  explicit Runner(Simulation& sim);
+  RunSummary run();
+
+ private:
+  void log_start(std::int64_t n_discs);
+  void log_rough_walls();
+  // Diagnostics and measures of the present step, and the stability check.
+  void record();
+  void checkpoint();
+  // One reduction: the signal received on any rank, and whether rank 0's clock says a checkpoint is due.
+  std::int64_t stop_flags();
+  // The steps after `first`; returns the signal that stopped them (0: none).
+  int loop(ProgressLine& progress, std::int64_t first);
+  void finish(std::int64_t first, std::int64_t n_discs, const PhaseTimes& at_start);
+
+  Simulation& sim_;
+  RunFiles& files_;
+  PhaseTimes& phases_;
+  RunSummary sum_;
+  std::chrono::steady_clock::time_point start_, last_checkpoint_;
+  std::int64_t checkpointed_ = -1;
+};
+
+}  // namespace rondel

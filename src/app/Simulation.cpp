@@ -1,0 +1,358 @@
+#include "app/Simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "app/Format.hpp"
+#include "app/Reports.hpp"
+#include "app/Restart.hpp"
+#include "app/RowGeometry.hpp"
+#include "core/Errors.hpp"
+#include "core/ExactSum.hpp"
+#include "core/Integrator.hpp"
+#include "core/SceneBuilder.hpp"
+#include "physics/NormalLinear.hpp"
+#include "physics/Restitution.hpp"
+
+namespace rondel {
+
+namespace fs = std::filesystem;
+
+Simulation::Simulation(Config config, const Communicator& comm, bool write_files, const std::string& restart_file)
+    : config_(std::move(config)),
+      comm_(comm),
+      write_files_(write_files),
+      neighbours_(0.0),
+      files_(config_, comm_, write_files) {
+  laws_.tangential = config_.tangential_law == "coulomb" ? TangentialLaw::coulomb : TangentialLaw::none;
+  if (!parse_rolling_law(config_.rolling_law, laws_.rolling))
+    throw ConfigError("contact.rolling = " + config_.rolling_law + " is not one of " + rolling_law_names());
+  kernel_ = select_kernel(laws_);
+  pairs_ = make_contact_table(laws_);
+  wall_rows_ = make_contact_table(laws_);
+  walls_ = config_.walls;
+  controlled_walls_ = Boundaries::controlled(walls_);
+  rough_walls_ = Boundaries::any_rough(walls_);
+  box0_ = Boundaries::box(walls_, config_.domain);
+  for (ContactParams* p : {&config_.params.pair(0, 0), &config_.params.wall(0)})
+    if (p->e_n > 0.0) p->zeta_n = zeta_from_restitution(p->e_n);
+  const bool restart = !restart_file.empty();
+  if (restart) {
+    load_checkpoint(restart_file);
+    keep_rough_walls(restart_file);
+  } else {
+    build_discs();
+    resolve_time_step();
+    check_initial_state();
+    distribute_discs();
+  }
+  setup_boundaries();
+  if (write_files_) files_.prepare(restart, step_);
+  phases_.restart();
+  rebuild();
+  if (restart) return;  // forces, history and ledger come from the file (no recomputation before the first kick)
+  // Forces at t = 0 for the first half kick: the kernel at the initial state with a zero increment. Its
+  // capping rule may reset springs (a dashpot alone above the cap); the history is restored so that the
+  // run starts with unloaded springs and no work booked.
+  const auto pair_history = pairs_.slot, wall_history = wall_rows_.slot;
+  LedgerStep initial;
+  kernel_.run(KernelContext{discs_, config_.domain, walls_, config_.params, 0.0}, pairs_, wall_rows_, initial);
+  pairs_.slot = pair_history;
+  wall_rows_.slot = wall_history;
+  ForceAssembly::body_forces(discs_, config_.gravity);
+  assembly_.assemble(discs_, pairs_, wall_rows_);
+  if (controlled_walls_) boundaries_.measure(walls_, discs_, pairs_, wall_rows_, comm_);
+  ledger_.start(kinetic_energy());
+}
+
+void Simulation::keep_rough_walls(const std::string& path) {
+  // The glue travels in the discs' flags: a wall that carries glued discs stays rough whatever the
+  // configuration says (a resumed run continues the same boundary).
+  const std::vector<std::int64_t> glued = Boundaries::glued_counts(discs_, walls_.size());
+  if (comm_.sum(glued.back()) > 0)
+    throw InputError("'" + path + "' has discs glued to a wall index beyond its " + std::to_string(walls_.size()) +
+                     " walls (/discs/flags)");
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+    if (comm_.sum(glued[w]) > 0) walls_[w].rough = true;
+  rough_walls_ = Boundaries::any_rough(walls_);
+}
+
+void Simulation::build_discs() {
+  const std::string dir = config_.source_file.empty() ? "" : fs::path(config_.source_file).parent_path().string();
+  const bool from_file = config_.scene.type == "file";
+  const auto scene =
+      from_file ? Restart::scene_from_file(config_, walls_) : build_scene(config_.scene, config_.domain, dir);
+  if (from_file) box0_ = Boundaries::box(walls_, config_.domain);
+  if (scene.empty())
+    throw InputError(config_.scene.type == "csv"
+                         ? "scene.file '" + config_.scene.file + "' holds no discs: the scene is empty"
+                         : "the scene has no discs (scene.type = " + config_.scene.type + ")");
+  discs_.reserve(scene.size());
+  for (const auto& d : scene) {
+    Vec2 x = d.x;
+    config_.domain.wrap(x);
+    if (!config_.domain.contains(x))
+      throw InputError("disc " + std::to_string(d.gid) + " at (" + fmt(d.x.x) + ", " + fmt(d.x.y) +
+                       ") lies outside the domain [" + fmt(config_.domain.xlo) + ", " + fmt(config_.domain.xhi) +
+                       "] x [" + fmt(config_.domain.ylo) + ", " + fmt(config_.domain.yhi) + "]");
+    discs_.add(d.gid, 0, d.radius, config_.density, config_.thickness, x, d.v, d.omega);
+  }
+  measure_radii();  // every rank holds the whole scene here
+  if (rough_walls_) Boundaries::glue(discs_, walls_, config_.rough_depth > 0.0 ? config_.rough_depth : 2.0 * R_max_);
+  setup_neighbours();
+}
+
+void Simulation::measure_radii() {
+  double R_min = INFINITY, R_max = 0.0;
+  ExactSum R_sum;
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i)
+    R_min = std::min(R_min, discs_.radius[i]), R_max = std::max(R_max, discs_.radius[i]), R_sum += discs_.radius[i];
+  R_min_ = -comm_.max(-R_min);
+  R_max_ = comm_.max(R_max);
+  R_total_ = comm_.exact_sum(R_sum);
+  n_discs_ = comm_.sum(static_cast<std::int64_t>(discs_.n_owned()));
+}
+
+void Simulation::setup_neighbours() {
+  // From the radii of every disc (measure_radii).
+  const double skin = config_.skin > 0.0 ? config_.skin : 0.25 * R_total_ / static_cast<double>(n_discs_);
+  neighbours_ = NeighbourList(skin);
+  const double range = neighbours_.range(R_max_);
+  const Domain& d = config_.domain;
+  if (d.periodic_x && d.length_x() < 2.0 * range)
+    throw ConfigError("domain.xhi - domain.xlo = " + fmt(d.length_x()) + " is below twice the interaction range " +
+                      fmt(range) + " (2 x largest radius + skin): a periodic length must be at least " +
+                      fmt(2 * range));
+  if (d.periodic_y && d.length_y() < 2.0 * range)
+    throw ConfigError("domain.yhi - domain.ylo = " + fmt(d.length_y()) + " is below twice the interaction range " +
+                      fmt(range) + " (2 x largest radius + skin): a periodic length must be at least " +
+                      fmt(2 * range));
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+    for (std::size_t i = 0; i < discs_.n_owned(); ++i)
+      if (walls_[w].kind == Wall::Kind::line && walls_[w].proximity(discs_.position[i]).dist < 0.0)
+        throw InputError("disc " + std::to_string(discs_.gid[i]) + " lies behind wall " + std::to_string(w) +
+                         " (its centre is on the far side of the line)");
+}
+
+void Simulation::distribute_discs() {
+  // Every rank built the whole scene; each keeps the discs of its cells.
+  make_decomposition(true);
+  std::vector<bool> elsewhere(discs_.n_owned());
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i)
+    elsewhere[i] = decomposition_->owner(discs_.position[i]) != comm_.rank();
+  discs_.remove_owned(elsewhere);
+}
+
+void Simulation::make_decomposition(bool replicated) {
+  const auto partitioner =
+      config_.partitioner == "grid" ? Decomposition::Partitioner::grid : Decomposition::Partitioner::metis;
+  decomposition_ = std::make_unique<Decomposition>(config_.domain, neighbours_.range(R_max_), partitioner, comm_);
+  decomposition_->initial_partition(decomposition_->initial_weights(discs_, replicated));
+  if (decomposition_->empty_ranks() > 0 && comm_.root())
+    std::cerr << "rondel: warning: " << decomposition_->empty_ranks() << " of " << comm_.size()
+              << " ranks own no cell and will idle; use fewer ranks for this scene\n";
+}
+
+void Simulation::setup_boundaries() {
+  // The servo's spring and dashpot terms use the stiffest and most damped contact that can load a wall:
+  // disc-wall contacts of the heaviest disc and, with rough walls, its contacts with glued discs.
+  double m_max = 0.0;
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) m_max = std::max(m_max, discs_.mass[i]);
+  m_max = comm_.max(m_max);
+  // The normal law's own dashpot (NormalLinear::c_n) for an effective mass m.
+  auto dashpot = [](const ContactParams& p, double m) {
+    ContactBodies b;
+    b.m_eff = m;
+    return NormalLinear::c_n(p, b);
+  };
+  const ContactParams& w = config_.params.wall(0);
+  double k_n = w.k_n, c_n = dashpot(w, m_max);
+  if (rough_walls_) {
+    const ContactParams& p = config_.params.pair(0, 0);
+    k_n = std::max(k_n, p.k_n);
+    c_n = std::max(c_n, dashpot(p, 0.5 * m_max));
+  }
+  boundaries_ = Boundaries(config_.servo_gain, config_.servo_max_speed, k_n, c_n);
+}
+
+void Simulation::resolve_time_step() {
+  const std::vector<MaterialInfo> mats{{config_.density, config_.thickness, R_min_, R_max_}};
+  critical_ = critical_time_step(laws_, config_.params, mats, !walls_.empty());
+  if (config_.dt == 0.0) {
+    dt_ = config_.safety * critical_.dt;
+  } else {
+    dt_ = config_.dt;
+    if (dt_ > critical_.dt && !config_.force_dt)
+      throw ConfigError("run.dt = " + fmt(dt_) + " s is above the critical time step " + fmt(critical_.dt) + " s (" +
+                        critical_.mode + " mode, " + critical_.pair + "); lower it, leave run.dt = 0 for " +
+                        fmt(config_.safety) + " x critical, or set run.force_dt = true");
+  }
+}
+
+void Simulation::check_initial_state() {
+  ContactTable pairs = make_contact_table(laws_), walls = make_contact_table(laws_);
+  NeighbourList probe(neighbours_.skin());
+  probe.build(discs_, config_.domain, walls_, config_.params, pairs, pairs, walls, walls);
+  std::int64_t count = 0;
+  double worst = 0.0;
+  std::string where;
+  auto consider = [&](double u_n, double R, const std::string& what) {
+    const double ratio = u_n / R;
+    if (ratio <= config_.scene.max_initial_overlap) return;
+    ++count;
+    if (ratio > worst) worst = ratio, where = what;
+  };
+  for (std::size_t r = 0; r < pairs.size(); ++r) {
+    const auto i = static_cast<std::size_t>(pairs.i1[r]), j = static_cast<std::size_t>(pairs.i2[r]);
+    consider(RowGeometry::pair(discs_, config_.domain, i, j).u_n, std::min(discs_.radius[i], discs_.radius[j]),
+             "discs " + std::to_string(discs_.gid[i]) + " and " + std::to_string(discs_.gid[j]));
+  }
+  for (std::size_t r = 0; r < walls.size(); ++r) {
+    const auto i = static_cast<std::size_t>(walls.i1[r]);
+    consider(RowGeometry::wall(discs_, walls_[walls.i2[r]], i).u_n, discs_.radius[i],
+             "disc " + std::to_string(discs_.gid[i]) + " and wall " + std::to_string(walls.i2[r]));
+  }
+  if (count > 0)
+    throw InputError(std::to_string(count) +
+                     " initial overlaps exceed scene.max_initial_overlap = " + fmt(config_.scene.max_initial_overlap) +
+                     " of the smaller radius; the worst is " + fmt(worst) + " between " + where);
+}
+
+void Simulation::rebuild() {
+  // Discs go to their cell owners with their contact rows; the rows (local and received) then serve as
+  // the history source of the new neighbour list.
+  const DiscExchange::Counts moved = exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_);
+  migrated_ += moved.sent;
+  exchange_.build_ghosts(discs_, *decomposition_, comm_);
+  phases_.lap(PhaseTimes::communication);
+  const ContactTable old_pairs = pairs_, old_walls = wall_rows_;
+  neighbours_.build(discs_, config_.domain, walls_, config_.params, old_pairs, pairs_, old_walls, wall_rows_);
+  assembly_.build(discs_, pairs_, wall_rows_);
+  rebalance_due_ = false;
+  phases_.lap(PhaseTimes::neighbour);
+}
+
+void Simulation::balance_load() {
+  const double work = Decomposition::rank_work(discs_, pairs_);
+  const double max = comm_.max(work), mean = comm_.sum(work) / comm_.size();
+  imbalance_ = mean > 0.0 ? max / mean : 1.0;
+  if (comm_.size() == 1 || (!config_.force_balance && imbalance_ <= config_.balance_threshold)) return;
+  if (decomposition_->repartition(decomposition_->cell_work(discs_, pairs_))) rebalance_due_ = true;
+}
+
+void Simulation::step() {
+  phases_.restart();
+  // 1. Half kick and drift of owned discs (wrapping into the periodic box); the drift books gravity's work.
+  const double W_g = Integrator::half_kick_drift(discs_, config_.domain, dt_, config_.gravity);
+  // 2. Move walls: servo and strain-rate walls steer from the last step's exact wall loads.
+  if (controlled_walls_) boundaries_.steer(walls_, config_.domain, config_.thickness, dt_);
+  for (auto& w : walls_) w.move(dt_);
+  if (rough_walls_) Boundaries::move_glued(discs_, walls_, config_.domain, dt_);
+  phases_.lap(PhaseTimes::integrate);
+  // 3. Rebuild the neighbour list when a disc (global max) has moved more than half the skin.
+  const double moved = neighbours_.max_displacement(discs_, config_.domain);
+  phases_.lap(PhaseTimes::neighbour);
+  const double disp = comm_.max(moved);
+  phases_.lap(PhaseTimes::communication);
+  if (rebalance_due_ || neighbours_.needs_rebuild(disp, walls_)) {
+    rebuild();
+  } else {
+    exchange_.update_ghosts(discs_, comm_);
+    phases_.lap(PhaseTimes::communication);
+  }
+  // 4. Zero forces; body forces (gravity). The glued discs' last reaction forces are booked first.
+  const double W_glued_last = rough_walls_ ? Boundaries::glued_work_half(discs_, dt_) : 0.0;
+  ForceAssembly::body_forces(discs_, config_.gravity);
+  // 5. Contact kernel over every row.
+  LedgerStep work;
+  kernel_.run(KernelContext{discs_, config_.domain, walls_, config_.params, dt_, config_.max_overlap}, pairs_,
+              wall_rows_, work);
+  phases_.lap(PhaseTimes::force);
+  if (comm_.any(work.worst_overlap > 0.0)) report_overlap(work);
+  phases_.lap(PhaseTimes::communication);
+  // 6. Per-disc sums in ascending partner gid, walls last.
+  if (rough_walls_) work.W_w += W_glued_last;
+  assembly_.assemble(discs_, pairs_, wall_rows_);
+  if (rough_walls_) work.W_w += Boundaries::glued_work_half(discs_, dt_);  // this step's reaction forces
+  phases_.lap(PhaseTimes::force);
+  if (controlled_walls_) boundaries_.measure(walls_, discs_, pairs_, wall_rows_, comm_);
+  phases_.lap(PhaseTimes::communication);
+  // 7. Second half kick (diagnostics and output on their schedules: Runner).
+  Integrator::half_kick(discs_, dt_);
+  phases_.lap(PhaseTimes::integrate);
+  ledger_.add(work, W_g);
+  ++step_;
+  time_ += dt_;
+  if (config_.balance_every > 0 && step_ % config_.balance_every == 0) balance_load();
+  phases_.lap(PhaseTimes::other);
+}
+
+void Simulation::report_overlap(const LedgerStep& work) const {
+  std::string where;
+  if (work.worst_overlap > 0.0) {
+    where = work.worst_at_wall
+                ? "disc " + std::to_string(work.worst_key.lo) + " and wall " + std::to_string(work.worst_key.hi)
+                : "discs " + std::to_string(work.worst_key.lo) + " and " + std::to_string(work.worst_key.hi);
+    where += std::isinf(work.worst_overlap) ? " have coincident centres"
+                                            : " overlap by " + fmt(work.worst_overlap) + " of the smaller radius";
+  } else {
+    where = "another rank found an overlap";
+  }
+  throw InstabilityError("step " + std::to_string(step_ + 1) + " (t = " + fmt(time_ + dt_) + " s): " + where +
+                         ", above run.max_overlap = " + fmt(config_.max_overlap) +
+                         ". The linear contact is not valid there: stiffen the contacts (linear.k_n), slow the "
+                         "impact, or lower run.dt if the run became unstable");
+}
+
+void Simulation::load_checkpoint(const std::string& path) {
+  const Restart file(path, config_, laws_, comm_);
+  const StateHeader& h = file.file_header();
+  file.read_discs(discs_);
+  file.read_walls(walls_);
+  box0_.width = h.box_width0;
+  box0_.height = h.box_height0;
+  measure_radii();
+  setup_neighbours();
+  resolve_time_step();
+  dt_ = h.dt;
+  step_ = h.step;
+  time_ = h.time;
+  make_decomposition(false);
+  ContactTable no_pairs = make_contact_table(laws_), no_walls = make_contact_table(laws_);
+  exchange_.migrate(discs_, no_pairs, no_walls, *decomposition_, comm_);
+  file.read_rows(pairs_, wall_rows_, discs_);
+  file.read_ledger(ledger_);
+}
+
+std::string Simulation::write_checkpoint() {
+  if (!files_.has_directory())
+    throw ConfigError("a checkpoint needs an output directory (this simulation writes no files)");
+  return files_.write_checkpoint(Restart::header(*this, "checkpoint"), discs_, pairs_, wall_rows_, walls_);
+}
+
+void Simulation::write_snapshot() {
+  const auto n = comm_.sum(static_cast<std::int64_t>(discs_.n_owned()));
+  files_.write_snapshot(Restart::header(*this, "snapshot"), discs_, walls_, n);
+}
+
+EnergyLedger Simulation::global_ledger() const { return Reports(*this).global_ledger(); }
+
+double Simulation::kinetic_energy() const { return Reports(*this).kinetic_energy(); }
+
+DiagnosticsRow Simulation::diagnostics() {
+  summary_ = kernel_.stored(KernelContext{discs_, config_.domain, walls_, config_.params, dt_}, pairs_, wall_rows_);
+  return Reports(*this).diagnostics(summary_, ledger_.scale);
+}
+
+MeasuresRow Simulation::measures(const ContactSummary& contacts) {
+  boundaries_.measure(walls_, discs_, pairs_, wall_rows_, comm_);
+  return Measures(config_.domain, config_.thickness, comm_)
+      .row(step_, time_, discs_, pairs_, wall_rows_, walls_, box0_, contacts);
+}
+
+std::string Simulation::state_text() const { return Reports(*this).state_text(); }
+
+}  // namespace rondel
