@@ -1,8 +1,12 @@
-// Every (normal, tangential, rolling) combination is instantiated here, once.
+// The registry: ONE list of law types per kind. Adding a law is one file (its type) plus one row here;
+// each row is checked against its kind's concept (LawConcepts.hpp), so a law that lacks a member fails to
+// compile with the law named in the failed static_assert's instantiation. Every (normal, tangential,
+// rolling) combination is instantiated here, once.
 #include "physics/LawRegistry.hpp"
 
-#include <tuple>
-
+#include "core/ConfigSchema.hpp"
+#include "core/Errors.hpp"
+#include "physics/LawConcepts.hpp"
 #include "physics/NormalLinear.hpp"
 #include "physics/RollingConstantTorque.hpp"
 #include "physics/RollingDisplacementDamping.hpp"
@@ -18,75 +22,116 @@ namespace rondel {
 
 namespace {
 
-// One row per rolling law: its enum value and its type (the name comes from the type).
-using RollingLaws = std::tuple<RollingNone, RollingJiangPlastic, RollingJiangBrittle, RollingWang, RollingIwashitaOda,
-                               RollingForceProportional, RollingConstantTorque, RollingDisplacementDamping>;
-constexpr RollingLaw kRollingOrder[] = {RollingLaw::none,           RollingLaw::jiang_plastic,
-                                        RollingLaw::jiang_brittle,  RollingLaw::wang,
-                                        RollingLaw::iwashita_oda,   RollingLaw::force_proportional,
-                                        RollingLaw::constant_torque, RollingLaw::displacement_damping};
+// A row check per kind: instantiated once per law, so a failure names the law (Row<Law>).
+template <class L>
+struct NormalRow {
+  static_assert(NormalLawType<L>, "this normal law lacks a member that NormalLawType requires (LawConcepts.hpp)");
+  static constexpr bool ok = true;
+};
+template <class L>
+struct TangentialRow {
+  static_assert(TangentialLawType<L>,
+                "this tangential law lacks a member that TangentialLawType requires (LawConcepts.hpp)");
+  static constexpr bool ok = true;
+};
+template <class L>
+struct RollingRow {
+  static_assert(RollingLawType<L>, "this rolling law lacks a member that RollingLawType requires (LawConcepts.hpp)");
+  static constexpr bool ok = true;
+};
 
-// Calls f.template operator()<Law>() for the rolling law type selected by `law`.
-template <class F, std::size_t I = 0>
-auto with_rolling_type(RollingLaw law, F&& f) {
-  if constexpr (I + 1 < std::tuple_size_v<RollingLaws>) {
-    if (kRollingOrder[I] != law) return with_rolling_type<F, I + 1>(law, std::forward<F>(f));
+// A list of law types of one kind, every row checked by Row<Law>.
+template <template <class> class Row, class... Laws>
+struct LawList {
+  static_assert((Row<Laws>::ok && ...));
+  // Calls f.template operator()<Law>() for the law named `keyword`; false when no law has that name.
+  template <class F>
+  static bool with(const std::string& keyword, F&& f) {
+    return ((keyword == Laws::name ? (f.template operator()<Laws>(), true) : false) || ...);
   }
-  return f.template operator()<std::tuple_element_t<I, RollingLaws>>();
+  static LawKind kind(const char* name) { return {name, {LawInfo{Laws::name, Laws::block}...}}; }
+};
+
+// The registry rows. The first law of each list is the default of its contact.<kind> key.
+using NormalLaws = LawList<NormalRow, NormalLinear>;
+using TangentialLaws = LawList<TangentialRow, TangentialCoulomb, TangentialNone>;
+using RollingLaws = LawList<RollingRow, RollingNone, RollingJiangPlastic, RollingJiangBrittle, RollingWang,
+                           RollingIwashitaOda, RollingForceProportional, RollingConstantTorque,
+                           RollingDisplacementDamping>;
+
+[[noreturn]] void unknown(const LawKind& kind, const std::string& keyword) {
+  throw ConfigError("contact." + std::string(kind.kind) + " = " + keyword + " is not one of " + kind.keywords());
 }
 
-template <class Law>
-void append_slots(std::vector<std::string>& out) {
-  for (const char* s : Law::slots) out.emplace_back(s);
-}
-
-template <class N, class T>
-KernelOps ops_for(RollingLaw law) {
-  return with_rolling_type(law, []<class R>() {
-    return KernelOps{&ContactKernel<N, T, R>::run, &ContactKernel<N, T, R>::stored_energy};
+// Calls f.template operator()<T, R>() for the selected tangential and rolling laws.
+template <class F>
+void with_laws(const LawSelection& laws, F&& f) {
+  const LawCatalog& catalog = law_catalog();
+  if (!catalog.tangential.find(laws.tangential)) unknown(catalog.tangential, laws.tangential);
+  if (!catalog.rolling.find(laws.rolling)) unknown(catalog.rolling, laws.rolling);
+  TangentialLaws::with(laws.tangential, [&]<class T>() {
+    RollingLaws::with(laws.rolling, [&]<class R>() { f.template operator()<T, R>(); });
   });
 }
 
 }  // namespace
 
-std::string to_string(NormalLaw) { return "linear"; }
-std::string to_string(TangentialLaw law) { return law == TangentialLaw::coulomb ? "coulomb" : "none"; }
-std::string to_string(RollingLaw law) {
-  return with_rolling_type(law, []<class R>() { return std::string(R::name); });
-}
-
-bool parse_rolling_law(const std::string& name, RollingLaw& out) {
-  for (RollingLaw law : kRollingOrder)
-    if (to_string(law) == name) {
-      out = law;
-      return true;
-    }
-  return false;
-}
-
-std::string rolling_law_names() {
-  std::string s;
-  for (RollingLaw law : kRollingOrder) s += (s.empty() ? "" : " | ") + to_string(law);
-  return s;
+const LawCatalog& law_catalog() {
+  static const LawCatalog catalog{NormalLaws::kind("normal"), TangentialLaws::kind("tangential"),
+                                  RollingLaws::kind("rolling")};
+  return catalog;
 }
 
 KernelOps select_kernel(const LawSelection& laws) {
-  if (laws.tangential == TangentialLaw::coulomb) return ops_for<NormalLinear, TangentialCoulomb>(laws.rolling);
-  return ops_for<NormalLinear, TangentialNone>(laws.rolling);
+  KernelOps ops;
+  if (!law_catalog().normal.find(laws.normal)) unknown(law_catalog().normal, laws.normal);
+  NormalLaws::with(laws.normal, [&]<class N>() {
+    with_laws(laws, [&]<class T, class R>() {
+      using K = ContactKernel<N, T, R>;
+      ops = KernelOps{&K::run, &K::initial_forces, &K::stored_energy};
+    });
+  });
+  return ops;
 }
 
 std::vector<std::string> history_slots(const LawSelection& laws) {
   std::vector<std::string> out;
-  if (laws.tangential == TangentialLaw::coulomb) append_slots<TangentialCoulomb>(out);
-  with_rolling_type(laws.rolling, [&out]<class R>() {
-    append_slots<R>(out);
-    return 0;
+  with_laws(laws, [&out]<class T, class R>() {
+    for (const char* s : T::slots) out.emplace_back(s);
+    for (const char* s : R::slots) out.emplace_back(s);
   });
   return out;
 }
 
 ContactTable make_contact_table(const LawSelection& laws) {
-  return ContactTable(history_slots(laws), laws.rolling != RollingLaw::none);
+  bool rolling = false;
+  with_laws(laws, [&rolling]<class T, class R>() { rolling = R::kActive; });
+  return ContactTable(history_slots(laws), rolling);
 }
+
+std::optional<TangentialSpring> tangential_spring(const LawSelection& laws, const ContactParams& p) {
+  std::optional<TangentialSpring> out;
+  with_laws(laws, [&]<class T, class R>() {
+    if constexpr (TangentialAPrioriSpring<T>) out = T::spring(p);
+  });
+  return out;
+}
+
+std::optional<RollingSpring> rolling_spring(const LawSelection& laws, const ContactParams& p, const ContactBodies& b,
+                                            const ContactKinematics& geometry) {
+  std::optional<RollingSpring> out;
+  if (!p.rolling) return out;
+  with_laws(laws, [&]<class T, class R>() {
+    if constexpr (RollingAPrioriSpring<R>) out = R::spring(p, b, geometry);
+  });
+  return out;
+}
+
+Config parse_config(int argc, const char* const* argv) { return parse_config(law_catalog(), argc, argv); }
+Config parse_config_text(const std::string& ini, const std::vector<std::string>& overrides) {
+  return parse_config_text(law_catalog(), ini, overrides);
+}
+std::string config_help() { return config_help(law_catalog()); }
+boost::program_options::options_description config_schema() { return config_schema(law_catalog()); }
 
 }  // namespace rondel
