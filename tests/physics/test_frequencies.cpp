@@ -151,7 +151,7 @@ TEST_P(RollingModeOnWall, MeasuredFrequencyIsVerletsDiscreteFrequency) {
   const double discrete = verlet_frequency(w, dt);
   std::printf("[rolling mode on a wall, %s, K = %g, dt = %.2f x critical = %.4g s] measured %.6f rad/s, "
               "discrete (2/dt)asin(w dt/2) %.6f, exact %.6f; measured/discrete - 1 = %.2e, measured/exact - 1 = %.2e\n",
-              to_string(c.law).c_str(), c.K, c.safety, dt, measured, discrete, w, measured / discrete - 1.0,
+              c.law.c_str(), c.K, c.safety, dt, measured, discrete, w, measured / discrete - 1.0,
               measured / w - 1.0);
   EXPECT_LT(worst_cap_use, 0.01) << "the springs must stay elastic";
   EXPECT_NEAR(measured / discrete, 1.0, 1e-5);
@@ -164,7 +164,7 @@ TEST_P(RollingModeOnWall, MeasuredFrequencyIsVerletsDiscreteFrequency) {
 }
 
 std::string rolling_case_name(const ::testing::TestParamInfo<RollingCase>& info) {
-  std::string s = to_string(info.param.law) + (info.param.K < 1.0 ? "_K0p75" : "_K7p5") +
+  std::string s = info.param.law + (info.param.K < 1.0 ? "_K0p75" : "_K7p5") +
                   (info.param.safety < 0.5 ? "_dt0p2" : "_dt0p9");
   return s;
 }
