@@ -1,7 +1,7 @@
 #include "core/Config.hpp"
 
-#include <boost/any.hpp>
 #include <algorithm>
+#include <boost/any.hpp>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -21,12 +21,18 @@ using namespace config;
 std::string value_text(const boost::any& v) {
   std::ostringstream s;
   s.precision(17);
-  if (auto p = boost::any_cast<double>(&v)) s << *p;
-  else if (auto p = boost::any_cast<std::int64_t>(&v)) s << *p;
-  else if (auto p = boost::any_cast<std::uint64_t>(&v)) s << *p;
-  else if (auto p = boost::any_cast<int>(&v)) s << *p;
-  else if (auto p = boost::any_cast<bool>(&v)) s << (*p ? "true" : "false");
-  else if (auto p = boost::any_cast<std::string>(&v)) s << *p;
+  if (auto p = boost::any_cast<double>(&v))
+    s << *p;
+  else if (auto p = boost::any_cast<std::int64_t>(&v))
+    s << *p;
+  else if (auto p = boost::any_cast<std::uint64_t>(&v))
+    s << *p;
+  else if (auto p = boost::any_cast<int>(&v))
+    s << *p;
+  else if (auto p = boost::any_cast<bool>(&v))
+    s << (*p ? "true" : "false");
+  else if (auto p = boost::any_cast<std::string>(&v))
+    s << *p;
   return s.str();
 }
 
@@ -75,7 +81,8 @@ void read_output(const Reader& r, Config& c) {
   check(c.snapshot_every >= 0, "output.snapshot_every", "must be >= 0", std::to_string(c.snapshot_every));
   {
     std::istringstream in(r.get<std::string>("output.snapshot_fields"));
-    const std::string allowed = " gid material radius mass inertia position velocity theta omega force torque flags rank ";
+    const std::string allowed =
+        " gid material radius mass inertia position velocity theta omega force torque flags rank ";
     for (std::string f; in >> f;) {
       check(allowed.find(" " + f + " ") != std::string::npos, "output.snapshot_fields", allowed, f);
       c.snapshot_fields.push_back(f);
@@ -140,9 +147,9 @@ po::variables_map parse(const LawCatalog& laws, const std::vector<std::string>& 
                         const std::string* ini_text) {
   const auto schema = config_schema(laws);
   po::options_description cli("Command line");
-  cli.add_options()("help,h", "print every key with its default, unit and meaning")
-      ("config", po::value<std::string>(), "INI file (also the first positional argument)")
-      ("resume", po::value<std::string>(), "continue from the newest complete checkpoint of this output directory");
+  cli.add_options()("help,h", "print every key with its default, unit and meaning")(
+      "config", po::value<std::string>(), "INI file (also the first positional argument)")(
+      "resume", po::value<std::string>(), "continue from the newest complete checkpoint of this output directory");
   cli.add(schema);
   po::positional_options_description pos;
   pos.add("config", 1);

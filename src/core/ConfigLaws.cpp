@@ -42,8 +42,7 @@ void refuse_unselected_blocks(const LawCatalog& laws, const Reader& r, const Con
 }
 
 // Every parameter of the selected law's block, in declaration order, into p.
-void read_block(const Reader& r, const LawKind& kind, const std::string& law, const LawBlock& block,
-                ContactParams& p) {
+void read_block(const Reader& r, const LawKind& kind, const std::string& law, const LawBlock& block, ContactParams& p) {
   for (const ParamSpec& spec : block.params) {
     const std::string key = std::string(block.section) + "." + spec.key;
     if (!r.vm.count(key)) {
@@ -71,8 +70,7 @@ ContactParams read_wall_contact(const Reader& r, const Config& c, const ContactP
   if (r.vm.count("wall_contact.zeta") && r.vm.count("wall_contact.e"))
     throw ConfigError("keys 'wall_contact.zeta' and 'wall_contact.e': give at most one");
   if (r.vm.count("wall_contact.zeta"))
-    non_negative(w.zeta_n = r.get<double>("wall_contact.zeta"), "wall_contact.zeta"), w.c_n_fixed = -1.0,
-        w.e_n = -1.0;
+    non_negative(w.zeta_n = r.get<double>("wall_contact.zeta"), "wall_contact.zeta"), w.c_n_fixed = -1.0, w.e_n = -1.0;
   if (r.vm.count("wall_contact.e")) {
     const double e = r.get<double>("wall_contact.e");
     in_range(e, kRestitution, "wall_contact.e");

@@ -24,22 +24,26 @@ void check_scene_type(const Reader& r, SceneConfig& s) {
       check(s.radius_max >= s.radius_min, "scene.radius_max", ">= scene.radius_min", num(s.radius_max));
     } else if (s.distribution == "list") {
       check(!s.sizes.empty() && s.sizes.size() == s.fractions.size(), "scene.fractions",
-            "one fraction per size in scene.sizes", std::to_string(s.fractions.size()) + " fractions for " + std::to_string(s.sizes.size()) + " sizes");
+            "one fraction per size in scene.sizes",
+            std::to_string(s.fractions.size()) + " fractions for " + std::to_string(s.sizes.size()) + " sizes");
       double sum = 0.0;
       for (double v : s.sizes) check(v > 0.0, "scene.sizes", "radii must be > 0", num(v));
       for (double f : s.fractions) check(f >= 0.0, "scene.fractions", "fractions must be >= 0", num(f)), sum += f;
       check(std::fabs(sum - 1.0) < 1e-9, "scene.fractions", "fractions must sum to 1", num(sum));
     } else {
-      throw ConfigError("key 'scene.distribution' = " + s.distribution + " is not allowed: uniform_radius | uniform_area | list");
+      throw ConfigError("key 'scene.distribution' = " + s.distribution +
+                        " is not allowed: uniform_radius | uniform_area | list");
     }
   } else if (s.type == "file") {
-    if (s.file.empty()) throw ConfigError("missing required key 'scene.file' (scene.type = file: a checkpoint or snapshot)");
+    if (s.file.empty())
+      throw ConfigError("missing required key 'scene.file' (scene.type = file: a checkpoint or snapshot)");
   } else if (s.type == "csv") {
     if (s.file.empty()) throw ConfigError("missing required key 'scene.file' (scene.type = csv)");
     check(s.replicate_x >= 1, "scene.replicate_x", "must be >= 1", std::to_string(s.replicate_x));
     check(s.replicate_y >= 1, "scene.replicate_y", "must be >= 1", std::to_string(s.replicate_y));
   } else {
-    throw ConfigError("key 'scene.type' = " + s.type + " is not allowed: lattice_square | lattice_hex | random | csv | file");
+    throw ConfigError("key 'scene.type' = " + s.type +
+                      " is not allowed: lattice_square | lattice_hex | random | csv | file");
   }
 }
 
@@ -47,7 +51,8 @@ void check_scene_type(const Reader& r, SceneConfig& s) {
 
 void read_scene(const Reader& r, Config& c) {
   SceneConfig& s = c.scene;
-  if (!r.vm.count("scene.type")) throw ConfigError("missing required key 'scene.type' (lattice_square | lattice_hex | random | csv)");
+  if (!r.vm.count("scene.type"))
+    throw ConfigError("missing required key 'scene.type' (lattice_square | lattice_hex | random | csv)");
   s.type = r.get<std::string>("scene.type");
   s.nx = r.get<int>("scene.nx");
   s.ny = r.get<int>("scene.ny");
@@ -75,9 +80,12 @@ void read_scene(const Reader& r, Config& c) {
   if (region.empty()) region = numbers(r.get<std::string>("walls.box_region"), "walls.box_region");
   const Domain& d = c.domain;
   const double box[4] = {d.xlo, d.xhi, d.ylo, d.yhi};
-  if (region.empty()) std::copy(box, box + 4, s.region);
-  else if (region.size() == 4 && region[0] < region[1] && region[2] < region[3]) std::copy(region.begin(), region.end(), s.region);
-  else throw ConfigError("key 'scene.region' must be 'xlo xhi ylo yhi' with xlo < xhi and ylo < yhi");
+  if (region.empty())
+    std::copy(box, box + 4, s.region);
+  else if (region.size() == 4 && region[0] < region[1] && region[2] < region[3])
+    std::copy(region.begin(), region.end(), s.region);
+  else
+    throw ConfigError("key 'scene.region' must be 'xlo xhi ylo yhi' with xlo < xhi and ylo < yhi");
 
   check_scene_type(r, s);
 }

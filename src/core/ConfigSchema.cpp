@@ -9,6 +9,7 @@ namespace rondel {
 
 namespace po = boost::program_options;
 
+// The key lists below keep one key per line (clang-format would run them together).
 namespace {
 template <class T>
 po::typed_value<T>* def(T v) {
@@ -27,6 +28,7 @@ po::typed_value<T>* opt() {
 }
 
 void add_run_sections(po::options_description& all) {
+  // clang-format off
   po::options_description run("[run]");
   run.add_options()
       ("run.steps", def<std::int64_t>(1000), "[-] number of time steps")
@@ -50,10 +52,12 @@ void add_run_sections(po::options_description& all) {
       ("output.checkpoint_at_end", def(true), "[-] write a checkpoint after the last step");
   po::options_description diag("[diagnostics]");
   diag.add_options()("diagnostics.every", def<std::int64_t>(100), "[steps] interval of diagnostics.csv rows");
+  // clang-format on
   all.add(run).add(out).add(diag);
 }
 
 void add_body_sections(po::options_description& all) {
+  // clang-format off
   po::options_description domain("[domain]");
   domain.add_options()
       ("domain.xlo", opt<double>(), "[m] box lower x (required)")
@@ -68,31 +72,40 @@ void add_body_sections(po::options_description& all) {
   mat.add_options()
       ("material.density", def(2650.0), "[kg/m^3] disc density")
       ("material.thickness", def(1.0), "[m] disc thickness t (forces and energies are per t)");
+  // clang-format on
   all.add(domain).add(grav).add(mat);
 }
 
-// "[unit] help (required), RANGE" for one law parameter.
+// "[unit] help (required), RANGE" for one law parameter. (Built by appending: GCC 12 warns falsely,
+// -Wrestrict, on "literal" + std::string here.)
 std::string param_help(const ParamSpec& p) {
-  return "[" + std::string(p.unit) + "] " + p.help + (p.presence == Presence::required ? " (required)" : "") + ", " +
-         p.range.text();
+  std::string s = "[";
+  s.append(p.unit).append("] ").append(p.help);
+  if (p.presence == Presence::required) s += " (required)";
+  return s.append(", ").append(p.range.text());
 }
 
 // [contact] (one key per kind, its laws listed), then every law block, then [wall_contact].
 void add_law_sections(po::options_description& all, const LawCatalog& laws) {
   po::options_description contact("[contact]");
-  for (const LawKind* kind : laws.kinds())
-    contact.add_options()((std::string("contact.") + kind->kind).c_str(), def(kind->laws.front().keyword),
-                          ("[-] " + std::string(kind->kind) + " law: " + kind->keywords()).c_str());
+  for (const LawKind* kind : laws.kinds()) {
+    const std::string key = std::string("contact.").append(kind->kind);
+    const std::string help = std::string("[-] ").append(kind->kind).append(" law: ").append(kind->keywords());
+    contact.add_options()(key.c_str(), def(kind->laws.front().keyword), help.c_str());
+  }
   all.add(contact);
   for (const LawBlock* block : laws.blocks()) {
-    po::options_description section("[" + std::string(block->section) + "] " + block->title);
+    po::options_description section(std::string("[").append(block->section).append("] ").append(block->title));
     for (const ParamSpec& p : block->params) {
-      const std::string key = std::string(block->section) + "." + p.key;
-      if (p.presence == Presence::defaulted) section.add_options()(key.c_str(), def(p.def), param_help(p).c_str());
-      else section.add_options()(key.c_str(), opt<double>(), param_help(p).c_str());
+      const std::string key = std::string(block->section).append(".").append(p.key);
+      if (p.presence == Presence::defaulted)
+        section.add_options()(key.c_str(), def(p.def), param_help(p).c_str());
+      else
+        section.add_options()(key.c_str(), opt<double>(), param_help(p).c_str());
     }
     all.add(section);
   }
+  // clang-format off
   po::options_description wallc("[wall_contact] disc-wall parameters (default: the disc-disc ones)");
   wallc.add_options()
       ("wall_contact.k_n", opt<double>(), "[N/m] normal stiffness at walls")
@@ -101,10 +114,12 @@ void add_law_sections(po::options_description& all, const LawCatalog& laws) {
       ("wall_contact.k_s", opt<double>(), "[N/m] tangential stiffness at walls")
       ("wall_contact.mu", opt<double>(), "[-] friction at walls >= 0")
       ("wall_contact.rolling", def(true), "[-] rolling resistance at walls (same law and parameters as discs)");
+  // clang-format on
   all.add(wallc);
 }
 
 void add_wall_sections(po::options_description& all) {
+  // clang-format off
   po::options_description neigh("[neighbour]");
   neigh.add_options()("neighbour.skin", def(0.0), "[m] Verlet skin; 0 = a quarter of the mean radius");
   po::options_description par("[parallel]");
@@ -127,10 +142,12 @@ void add_wall_sections(po::options_description& all) {
       ("walls.servo_max_speed", def(0.1), "[m/s] largest servo wall speed")
       ("walls.lines", def(""), "[m, m/s] infinite lines 'px py nx ny [vx vy]; ...' (n points to the discs)")
       ("walls.segments", def(""), "[m, m/s] segments 'x1 y1 x2 y2 [vx vy]; ...'");
+  // clang-format on
   all.add(neigh).add(par).add(walls);
 }
 
 void add_scene_section(po::options_description& all) {
+  // clang-format off
   po::options_description scene("[scene]");
   scene.add_options()
       ("scene.type", opt<std::string>(), "[-] lattice_square | lattice_hex | random | csv | file (required)")
@@ -157,6 +174,7 @@ void add_scene_section(po::options_description& all) {
       ("scene.vy", def(0.0), "[m/s] initial velocity y")
       ("scene.omega", def(0.0), "[rad/s] initial angular velocity")
       ("scene.max_initial_overlap", def(0.01), "[-] largest initial overlap allowed, / smaller radius");
+  // clang-format on
   all.add(scene);
 }
 

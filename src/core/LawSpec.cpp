@@ -7,8 +7,10 @@ namespace rondel {
 
 std::string Range::text() const {
   std::ostringstream s;
-  if (std::isinf(hi)) s << (lo_open ? "> " : ">= ") << lo;
-  else s << "in " << (lo_open ? "(" : "[") << lo << ", " << hi << (hi_open ? ")" : "]");
+  if (std::isinf(hi))
+    s << (lo_open ? "> " : ">= ") << lo;
+  else
+    s << "in " << (lo_open ? "(" : "[") << lo << ", " << hi << (hi_open ? ")" : "]");
   return s.str();
 }
 

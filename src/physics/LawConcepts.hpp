@@ -29,9 +29,15 @@ concept HistoryLaw = requires {
   { L::slots.data() } -> std::convertible_to<const char* const*>;
 };
 
+// "This law has no a-priori spring for the critical step", with the reason.
 template <class L>
-concept NormalLawType = DeclaredLaw<L> && requires(const ContactParams& p, const ContactBodies& b,
-                                                   const ContactKinematics& k) {
+concept DeclaresNoSpring = requires {
+  { L::no_spring } -> std::convertible_to<const char*>;
+};
+
+template <class L>
+concept NormalLawType = DeclaredLaw<L> &&
+    requires(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k) {
   { L::force(p, b, k) } -> std::same_as<double>;
   { L::c_n(p, b) } -> std::same_as<double>;
 };
@@ -42,15 +48,16 @@ concept TangentialAPrioriSpring = requires(const ContactParams& p) {
 };
 
 template <class L>
-concept TangentialLawType =
-    DeclaredLaw<L> && HistoryLaw<L> &&
-    requires(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double* const* h) {
-      { L::kFriction } -> std::convertible_to<bool>;
-      { L::force(p, b, k, 0.0, 0.0, h, std::size_t{}) } -> std::same_as<TangentialForce>;
-      { L::stored(p, h, std::size_t{}) } -> std::same_as<double>;
-    } && (TangentialAPrioriSpring<L> || requires {
-      { L::no_spring } -> std::convertible_to<const char*>;
-    });
+concept TangentialCalls = requires(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
+                                   double* const* h) {
+  { L::kFriction } -> std::convertible_to<bool>;
+  { L::force(p, b, k, 0.0, 0.0, h, std::size_t{}) } -> std::same_as<TangentialForce>;
+  { L::stored(p, h, std::size_t{}) } -> std::same_as<double>;
+};
+
+template <class L>
+concept TangentialLawType = DeclaredLaw<L> && HistoryLaw<L> && TangentialCalls<L> &&
+    (TangentialAPrioriSpring<L> || DeclaresNoSpring<L>);
 
 template <class L>
 concept RollingAPrioriSpring = requires(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k) {
@@ -58,15 +65,16 @@ concept RollingAPrioriSpring = requires(const ContactParams& p, const ContactBod
 };
 
 template <class L>
-concept RollingLawType =
-    DeclaredLaw<L> && HistoryLaw<L> &&
-    requires(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double* const* h) {
-      { L::kActive } -> std::convertible_to<bool>;
-      { L::moment(p, b, k, 0.0, 0.0, 0.0, 0.0, h, std::size_t{}) } -> std::same_as<RollingCouple>;
-      { L::stored(p, b, k, 0.0, h, std::size_t{}) } -> std::same_as<double>;
-      { L::cap(p, k, 0.0) } -> std::same_as<double>;
-    } && (RollingAPrioriSpring<L> || requires {
-      { L::no_spring } -> std::convertible_to<const char*>;
-    });
+concept RollingCalls = requires(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
+                                double* const* h) {
+  { L::kActive } -> std::convertible_to<bool>;
+  { L::moment(p, b, k, 0.0, 0.0, 0.0, 0.0, h, std::size_t{}) } -> std::same_as<RollingCouple>;
+  { L::stored(p, b, k, 0.0, h, std::size_t{}) } -> std::same_as<double>;
+  { L::cap(p, k, 0.0) } -> std::same_as<double>;
+};
+
+template <class L>
+concept RollingLawType = DeclaredLaw<L> && HistoryLaw<L> && RollingCalls<L> &&
+    (RollingAPrioriSpring<L> || DeclaresNoSpring<L>);
 
 }  // namespace rondel

@@ -55,9 +55,9 @@ struct LawList {
 // The registry rows. The first law of each list is the default of its contact.<kind> key.
 using NormalLaws = LawList<NormalRow, NormalLinear>;
 using TangentialLaws = LawList<TangentialRow, TangentialCoulomb, TangentialNone>;
-using RollingLaws = LawList<RollingRow, RollingNone, RollingJiangPlastic, RollingJiangBrittle, RollingWang,
-                           RollingIwashitaOda, RollingForceProportional, RollingConstantTorque,
-                           RollingDisplacementDamping>;
+using RollingLaws =
+    LawList<RollingRow, RollingNone, RollingJiangPlastic, RollingJiangBrittle, RollingWang, RollingIwashitaOda,
+            RollingForceProportional, RollingConstantTorque, RollingDisplacementDamping>;
 
 [[noreturn]] void unknown(const LawKind& kind, const std::string& keyword) {
   throw ConfigError("contact." + std::string(kind.kind) + " = " + keyword + " is not one of " + kind.keywords());
