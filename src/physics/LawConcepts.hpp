@@ -1,5 +1,5 @@
 #pragma once
-// What a contact law must provide, one concept per kind. The registry (LawRegistry.cpp) checks every row
+// What a contact law must provide, one concept per kind. The registry (LawRows.hpp) checks every row
 // against its concept with a static_assert, so a law type that lacks a member fails to compile there,
 // with the law's name in the instantiation and the missing requirement in the note.
 //

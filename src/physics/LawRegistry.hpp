@@ -1,5 +1,5 @@
 #pragma once
-// The registry of contact laws: one list of law types per kind (LawRegistry.cpp). Everything that depends
+// The registry of contact laws: one list of law types per kind (LawRows.hpp). Everything that depends
 // on the set of laws iterates over it: the kernel selection, the history slots, the critical step's
 // springs and the law catalog the configuration layer parses, prints and checks the law blocks with.
 #include <boost/program_options.hpp>
