@@ -159,5 +159,38 @@ TEST(LawRegistry, ResolvedTextHoldsExactlyTheSelectedLawsBlock) {
     }
 }
 
+std::string config_error(const std::vector<std::string>& overrides) {
+  try {
+    parse_config_text(kBase, overrides);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "accepted; expected a ConfigError";
+  return "";
+}
+
+TEST(LawRegistry, EveryRequiredParameterAndEveryUnselectedBlockIsRefusedNamingTheKey) {
+  const LawCatalog& catalog = law_catalog();
+  for (const LawInfo& law : catalog.rolling.laws) {
+    if (!law.block) continue;
+    SCOPED_TRACE(law.keyword);
+    const std::vector<std::string> all = selecting(catalog.rolling, law);
+    for (const ParamSpec& p : law.block->params) {
+      const std::string key = std::string(law.block->section) + "." + p.key;
+      if (p.presence == Presence::required) {
+        std::vector<std::string> missing;
+        for (const std::string& o : all)
+          if (o.rfind("--" + key + "=", 0) != 0) missing.push_back(o);
+        EXPECT_NE(config_error(missing).find(key), std::string::npos) << key << " missing";
+      }
+      // The same key with rolling = none: a block of a law that is not selected.
+      const std::string message =
+          config_error({"--coulomb.k_s=1e4", "--coulomb.mu=0.5", "--contact.rolling=none", "--" + key + "=1"});
+      EXPECT_NE(message.find(key), std::string::npos) << message;
+      EXPECT_NE(message.find("contact.rolling = none"), std::string::npos) << message;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace rondel
