@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "OneContactRig.hpp"
 #include "core/Config.hpp"
 #include "core/Errors.hpp"
 #include "physics/CriticalTimeStep.hpp"
@@ -157,6 +158,31 @@ TEST(LawRegistry, ResolvedTextHoldsExactlyTheSelectedLawsBlock) {
         EXPECT_EQ(present, other.block == law.block) << "[" << other.block->section << "] in\n" << c.resolved_text;
       }
     }
+}
+
+// A dashpot alone above the cap at t = 0: KernelOps::initial gives the capped forces of the initial state
+// but leaves the springs as they were (a committing pass would reset them to -F/k, PHYSICS.md section 1).
+TEST(LawRegistry, InitialForcesCommitNoHistory) {
+  ContactParams p;
+  p.k_n = 1e5;
+  p.k_s = 1e4;
+  p.mu = 0.1;
+  p.zeta_t = 0.5;
+  p.k_r = 1e4;
+  p.mu_r = 0.01;
+  p.c_r = 1e3;
+  const double R = 0.01, u0 = 1e-4;
+  testing_rig::OneContactRig rig({"linear", "coulomb", "wang"}, p, R, R, u0, p.k_n * u0);
+  rig.discs().velocity[0] = 10.0 * rig.t;
+  rig.discs().omega[0] = 100.0;
+  rig.start(1e-6);
+  const ContactTable& row = rig.row_table();
+  ASSERT_EQ(row.slot.size(), 2u);  // xi, x_r
+  const double F_n = p.k_n * u0;
+  EXPECT_NEAR(std::fabs(row.F_t[0]), p.mu * F_n, 1e-12 * F_n) << "the tangential dashpot alone is capped";
+  EXPECT_NEAR(std::fabs(row.M1[0]), R / 2 * p.mu_r * F_n, 1e-12 * F_n) << "the rolling dashpot alone is capped";
+  EXPECT_EQ(row.slot[0][0], 0.0) << "xi not committed";
+  EXPECT_EQ(row.slot[1][0], 0.0) << "x_r not committed";
 }
 
 std::string config_error(const std::vector<std::string>& overrides) {
