@@ -164,9 +164,7 @@ int main(int argc, char** argv) {
         const rondel::StateHeader h = rondel::read_state_header(path, comm);
         rondel::DiscStore discs;
         rondel::read_state_discs(path, discs, comm);
-        rondel::LawSelection laws;
-        laws.tangential = rondel::TangentialLaw::coulomb;
-        laws.rolling = rondel::RollingLaw::wang;
+        const rondel::LawSelection laws{"linear", "coulomb", "wang"};
         rondel::ContactTable pairs = rondel::make_contact_table(laws), walls = rondel::make_contact_table(laws);
         rondel::read_state_rows(path, pairs, walls, comm);
         comm.barrier();

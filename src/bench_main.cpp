@@ -17,6 +17,7 @@
 #include "app/Simulation.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"
+#include "physics/LawRegistry.hpp"
 
 namespace {
 
@@ -43,17 +44,28 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-// The [contact] rolling line and the law's parameter block.
+// The benchmark's value of each rolling parameter it sets, by key; the others keep their defaults.
+struct BenchValue {
+  const char* key;
+  const char* value;
+};
+constexpr BenchValue kRollingValues[] = {
+    {"jiang.delta", "0.5"},          {"wang.k_r", "28571.43"},          {"wang.mu_r", "0.1"},
+    {"iwashita_oda.K_r", "4018"},    {"iwashita_oda.C_r", "0"},         {"iwashita_oda.eta", "0.0375"},
+    {"force_proportional.mu_r", "0.1"}, {"constant_torque.mu_r", "0.05"}, {"displacement_damping.mu_r", "0.05"},
+};
+
+// The [contact] rolling line and the law's parameter block, from the law's parameter list.
 std::string rolling_block(const std::string& law) {
-  const std::string head = "[contact]\nrolling = " + law + "\n";
-  if (law == "none") return head;
-  if (law == "jiang_plastic" || law == "jiang_brittle") return head + "[jiang]\ndelta = 0.5\n";
-  if (law == "wang") return head + "[wang]\nk_r = 28571.43\nmu_r = 0.1\n";
-  if (law == "iwashita_oda") return head + "[iwashita_oda]\nK_r = 4018\nC_r = 0\neta = 0.0375\n";
-  if (law == "force_proportional") return head + "[force_proportional]\nmu_r = 0.1\n";
-  if (law == "constant_torque") return head + "[constant_torque]\nmu_r = 0.05\n";
-  if (law == "displacement_damping") return head + "[displacement_damping]\nmu_r = 0.05\n";
-  throw rondel::ConfigError("rondel_bench: --rolling '" + law + "' is not a rolling law");
+  const rondel::LawInfo* info = rondel::law_catalog().rolling.find(law);
+  if (!info) throw rondel::ConfigError("rondel_bench: --rolling '" + law + "' is not a rolling law");
+  std::string text = "[contact]\nrolling = " + law + "\n";
+  if (!info->block) return text;
+  text += "[" + std::string(info->block->section) + "]\n";
+  for (const rondel::ParamSpec& p : info->block->params)
+    for (const BenchValue& v : kRollingValues)
+      if (std::string(info->block->section) + "." + p.key == v.key) text += std::string(p.key) + " = " + v.value + "\n";
+  return text;
 }
 
 // The periodic box from the file's comment line "Periodic box x, y in [lo, hi]".

@@ -84,12 +84,17 @@ struct HelpRequested {
   std::string text;
 };
 
-// Parses `rondel [FILE.ini] [--section.key=value ...]`. Throws ConfigError naming the key on bad input,
-// HelpRequested for --help.
-Config parse_config(int argc, const char* const* argv);
+struct LawCatalog;
+
+// Parses `rondel [FILE.ini] [--section.key=value ...]` with the laws of `laws` (their keywords, blocks and
+// parameters). Throws ConfigError naming the key on bad input, HelpRequested for --help.
+// physics/LawRegistry.hpp declares the same functions without the first argument, with the registry's
+// catalog: parse_config(argc, argv), parse_config_text(ini, overrides), config_help().
+Config parse_config(const LawCatalog& laws, int argc, const char* const* argv);
 // The same from an INI text (tests): `overrides` are command-line style ("--run.steps=10").
-Config parse_config_text(const std::string& ini, const std::vector<std::string>& overrides = {});
+Config parse_config_text(const LawCatalog& laws, const std::string& ini,
+                         const std::vector<std::string>& overrides = {});
 // The reference of every key (rondel --help).
-std::string config_help();
+std::string config_help(const LawCatalog& laws);
 
 }  // namespace rondel

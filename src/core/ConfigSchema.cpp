@@ -3,11 +3,13 @@
 #include <cstdint>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace rondel {
 
 namespace po = boost::program_options;
 
+// The key lists below keep one key per line (clang-format would run them together).
 namespace {
 template <class T>
 po::typed_value<T>* def(T v) {
@@ -24,9 +26,9 @@ template <class T>
 po::typed_value<T>* opt() {
   return po::value<T>();
 }
-}  // namespace
 
-po::options_description config_schema() {
+void add_run_sections(po::options_description& all) {
+  // clang-format off
   po::options_description run("[run]");
   run.add_options()
       ("run.steps", def<std::int64_t>(1000), "[-] number of time steps")
@@ -50,6 +52,12 @@ po::options_description config_schema() {
       ("output.checkpoint_at_end", def(true), "[-] write a checkpoint after the last step");
   po::options_description diag("[diagnostics]");
   diag.add_options()("diagnostics.every", def<std::int64_t>(100), "[steps] interval of diagnostics.csv rows");
+  // clang-format on
+  all.add(run).add(out).add(diag);
+}
+
+void add_body_sections(po::options_description& all) {
+  // clang-format off
   po::options_description domain("[domain]");
   domain.add_options()
       ("domain.xlo", opt<double>(), "[m] box lower x (required)")
@@ -64,47 +72,40 @@ po::options_description config_schema() {
   mat.add_options()
       ("material.density", def(2650.0), "[kg/m^3] disc density")
       ("material.thickness", def(1.0), "[m] disc thickness t (forces and energies are per t)");
+  // clang-format on
+  all.add(domain).add(grav).add(mat);
+}
+
+// "[unit] help (required), RANGE" for one law parameter. (Built by appending: GCC 12 warns falsely,
+// -Wrestrict, on "literal" + std::string here.)
+std::string param_help(const ParamSpec& p) {
+  std::string s = "[";
+  s.append(p.unit).append("] ").append(p.help);
+  if (p.presence == Presence::required) s += " (required)";
+  return s.append(", ").append(p.range.text());
+}
+
+// [contact] (one key per kind, its laws listed), then every law block, then [wall_contact].
+void add_law_sections(po::options_description& all, const LawCatalog& laws) {
   po::options_description contact("[contact]");
-  contact.add_options()
-      ("contact.normal", def("linear"), "[-] normal law: linear")
-      ("contact.tangential", def("coulomb"), "[-] tangential law: coulomb | none")
-      ("contact.rolling", def("none"), "[-] rolling law: none | jiang_plastic | jiang_brittle | wang | "
-                                        "iwashita_oda | force_proportional | constant_torque | displacement_damping");
-  po::options_description linear("[linear] normal spring-dashpot, no tension");
-  linear.add_options()
-      ("linear.k_n", opt<double>(), "[N/m] normal stiffness (required)")
-      ("linear.zeta", opt<double>(), "[-] normal damping ratio >= 0 (default 0; give one of zeta, c_n, e)")
-      ("linear.c_n", opt<double>(), "[N s/m] normal dashpot coefficient >= 0")
-      ("linear.e", opt<double>(), "[-] restitution coefficient in (0, 1]");
-  po::options_description coulomb("[coulomb] Cundall-Strack tangential spring with Coulomb cap");
-  coulomb.add_options()
-      ("coulomb.k_s", opt<double>(), "[N/m] tangential stiffness (required with coulomb)")
-      ("coulomb.mu", opt<double>(), "[-] friction coefficient >= 0 (required with coulomb)")
-      ("coulomb.zeta_t", def(0.0), "[-] tangential damping ratio >= 0");
-  po::options_description jiang("[jiang] Jiang, Yu & Harris 2005 (jiang_plastic, jiang_brittle)");
-  jiang.add_options()("jiang.delta", opt<double>(), "[-] shape parameter: contact width B = delta r (required), > 0");
-  po::options_description wang("[wang] Wang et al. 2015 spring-slider on the objective rolling displacement");
-  wang.add_options()
-      ("wang.k_r", opt<double>(), "[N/m] rolling stiffness (required), > 0")
-      ("wang.mu_r", opt<double>(), "[-] rolling friction: cap mu_r F_n on T_r (required), >= 0")
-      ("wang.c_r", def(0.0), "[N s/m] rolling dashpot, >= 0");
-  po::options_description io("[iwashita_oda] Iwashita & Oda 1998 (legacy rolling measure, for comparison)");
-  io.add_options()
-      ("iwashita_oda.K_r", opt<double>(), "[N m/rad] rolling stiffness (required), > 0")
-      ("iwashita_oda.C_r", opt<double>(), "[N m s/rad] rolling dashpot (required), >= 0")
-      ("iwashita_oda.eta", opt<double>(), "[m] couple cap eta F_n (required), >= 0");
-  po::options_description fp("[force_proportional] commercial manual Eq. 3275 (not objective)");
-  fp.add_options()("force_proportional.mu_r", opt<double>(), "[-] rolling friction (required), >= 0");
-  po::options_description ct("[constant_torque] commercial manual Eq. 3276 with moment limiter");
-  ct.add_options()
-      ("constant_torque.mu_r", opt<double>(), "[-] rolling friction (required), >= 0")
-      ("constant_torque.f_lim", def(0.08), "[-] moment limiter fraction; 0 switches the limiter off");
-  po::options_description dd("[displacement_damping] commercial manual Eqs. 3277-3278");
-  dd.add_options()
-      ("displacement_damping.mu_r", opt<double>(), "[-] rolling friction (required), >= 0")
-      ("displacement_damping.theta_rmax", def(0.035), "[rad] rotation at which the couple reaches its cap, > 0")
-      ("displacement_damping.nu", def(0.0), "[-] viscous damping factor (0 = off), >= 0")
-      ("displacement_damping.f", def(1.0), "[-] viscous damping multiplier at the limit, >= 0");
+  for (const LawKind* kind : laws.kinds()) {
+    const std::string key = std::string("contact.").append(kind->kind);
+    const std::string help = std::string("[-] ").append(kind->kind).append(" law: ").append(kind->keywords());
+    contact.add_options()(key.c_str(), def(kind->laws.front().keyword), help.c_str());
+  }
+  all.add(contact);
+  for (const LawBlock* block : laws.blocks()) {
+    po::options_description section(std::string("[").append(block->section).append("] ").append(block->title));
+    for (const ParamSpec& p : block->params) {
+      const std::string key = std::string(block->section).append(".").append(p.key);
+      if (p.presence == Presence::defaulted)
+        section.add_options()(key.c_str(), def(p.def), param_help(p).c_str());
+      else
+        section.add_options()(key.c_str(), opt<double>(), param_help(p).c_str());
+    }
+    all.add(section);
+  }
+  // clang-format off
   po::options_description wallc("[wall_contact] disc-wall parameters (default: the disc-disc ones)");
   wallc.add_options()
       ("wall_contact.k_n", opt<double>(), "[N/m] normal stiffness at walls")
@@ -113,6 +114,12 @@ po::options_description config_schema() {
       ("wall_contact.k_s", opt<double>(), "[N/m] tangential stiffness at walls")
       ("wall_contact.mu", opt<double>(), "[-] friction at walls >= 0")
       ("wall_contact.rolling", def(true), "[-] rolling resistance at walls (same law and parameters as discs)");
+  // clang-format on
+  all.add(wallc);
+}
+
+void add_wall_sections(po::options_description& all) {
+  // clang-format off
   po::options_description neigh("[neighbour]");
   neigh.add_options()("neighbour.skin", def(0.0), "[m] Verlet skin; 0 = a quarter of the mean radius");
   po::options_description par("[parallel]");
@@ -135,6 +142,12 @@ po::options_description config_schema() {
       ("walls.servo_max_speed", def(0.1), "[m/s] largest servo wall speed")
       ("walls.lines", def(""), "[m, m/s] infinite lines 'px py nx ny [vx vy]; ...' (n points to the discs)")
       ("walls.segments", def(""), "[m, m/s] segments 'x1 y1 x2 y2 [vx vy]; ...'");
+  // clang-format on
+  all.add(neigh).add(par).add(walls);
+}
+
+void add_scene_section(po::options_description& all) {
+  // clang-format off
   po::options_description scene("[scene]");
   scene.add_options()
       ("scene.type", opt<std::string>(), "[-] lattice_square | lattice_hex | random | csv | file (required)")
@@ -161,10 +174,19 @@ po::options_description config_schema() {
       ("scene.vy", def(0.0), "[m/s] initial velocity y")
       ("scene.omega", def(0.0), "[rad/s] initial angular velocity")
       ("scene.max_initial_overlap", def(0.01), "[-] largest initial overlap allowed, / smaller radius");
+  // clang-format on
+  all.add(scene);
+}
+
+}  // namespace
+
+po::options_description config_schema(const LawCatalog& laws) {
   po::options_description all;
-  all.add(run).add(out).add(diag).add(domain).add(grav).add(mat).add(contact).add(linear).add(coulomb).add(jiang).add(wang)
-      .add(io).add(fp).add(ct).add(dd).add(wallc)
-      .add(neigh).add(par).add(walls).add(scene);
+  add_run_sections(all);
+  add_body_sections(all);
+  add_law_sections(all, laws);
+  add_wall_sections(all);
+  add_scene_section(all);
   return all;
 }
 

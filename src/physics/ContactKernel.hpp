@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 
 #include "core/ContactParams.hpp"
 #include "core/ContactTable.hpp"
@@ -63,6 +64,15 @@ struct ContactKernel {
     run_rows<true>(c, wall_rows, ledger);
   }
 
+  // The forces of the initial state for the first half kick (c.dt = 0): the laws see a copy of each
+  // row's history, so a capping rule that resets a spring (a dashpot alone above the cap) commits
+  // nothing, and no work is booked. The run starts from the history it was given.
+  static void initial_forces(const KernelContext& c, ContactTable& pairs, ContactTable& wall_rows) {
+    LedgerStep unused;
+    run_rows<false, false>(c, pairs, unused);
+    run_rows<true, false>(c, wall_rows, unused);
+  }
+
   static ContactSummary stored_energy(const KernelContext& c, ContactTable& pairs, ContactTable& wall_rows) {
     ContactSummary e;
     stored_rows<false>(c, pairs, e);
@@ -79,6 +89,32 @@ struct ContactKernel {
       for (std::size_t s = 0; s < kRSlots; ++s) r[s] = tab.slot[kTSlots + s].data();
     }
   };
+
+  // The history the laws of row r write to: the table's columns (committed), or a copy of the row's
+  // values that is dropped afterwards (scratch; the laws then index row 0 of the copy).
+  struct CommittedHistory {
+    const Slots& h;
+    std::size_t row;
+    CommittedHistory(const Slots& slots, std::size_t r) : h(slots), row(r) {}
+    double* const* t() const { return h.t.data(); }
+    double* const* r() const { return h.r.data(); }
+  };
+  struct ScratchHistory {
+    std::array<double, kTSlots + 1> tv{};
+    std::array<double, kRSlots + 1> rv{};
+    std::array<double*, kTSlots + 1> tp{};
+    std::array<double*, kRSlots + 1> rp{};
+    std::size_t row = 0;
+    ScratchHistory(const Slots& slots, std::size_t r) {
+      for (std::size_t s = 0; s < kTSlots; ++s) tv[s] = slots.t[s][r], tp[s] = &tv[s];
+      for (std::size_t s = 0; s < kRSlots; ++s) rv[s] = slots.r[s][r], rp[s] = &rv[s];
+    }
+    ScratchHistory(const ScratchHistory&) = delete;  // tp and rp point into this object
+    double* const* t() const { return tp.data(); }
+    double* const* r() const { return rp.data(); }
+  };
+  template <bool kCommit>
+  using History = std::conditional_t<kCommit, CommittedHistory, ScratchHistory>;
 
   struct Row {
     ContactKinematics k;
@@ -118,9 +154,12 @@ struct ContactKernel {
     return true;
   }
 
+  template <bool kCommit>
   static void open_row(ContactTable& tab, std::size_t r, const Slots& h) {
-    for (std::size_t s = 0; s < kTSlots; ++s) h.t[s][r] = 0.0;
-    for (std::size_t s = 0; s < kRSlots; ++s) h.r[s][r] = 0.0;
+    if constexpr (kCommit) {
+      for (std::size_t s = 0; s < kTSlots; ++s) h.t[s][r] = 0.0;
+      for (std::size_t s = 0; s < kRSlots; ++s) h.r[s][r] = 0.0;
+    }
     tab.F_n[r] = 0.0;
     tab.F_t[r] = 0.0;
     if constexpr (Rolling::kActive) {
@@ -132,7 +171,7 @@ struct ContactKernel {
     tab.tq2[r] = 0.0;
   }
 
-  template <bool kWall>
+  template <bool kWall, bool kCommit = true>
   static void run_rows(const KernelContext& c, ContactTable& tab, LedgerStep& ledger) {
     const std::size_t n_owned = c.discs.n_owned();
     const double dt = c.dt;
@@ -146,7 +185,7 @@ struct ContactKernel {
           L.worst_overlap = INFINITY;  // coincident centres: the run has failed
           L.worst_key = tab.key[r];
         }
-        open_row(tab, r, h);
+        open_row<kCommit>(tab, r, h);
         continue;
       }
       const ContactKinematics& k = row.k;
@@ -159,7 +198,7 @@ struct ContactKernel {
           if constexpr (Rolling::kActive) L.W_r += 0.5 * (tab.M1[r] * row.w1 + tab.M2[r] * row.w2) * dt;
           if constexpr (kWall) L.W_w += 0.5 * dot(tab.f1[r], row.v_wall) * dt;
         }
-        open_row(tab, r, h);
+        open_row<kCommit>(tab, r, h);
         continue;
       }
 
@@ -171,10 +210,11 @@ struct ContactKernel {
       }
       const ContactParams& p = params[static_cast<std::size_t>(tab.param[r])];
       const double F_n = Normal::force(p, row.b, k);
-      const TangentialForce T = Tangential::force(p, row.b, k, F_n, dt, h.t.data(), r);
+      History<kCommit> hist(h, r);
+      const TangentialForce T = Tangential::force(p, row.b, k, F_n, dt, hist.t(), hist.row);
       RollingCouple M;
       if constexpr (Rolling::kActive) {
-        if (p.rolling) M = Rolling::moment(p, row.b, k, F_n, dt, row.w1, row.w2, h.r.data(), r);
+        if (p.rolling) M = Rolling::moment(p, row.b, k, F_n, dt, row.w1, row.w2, hist.r(), hist.row);
       }
       const Vec2 f1 = T.F_t * k.t - F_n * k.n;
       if (book) {

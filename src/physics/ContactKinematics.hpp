@@ -22,6 +22,26 @@ struct ContactKinematics {
   bool wall = false;
 };
 
+// R* = R1 R2/(R1 + R2), the reduced radius of two discs (a wall: R1, set by disc_wall_kinematics).
+inline double reduced_radius(double R1, double R2) { return R1 * R2 / (R1 + R2); }
+
+// r = 2 R1 R2/(R1 + R2), the harmonic-mean radius of the rolling laws (-> 2 R1 at a wall, J05 Eq. 11).
+// 2 R1 R2/(R1 + R2) and 2 R* round to the same bits (a factor 2 is exact), so either form may be used.
+inline double harmonic_radius(const ContactKinematics& k) {
+  return k.wall ? 2.0 * k.R1 : 2.0 * k.R1 * k.R2 / (k.R1 + k.R2);
+}
+
+// The geometry of a contact that has not moved yet (the critical step): radii, R* and the wall flag;
+// R2 = inf at a wall. Velocities and overlap are zero.
+inline ContactKinematics contact_geometry(double R1, double R2, bool wall) {
+  ContactKinematics k;
+  k.wall = wall;
+  k.R1 = R1;
+  k.R2 = wall ? INFINITY : R2;
+  k.R_star = wall ? R1 : reduced_radius(R1, R2);
+  return k;
+}
+
 // d = x2 - x1 (minimum image), dist = |d| > 0.
 inline ContactKinematics disc_disc_kinematics(Vec2 d, double dist, double R1, double R2, Vec2 v1, Vec2 v2,
                                               double w1, double w2) {
@@ -34,7 +54,7 @@ inline ContactKinematics disc_disc_kinematics(Vec2 d, double dist, double R1, do
   k.u_n = R1 + R2 - dist;
   k.a1 = R1 - 0.5 * k.u_n;
   k.a2 = R2 - 0.5 * k.u_n;
-  k.R_star = R1 * R2 / (R1 + R2);
+  k.R_star = reduced_radius(R1, R2);
   const Vec2 dv = v2 - v1;
   k.v_n = dot(dv, k.n);
   k.V_t = -dot(dv, k.t);

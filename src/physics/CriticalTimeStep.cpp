@@ -15,31 +15,6 @@ double mode_limit(double omega, double zeta) {
 
 namespace {
 
-struct Rolling {
-  double K = 0.0;  // rolling stiffness [N m/rad]; 0 = no rolling spring
-  double C = 0.0;  // rolling dashpot [N m s/rad]
-};
-
-Rolling rolling_spring(const LawSelection& laws, const ContactParams& p, const ContactBodies& bodies,
-                       const ContactBody& a, const ContactBody& b) {
-  if (!p.rolling) return {};
-  const bool wall = std::isinf(b.m);
-  const double R_star = wall ? a.R : a.R * b.R / (a.R + b.R);
-  switch (laws.rolling) {
-    case RollingLaw::jiang_plastic:
-    case RollingLaw::jiang_brittle: {
-      const double B = p.delta * 2.0 * R_star;  // r = 2 R1 R2/(R1 + R2) = 2 R*
-      return {p.k_n * B * B / 12.0, NormalLinear::c_n(p, bodies) * B * B / 12.0};
-    }
-    case RollingLaw::wang:
-      return {p.k_r * R_star * R_star, p.c_r * R_star * R_star};
-    case RollingLaw::iwashita_oda:
-      return {p.K_r, p.C_r};
-    default:
-      return {};
-  }
-}
-
 struct Best {
   double dt = INFINITY;
   const char* mode = "";
@@ -64,13 +39,15 @@ double contact_critical_step(const LawSelection& laws, const ContactParams& p, c
   // H = 1/I_red = sum(1/I_i) and C = R1/I1 - R2/I2 (a wall: R1/I1), in closed form below.
   double G = 1.0 / a.m + a.R * a.R / a.I, H = 1.0 / a.I, C = a.R / a.I;
   if (!wall) G += 1.0 / b.m + b.R * b.R / b.I, H += 1.0 / b.I, C -= b.R / b.I;
-  double w2_t = 0.0, zeta_t = 0.0;
-  if (laws.tangential == TangentialLaw::coulomb) {
-    w2_t = p.k_s * G;
-    zeta_t = p.zeta_t * std::sqrt(m_eff * G);
+  double w2_t = 0.0, zeta_t = 0.0, k_s = 0.0;
+  if (const auto spring = tangential_spring(laws, p)) {
+    k_s = spring->k;
+    w2_t = k_s * G;
+    zeta_t = spring->zeta * std::sqrt(m_eff * G);
     best.consider(mode_limit(std::sqrt(w2_t), zeta_t), "tangential");
   }
-  const Rolling roll = rolling_spring(laws, p, bodies, a, b);
+  const RollingSpring roll =
+      rolling_spring(laws, p, bodies, contact_geometry(a.R, b.R, wall)).value_or(RollingSpring{});
   if (roll.K > 0.0) {
     const double w2_r = roll.K * H;
     const double zeta_r = roll.C * std::sqrt(H / roll.K) / 2.0;
@@ -78,7 +55,7 @@ double contact_critical_step(const LawSelection& laws, const ContactParams& p, c
       // Largest eigenvalue of the coupled pair. PHYSICS.md's sum bound w2_t + w2_r is conservative but
       // falls to 0.77 of the limit for equal discs at delta = 3 (C = 0 decouples the modes there).
       const double half = 0.5 * (w2_t - w2_r);
-      const double w2 = 0.5 * (w2_t + w2_r) + std::sqrt(half * half + p.k_s * roll.K * C * C);
+      const double w2 = 0.5 * (w2_t + w2_r) + std::sqrt(half * half + k_s * roll.K * C * C);
       best.consider(mode_limit(std::sqrt(w2), std::max(zeta_t, zeta_r)), "tangential+rolling");
     } else {
       best.consider(mode_limit(std::sqrt(w2_r), zeta_r), "rolling");

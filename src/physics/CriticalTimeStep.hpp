@@ -4,12 +4,12 @@
 //   normal                 w^2 = k_n/m_eff
 //   tangential (rotation)  w^2 = k_s/m_t,  1/m_t = 1/m1 + 1/m2 + R1^2/I1 + R2^2/I2
 //   rolling                w^2 = K/I_red,  I_red = I1 I2/(I1 + I2) (a wall: I1), K the rolling stiffness
-//                          (jiang_*: k_n B^2/12; wang: k_r R*^2; iwashita_oda: K_r)
+//                          (each law's spring(), e.g. jiang_*: k_n B^2/12; wang: k_r R*^2; iwashita_oda: K_r)
 //   tangential and rolling together: the larger eigenvalue of the coupled 2 x 2 problem in (s, theta_r),
 //                          exact in closed form (PHYSICS.md's sum bound k_s/m_t + K/I_red is conservative
 //                          but only 0.77 of the limit for equal discs at delta = 3)
-// displacement_damping's stiffness grows with F_n and is not known in advance; force_proportional and
-// constant_torque have no spring. dt_crit is the smallest limit over every material pair and radius pair
+// A law without an a-priori spring declares `no_spring` instead (displacement_damping's stiffness grows
+// with F_n; force_proportional and constant_torque have no spring). dt_crit is the smallest limit over every material pair and radius pair
 // that can occur (radii sampled geometrically between the smallest and the largest), walls included.
 #include <string>
 #include <vector>

@@ -1,35 +1,59 @@
 #pragma once
+// The registry of contact laws: one list of law types per kind (LawRows.hpp). Everything that depends
+// on the set of laws iterates over it: the kernel selection, the history slots, the critical step's
+// springs and the law catalog the configuration layer parses, prints and checks the law blocks with.
+#include <boost/program_options.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/Config.hpp"
+#include "core/ContactParams.hpp"
 #include "core/ContactTable.hpp"
+#include "core/LawSpec.hpp"
 #include "physics/ContactKernel.hpp"
 #include "physics/LawTypes.hpp"
 
 namespace rondel {
 
+// The selected laws by keyword (contact.normal, contact.tangential, contact.rolling).
 struct LawSelection {
-  NormalLaw normal = NormalLaw::linear;
-  TangentialLaw tangential = TangentialLaw::coulomb;
-  RollingLaw rolling = RollingLaw::none;
+  std::string normal = "linear";
+  std::string tangential = "coulomb";
+  std::string rolling = "none";
 };
+inline LawSelection law_selection(const Config& c) { return {c.normal_law, c.tangential_law, c.rolling_law}; }
 
 // The kernel and the stored-energy pass instantiated for the selected laws, chosen once at set-up (no
-// per-contact dispatch).
+// per-contact dispatch). `initial` computes the forces of the initial state (a zero increment) without
+// committing any history and without booking work: the forces of the first half kick.
 struct KernelOps {
   void (*run)(const KernelContext&, ContactTable&, ContactTable&, LedgerStep&) = nullptr;
+  void (*initial)(const KernelContext&, ContactTable&, ContactTable&) = nullptr;
   ContactSummary (*stored)(const KernelContext&, ContactTable&, ContactTable&) = nullptr;
 };
 
+// Throws ConfigError naming the key for a keyword that no law of its kind has.
 KernelOps select_kernel(const LawSelection& laws);
 // History slot names of the selected laws, in kernel order (tangential, then rolling).
 std::vector<std::string> history_slots(const LawSelection& laws);
 // An empty contact table with exactly the columns the selected laws need.
 ContactTable make_contact_table(const LawSelection& laws);
 
-// Keyword <-> law. parse_* return false for an unknown keyword.
-bool parse_rolling_law(const std::string& name, RollingLaw& out);
-// Every rolling keyword, "none" first, separated by " | " (for messages and --help).
-std::string rolling_law_names();
+// The springs of the selected laws for the critical step of one contact (PHYSICS.md section 4); none
+// for a law that declares no a-priori spring, and no rolling spring where p.rolling is false.
+std::optional<TangentialSpring> tangential_spring(const LawSelection& laws, const ContactParams& p);
+std::optional<RollingSpring> rolling_spring(const LawSelection& laws, const ContactParams& p, const ContactBodies& b,
+                                            const ContactKinematics& geometry);
+
+// Every law of every kind, as the configuration layer sees it.
+const LawCatalog& law_catalog();
+
+// The configuration entry points with the registry's catalog (core/Config.hpp takes it as an argument
+// because core may not include physics).
+Config parse_config(int argc, const char* const* argv);
+Config parse_config_text(const std::string& ini, const std::vector<std::string>& overrides = {});
+std::string config_help();
+boost::program_options::options_description config_schema();
 
 }  // namespace rondel

@@ -2,7 +2,6 @@
 // What a contact law sees besides the kinematics: the masses and inertias of the two bodies (a wall:
 // m2 = I2 = inf), the time step, and its parameters. Laws are stateless functions on these plain structs.
 #include <cmath>
-#include <string>
 
 namespace rondel {
 
@@ -51,21 +50,15 @@ struct TangentialForce {
   double slip = 0.0;
 };
 
-enum class NormalLaw { linear };
-enum class TangentialLaw { none, coulomb };
-enum class RollingLaw {
-  none,
-  jiang_plastic,
-  jiang_brittle,
-  wang,
-  iwashita_oda,
-  force_proportional,
-  constant_torque,
-  displacement_damping
+// The springs a law contributes to the critical step (PHYSICS.md section 4), for one contact before it
+// moves. A law without an a-priori spring says so with a `no_spring` reason instead (see LawConcepts.hpp).
+struct TangentialSpring {
+  double k = 0.0;     // [N/m]
+  double zeta = 0.0;  // damping ratio [-]
 };
-
-std::string to_string(NormalLaw law);
-std::string to_string(TangentialLaw law);
-std::string to_string(RollingLaw law);
+struct RollingSpring {
+  double K = 0.0;  // rolling stiffness [N m/rad]
+  double C = 0.0;  // rolling dashpot [N m s/rad]
+};
 
 }  // namespace rondel

@@ -5,13 +5,26 @@
 #include <cmath>
 
 #include "core/ContactParams.hpp"
+#include "core/LawSpec.hpp"
 #include "physics/ContactKinematics.hpp"
 #include "physics/LawTypes.hpp"
 
 namespace rondel {
 
+// [linear]: at most one of zeta, c_n, e may be given (a rule across keys, checked by the config layer).
+inline constexpr ParamSpec kLinearParams[] = {
+    {"k_n", "N/m", Presence::required, 0.0, kPositive, "normal stiffness", &ContactParams::k_n},
+    {"zeta", "-", Presence::optional, 0.0, kNonNegative, "normal damping ratio (default 0; give one of zeta, c_n, e)",
+     &ContactParams::zeta_n},
+    {"c_n", "N s/m", Presence::optional, 0.0, kNonNegative, "normal dashpot coefficient", &ContactParams::c_n_fixed},
+    {"e", "-", Presence::optional, 0.0, kRestitution, "restitution coefficient", &ContactParams::e_n},
+};
+inline constexpr LawBlock kLinearBlock{"linear", "normal spring-dashpot, no tension", kLinearParams};
+
 struct NormalLinear {
   static constexpr const char* name = "linear";
+  static constexpr const LawBlock* block = &kLinearBlock;
+  // The normal dashpot [N s/m]: its one owner (the kernel, the Jiang laws and the critical step call it).
   static double c_n(const ContactParams& p, const ContactBodies& b) {
     return p.c_n_fixed >= 0.0 ? p.c_n_fixed : 2.0 * p.zeta_n * std::sqrt(b.m_eff * p.k_n);
   }

@@ -11,19 +11,30 @@
 #include <cmath>
 
 #include "core/ContactParams.hpp"
+#include "core/LawSpec.hpp"
 #include "physics/ContactKinematics.hpp"
 #include "physics/LawTypes.hpp"
 
 namespace rondel {
 
+inline constexpr ParamSpec kConstantTorqueParams[] = {
+    {"mu_r", "-", Presence::required, 0.0, kNonNegative, "rolling friction", &ContactParams::mu_r},
+    {"f_lim", "-", Presence::defaulted, 0.08, kNonNegative, "moment limiter fraction; 0 switches the limiter off",
+     &ContactParams::f_lim},
+};
+inline constexpr LawBlock kConstantTorqueBlock{"constant_torque", "commercial manual Eq. 3276 with moment limiter",
+                                               kConstantTorqueParams};
+
 struct RollingConstantTorque {
   static constexpr const char* name = "constant_torque";
+  static constexpr const LawBlock* block = &kConstantTorqueBlock;
+  static constexpr const char* no_spring = "a constant couple without a spring";
   static constexpr bool kActive = true;
   static constexpr std::array<const char*, 0> slots{};
 
   static RollingCouple moment(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
                               double F_n, double dt, double w1, double w2, double* const*, std::size_t) {
-    const double R_eq = k.wall ? 2.0 * k.R1 : 2.0 * k.R1 * k.R2 / (k.R1 + k.R2);
+    const double R_eq = harmonic_radius(k);
     double M = -sign(w1 - w2) * p.mu_r * R_eq * F_n;
     if (p.f_lim > 0.0 && dt > 0.0) {
       double spin = b.I1 * std::fabs(w1);
@@ -38,7 +49,7 @@ struct RollingConstantTorque {
     return 0.0;
   }
   static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) {
-    return p.mu_r * (k.wall ? 2.0 * k.R1 : 2.0 * k.R1 * k.R2 / (k.R1 + k.R2)) * F_n;
+    return p.mu_r * harmonic_radius(k) * F_n;
   }
 };
 

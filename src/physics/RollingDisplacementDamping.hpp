@@ -13,17 +13,31 @@
 #include <cmath>
 
 #include "core/ContactParams.hpp"
+#include "core/LawSpec.hpp"
 #include "physics/ContactKinematics.hpp"
 #include "physics/LawTypes.hpp"
 
 namespace rondel {
 
+inline constexpr ParamSpec kDisplacementDampingParams[] = {
+    {"mu_r", "-", Presence::required, 0.0, kNonNegative, "rolling friction", &ContactParams::mu_r},
+    {"theta_rmax", "rad", Presence::defaulted, 0.035, kPositive, "rotation at which the couple reaches its cap",
+     &ContactParams::theta_rmax},
+    {"nu", "-", Presence::defaulted, 0.0, kNonNegative, "viscous damping factor (0 = off)", &ContactParams::nu},
+    {"f", "-", Presence::defaulted, 1.0, kNonNegative, "viscous damping multiplier at the limit",
+     &ContactParams::f_visc},
+};
+inline constexpr LawBlock kDisplacementDampingBlock{"displacement_damping", "commercial manual Eqs. 3277-3278",
+                                                    kDisplacementDampingParams};
+
 struct RollingDisplacementDamping {
   static constexpr const char* name = "displacement_damping";
+  static constexpr const LawBlock* block = &kDisplacementDampingBlock;
+  static constexpr const char* no_spring = "k_r = mu_r R_eq F_n/theta_rmax grows with F_n: not known in advance";
   static constexpr bool kActive = true;
   static constexpr std::array<const char*, 1> slots{"M_k"};
 
-  static double R_eq(const ContactKinematics& k) { return k.wall ? 2.0 * k.R1 : 2.0 * k.R1 * k.R2 / (k.R1 + k.R2); }
+  static double R_eq(const ContactKinematics& k) { return harmonic_radius(k); }
 
   static RollingCouple moment(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
                               double F_n, double dt, double, double, double* const* hist, std::size_t row) {

@@ -9,13 +9,22 @@
 #include <cmath>
 
 #include "core/ContactParams.hpp"
+#include "core/LawSpec.hpp"
 #include "physics/ContactKinematics.hpp"
 #include "physics/LawTypes.hpp"
 
 namespace rondel {
 
+inline constexpr ParamSpec kForceProportionalParams[] = {
+    {"mu_r", "-", Presence::required, 0.0, kNonNegative, "rolling friction", &ContactParams::mu_r},
+};
+inline constexpr LawBlock kForceProportionalBlock{"force_proportional", "commercial manual Eq. 3275 (not objective)",
+                                                  kForceProportionalParams};
+
 struct RollingForceProportional {
   static constexpr const char* name = "force_proportional";
+  static constexpr const LawBlock* block = &kForceProportionalBlock;
+  static constexpr const char* no_spring = "a friction couple without a spring";
   static constexpr bool kActive = true;
   static constexpr std::array<const char*, 0> slots{};
 

@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "core/ContactParams.hpp"
+#include "core/LawSpec.hpp"
 #include "physics/ContactKinematics.hpp"
 #include "physics/LawTypes.hpp"
 
@@ -24,8 +25,21 @@ inline double iwashita_oda_rate(const ContactKinematics& k, double w1, double w2
   return 0.5 * (da - db) / (0.5 * (k.R1 + k.R2));
 }
 
+inline constexpr ParamSpec kIwashitaOdaParams[] = {
+    {"K_r", "N m/rad", Presence::required, 0.0, kPositive, "rolling stiffness", &ContactParams::K_r},
+    {"C_r", "N m s/rad", Presence::required, 0.0, kNonNegative, "rolling dashpot", &ContactParams::C_r},
+    {"eta", "m", Presence::required, 0.0, kNonNegative, "couple cap eta F_n", &ContactParams::eta},
+};
+inline constexpr LawBlock kIwashitaOdaBlock{"iwashita_oda",
+                                            "Iwashita & Oda 1998 (legacy rolling measure, for comparison)",
+                                            kIwashitaOdaParams};
+
 struct RollingIwashitaOda {
   static constexpr const char* name = "iwashita_oda";
+  static constexpr const LawBlock* block = &kIwashitaOdaBlock;
+  static RollingSpring spring(const ContactParams& p, const ContactBodies&, const ContactKinematics&) {
+    return {p.K_r, p.C_r};
+  }
   static constexpr bool kActive = true;
   static constexpr std::array<const char*, 1> slots{"theta_r"};
 

@@ -14,6 +14,10 @@ namespace rondel {
 
 struct RollingJiangBrittle {
   static constexpr const char* name = "jiang_brittle";
+  static constexpr const LawBlock* block = &kJiangBlock;
+  static RollingSpring spring(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k) {
+    return RollingJiangPlastic::spring(p, b, k);
+  }
   static constexpr bool kActive = true;
   static constexpr std::array<const char*, 2> slots{"theta_r", "broken"};
 

@@ -9,19 +9,27 @@
 #include <cmath>
 
 #include "core/ContactParams.hpp"
+#include "core/LawSpec.hpp"
 #include "physics/ContactKinematics.hpp"
 #include "physics/LawTypes.hpp"
 #include "physics/NormalLinear.hpp"
 
 namespace rondel {
 
+// [jiang], shared by jiang_plastic and jiang_brittle.
+inline constexpr ParamSpec kJiangParams[] = {
+    {"delta", "-", Presence::required, 0.0, kPositive, "shape parameter: contact width B = delta r",
+     &ContactParams::delta},
+};
+inline constexpr LawBlock kJiangBlock{"jiang", "Jiang, Yu & Harris 2005 (jiang_plastic, jiang_brittle)",
+                                      kJiangParams};
+
 struct JiangGeometry {
   double B, K_m, mu_m;
 };
 
 inline JiangGeometry jiang_geometry(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k) {
-  const double r = k.wall ? 2.0 * k.R1 : 2.0 * k.R1 * k.R2 / (k.R1 + k.R2);
-  const double B = p.delta * r;
+  const double B = p.delta * harmonic_radius(k);
   return {B, p.k_n * B * B / 12.0, NormalLinear::c_n(p, b) * B * B / 12.0};
 }
 
@@ -39,6 +47,12 @@ inline RollingCouple jiang_spring_slider(const JiangGeometry& g, double F_n, dou
 
 struct RollingJiangPlastic {
   static constexpr const char* name = "jiang_plastic";
+  static constexpr const LawBlock* block = &kJiangBlock;
+  // K_m = k_n B^2/12 and mu_m = c_n B^2/12 (shared with jiang_brittle, which breaks at the same spring).
+  static RollingSpring spring(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k) {
+    const JiangGeometry g = jiang_geometry(p, b, k);
+    return {g.K_m, g.mu_m};
+  }
   static constexpr bool kActive = true;
   static constexpr std::array<const char*, 1> slots{"theta_r"};
 
@@ -55,8 +69,7 @@ struct RollingJiangPlastic {
   }
   // The couple at yield, M0 = F_n B/6.
   static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) {
-    const double r = k.wall ? 2.0 * k.R1 : 2.0 * k.R1 * k.R2 / (k.R1 + k.R2);
-    return F_n * p.delta * r / 6.0;
+    return F_n * p.delta * harmonic_radius(k) / 6.0;
   }
 };
 

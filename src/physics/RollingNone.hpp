@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/ContactParams.hpp"
+#include "core/LawSpec.hpp"
 #include "physics/ContactKinematics.hpp"
 #include "physics/LawTypes.hpp"
 
@@ -12,6 +13,8 @@ namespace rondel {
 
 struct RollingNone {
   static constexpr const char* name = "none";
+  static constexpr const LawBlock* block = nullptr;
+  static constexpr const char* no_spring = "no rolling resistance";
   static constexpr bool kActive = false;
   static constexpr std::array<const char*, 0> slots{};
   static RollingCouple moment(const ContactParams&, const ContactBodies&, const ContactKinematics&,

@@ -9,13 +9,27 @@
 #include <cmath>
 
 #include "core/ContactParams.hpp"
+#include "core/LawSpec.hpp"
 #include "physics/ContactKinematics.hpp"
 #include "physics/LawTypes.hpp"
 
 namespace rondel {
 
+inline constexpr ParamSpec kWangParams[] = {
+    {"k_r", "N/m", Presence::required, 0.0, kPositive, "rolling stiffness", &ContactParams::k_r},
+    {"mu_r", "-", Presence::required, 0.0, kNonNegative, "rolling friction: cap mu_r F_n on T_r", &ContactParams::mu_r},
+    {"c_r", "N s/m", Presence::defaulted, 0.0, kNonNegative, "rolling dashpot", &ContactParams::c_r},
+};
+inline constexpr LawBlock kWangBlock{"wang", "Wang et al. 2015 spring-slider on the objective rolling displacement",
+                                     kWangParams};
+
 struct RollingWang {
   static constexpr const char* name = "wang";
+  static constexpr const LawBlock* block = &kWangBlock;
+  // The couple stiffness k_r R*^2 and dashpot c_r R*^2 (M = R* T_r with T_r on x_r = R* theta_r).
+  static RollingSpring spring(const ContactParams& p, const ContactBodies&, const ContactKinematics& k) {
+    return {p.k_r * k.R_star * k.R_star, p.c_r * k.R_star * k.R_star};
+  }
   static constexpr bool kActive = true;
   static constexpr std::array<const char*, 1> slots{"x_r"};
 

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/ContactParams.hpp"
+#include "core/LawSpec.hpp"
 #include "physics/ContactKinematics.hpp"
 #include "physics/LawTypes.hpp"
 
@@ -15,6 +16,8 @@ namespace rondel {
 
 struct TangentialNone {
   static constexpr const char* name = "none";
+  static constexpr const LawBlock* block = nullptr;
+  static constexpr const char* no_spring = "frictionless: no tangential spring";
   static constexpr bool kFriction = false;
   static constexpr std::array<const char*, 0> slots{};
   static TangentialForce force(const ContactParams&, const ContactBodies&, const ContactKinematics&, double,
@@ -24,8 +27,18 @@ struct TangentialNone {
   static double stored(const ContactParams&, double* const*, std::size_t) { return 0.0; }
 };
 
+inline constexpr ParamSpec kCoulombParams[] = {
+    {"k_s", "N/m", Presence::required, 0.0, kPositive, "tangential stiffness", &ContactParams::k_s},
+    {"mu", "-", Presence::required, 0.0, kNonNegative, "friction coefficient", &ContactParams::mu},
+    {"zeta_t", "-", Presence::defaulted, 0.0, kNonNegative, "tangential damping ratio", &ContactParams::zeta_t},
+};
+inline constexpr LawBlock kCoulombBlock{"coulomb", "Cundall-Strack tangential spring with Coulomb cap",
+                                        kCoulombParams};
+
 struct TangentialCoulomb {
   static constexpr const char* name = "coulomb";
+  static constexpr const LawBlock* block = &kCoulombBlock;
+  static TangentialSpring spring(const ContactParams& p) { return {p.k_s, p.zeta_t}; }
   static constexpr bool kFriction = true;
   static constexpr std::array<const char*, 1> slots{"xi"};
   static TangentialForce force(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,

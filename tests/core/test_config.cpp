@@ -14,6 +14,7 @@
 #include "core/Config.hpp"
 #include "core/ConfigSchema.hpp"
 #include "core/Errors.hpp"
+#include "physics/LawRegistry.hpp"
 
 namespace rondel {
 namespace {

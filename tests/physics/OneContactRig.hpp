@@ -63,12 +63,11 @@ class OneContactRig {
     assembly_.build(discs_, pairs_, wall_rows_);
   }
 
-  // Call after setting the initial velocities: forces at t = 0 with a zero increment (no spring moves),
-  // exactly as the Simulation constructor does, and the reference for the energy.
+  // Call after setting the initial velocities: forces at t = 0 with a zero increment, committing no
+  // history (KernelOps::initial, as the Simulation constructor does), and the reference for the energy.
   void start(double dt) {
     dt_ = dt;
-    LedgerStep unused;
-    ops_.run(KernelContext{discs_, domain_, walls_, params_, 0.0}, pairs_, wall_rows_, unused);
+    ops_.initial(KernelContext{discs_, domain_, walls_, params_, 0.0}, pairs_, wall_rows_);
     assemble();
     stored0_ = stored();
   }

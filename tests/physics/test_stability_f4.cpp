@@ -49,9 +49,9 @@ using F4Param = std::tuple<ContactSet, double, double>;
 
 LawSelection f4_laws() {
   LawSelection laws;
-  laws.normal = NormalLaw::linear;
-  laws.tangential = TangentialLaw::coulomb;
-  laws.rolling = RollingLaw::jiang_plastic;
+  laws.normal = "linear";
+  laws.tangential = "coulomb";
+  laws.rolling = "jiang_plastic";
   return laws;
 }
 

@@ -1,0 +1,93 @@
+// [scene]: the initial discs (a lattice, a random packing, a CSV file or a Rondel file).
+#include <algorithm>
+#include <cmath>
+
+#include "core/ConfigRead.hpp"
+
+namespace rondel::config {
+
+namespace {
+
+// The keys the scene's type needs, with their ranges.
+void check_scene_type(const Reader& r, SceneConfig& s) {
+  if (s.type == "lattice_square" || s.type == "lattice_hex") {
+    check(s.nx > 0, "scene.nx", "must be > 0 for a lattice", std::to_string(s.nx));
+    check(s.ny > 0, "scene.ny", "must be > 0 for a lattice", std::to_string(s.ny));
+    positive(r, "scene.radius");
+    if (s.spacing == 0.0) s.spacing = 2.0 * s.radius;
+    check(s.spacing > 0.0, "scene.spacing", "must be > 0 (or 0 for 2 x radius)", num(s.spacing));
+  } else if (s.type == "random") {
+    check(s.count > 0, "scene.count", "must be > 0 for a random scene", std::to_string(s.count));
+    check(s.max_attempts > 0, "scene.max_attempts", "must be > 0", std::to_string(s.max_attempts));
+    if (s.distribution == "uniform_radius" || s.distribution == "uniform_area") {
+      positive(r, "scene.radius_min");
+      check(s.radius_max >= s.radius_min, "scene.radius_max", ">= scene.radius_min", num(s.radius_max));
+    } else if (s.distribution == "list") {
+      check(!s.sizes.empty() && s.sizes.size() == s.fractions.size(), "scene.fractions",
+            "one fraction per size in scene.sizes",
+            std::to_string(s.fractions.size()) + " fractions for " + std::to_string(s.sizes.size()) + " sizes");
+      double sum = 0.0;
+      for (double v : s.sizes) check(v > 0.0, "scene.sizes", "radii must be > 0", num(v));
+      for (double f : s.fractions) check(f >= 0.0, "scene.fractions", "fractions must be >= 0", num(f)), sum += f;
+      check(std::fabs(sum - 1.0) < 1e-9, "scene.fractions", "fractions must sum to 1", num(sum));
+    } else {
+      throw ConfigError("key 'scene.distribution' = " + s.distribution +
+                        " is not allowed: uniform_radius | uniform_area | list");
+    }
+  } else if (s.type == "file") {
+    if (s.file.empty())
+      throw ConfigError("missing required key 'scene.file' (scene.type = file: a checkpoint or snapshot)");
+  } else if (s.type == "csv") {
+    if (s.file.empty()) throw ConfigError("missing required key 'scene.file' (scene.type = csv)");
+    check(s.replicate_x >= 1, "scene.replicate_x", "must be >= 1", std::to_string(s.replicate_x));
+    check(s.replicate_y >= 1, "scene.replicate_y", "must be >= 1", std::to_string(s.replicate_y));
+  } else {
+    throw ConfigError("key 'scene.type' = " + s.type +
+                      " is not allowed: lattice_square | lattice_hex | random | csv | file");
+  }
+}
+
+}  // namespace
+
+void read_scene(const Reader& r, Config& c) {
+  SceneConfig& s = c.scene;
+  if (!r.vm.count("scene.type"))
+    throw ConfigError("missing required key 'scene.type' (lattice_square | lattice_hex | random | csv)");
+  s.type = r.get<std::string>("scene.type");
+  s.nx = r.get<int>("scene.nx");
+  s.ny = r.get<int>("scene.ny");
+  s.radius = r.get<double>("scene.radius");
+  s.spacing = r.get<double>("scene.spacing");
+  s.x0 = r.get<double>("scene.x0");
+  s.y0 = r.get<double>("scene.y0");
+  s.count = r.get<std::int64_t>("scene.count");
+  s.distribution = r.get<std::string>("scene.distribution");
+  s.radius_min = r.get<double>("scene.radius_min");
+  s.radius_max = r.get<double>("scene.radius_max");
+  s.sizes = numbers(r.get<std::string>("scene.sizes"), "scene.sizes");
+  s.fractions = numbers(r.get<std::string>("scene.fractions"), "scene.fractions");
+  s.seed = r.get<std::uint64_t>("scene.seed");
+  s.max_attempts = r.get<std::int64_t>("scene.max_attempts");
+  s.file = r.get<std::string>("scene.file");
+  s.replicate_x = r.get<int>("scene.replicate_x");
+  s.replicate_y = r.get<int>("scene.replicate_y");
+  s.velocity = {r.get<double>("scene.vx"), r.get<double>("scene.vy")};
+  s.omega = r.get<double>("scene.omega");
+  s.max_initial_overlap = r.get<double>("scene.max_initial_overlap");
+  non_negative(s.max_initial_overlap, "scene.max_initial_overlap");
+  // The default region is the box of the walls (walls.box_region), else the domain.
+  auto region = numbers(r.get<std::string>("scene.region"), "scene.region");
+  if (region.empty()) region = numbers(r.get<std::string>("walls.box_region"), "walls.box_region");
+  const Domain& d = c.domain;
+  const double box[4] = {d.xlo, d.xhi, d.ylo, d.yhi};
+  if (region.empty())
+    std::copy(box, box + 4, s.region);
+  else if (region.size() == 4 && region[0] < region[1] && region[2] < region[3])
+    std::copy(region.begin(), region.end(), s.region);
+  else
+    throw ConfigError("key 'scene.region' must be 'xlo xhi ylo yhi' with xlo < xhi and ylo < yhi");
+
+  check_scene_type(r, s);
+}
+
+}  // namespace rondel::config

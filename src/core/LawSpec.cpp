@@ -1,0 +1,37 @@
+#include "core/LawSpec.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+namespace rondel {
+
+std::string Range::text() const {
+  std::ostringstream s;
+  if (std::isinf(hi))
+    s << (lo_open ? "> " : ">= ") << lo;
+  else
+    s << "in " << (lo_open ? "(" : "[") << lo << ", " << hi << (hi_open ? ")" : "]");
+  return s.str();
+}
+
+std::string LawKind::keywords() const {
+  std::string s;
+  for (const LawInfo& law : laws) s += (s.empty() ? "" : " | ") + std::string(law.keyword);
+  return s;
+}
+
+const LawInfo* LawKind::find(const std::string& keyword) const {
+  for (const LawInfo& law : laws)
+    if (keyword == law.keyword) return &law;
+  return nullptr;
+}
+
+std::vector<const LawBlock*> LawCatalog::blocks() const {
+  std::vector<const LawBlock*> out;
+  for (const LawKind* kind : kinds())
+    for (const LawInfo& law : kind->laws)
+      if (law.block && std::find(out.begin(), out.end(), law.block) == out.end()) out.push_back(law.block);
+  return out;
+}
+
+}  // namespace rondel

@@ -1,0 +1,71 @@
+#pragma once
+// Plain descriptors of a contact law as the configuration layer sees it: its keyword, its INI block
+// (section, title line, parameters) and, per parameter, its unit, default, allowed range, help line and
+// the ContactParams field it fills. The law types in src/physics declare these next to their equations;
+// the registry (physics/LawRegistry) hands the whole catalog to the parser, which lives here in core and
+// may not include physics.
+#include <cmath>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/ContactParams.hpp"
+
+namespace rondel {
+
+// An interval of allowed values; a value must also be finite.
+struct Range {
+  double lo = 0.0, hi = INFINITY;
+  bool lo_open = false, hi_open = true;
+  bool contains(double v) const {
+    return std::isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+  }
+  std::string text() const;  // "> 0", ">= 0", "in (0, 1]"
+};
+inline constexpr Range kPositive{0.0, INFINITY, true, true};
+inline constexpr Range kNonNegative{0.0, INFINITY, false, true};
+inline constexpr Range kRestitution{0.0, 1.0, true, false};
+
+// required: the key must be given when the law is selected; defaulted: `def` applies; optional: no
+// default, the field keeps its ContactParams value unless the key is given.
+enum class Presence { required, defaulted, optional };
+
+struct ParamSpec {
+  const char* key;   // within the block, e.g. "k_r"
+  const char* unit;  // e.g. "N/m", "-"
+  Presence presence;
+  double def;  // used when presence == defaulted
+  Range range;
+  const char* help;  // one line, without unit, requirement or range (those are added)
+  double ContactParams::*target;
+};
+
+// One [section] of law parameters. Several laws may share a block (jiang_plastic and jiang_brittle).
+struct LawBlock {
+  const char* section;
+  const char* title;  // the --help heading after "[section] "
+  std::span<const ParamSpec> params;
+};
+
+// One law of a kind: its keyword and its block (nullptr: no parameters).
+struct LawInfo {
+  const char* keyword;
+  const LawBlock* block;
+};
+
+// The laws of one kind, selected by the key contact.<kind>; the first law is the default.
+struct LawKind {
+  const char* kind;  // "normal", "tangential", "rolling"
+  std::vector<LawInfo> laws;
+  std::string keywords() const;  // "a | b | c", in registry order
+  const LawInfo* find(const std::string& keyword) const;
+};
+
+struct LawCatalog {
+  LawKind normal, tangential, rolling;
+  std::vector<const LawKind*> kinds() const { return {&normal, &tangential, &rolling}; }
+  // Every distinct block, in registry order (normal, tangential, rolling).
+  std::vector<const LawBlock*> blocks() const;
+};
+
+}  // namespace rondel

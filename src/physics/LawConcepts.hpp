@@ -1,0 +1,80 @@
+#pragma once
+// What a contact law must provide, one concept per kind. The registry (LawRows.hpp) checks every row
+// against its concept with a static_assert, so a law type that lacks a member fails to compile there,
+// with the law's name in the instantiation and the missing requirement in the note.
+//
+// Every law: `name` (its keyword for contact.<kind>), `block` (its INI parameter block, core/LawSpec.hpp,
+// or nullptr when it has no parameters). Tangential and rolling laws: `slots` (history columns, in the
+// order the law indexes them) and either `spring(...)` (its a-priori spring for the critical step,
+// PHYSICS.md section 4) or `no_spring` (why there is none: no spring, or one that grows with F_n).
+#include <concepts>
+#include <cstddef>
+
+#include "core/ContactParams.hpp"
+#include "core/LawSpec.hpp"
+#include "physics/ContactKinematics.hpp"
+#include "physics/LawTypes.hpp"
+
+namespace rondel {
+
+template <class L>
+concept DeclaredLaw = requires {
+  { L::name } -> std::convertible_to<const char*>;
+  { L::block } -> std::convertible_to<const LawBlock*>;
+};
+
+template <class L>
+concept HistoryLaw = requires {
+  { L::slots.size() } -> std::convertible_to<std::size_t>;
+  { L::slots.data() } -> std::convertible_to<const char* const*>;
+};
+
+// "This law has no a-priori spring for the critical step", with the reason.
+template <class L>
+concept DeclaresNoSpring = requires {
+  { L::no_spring } -> std::convertible_to<const char*>;
+};
+
+template <class L>
+concept NormalLawType = DeclaredLaw<L> &&
+    requires(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k) {
+  { L::force(p, b, k) } -> std::same_as<double>;
+  { L::c_n(p, b) } -> std::same_as<double>;
+};
+
+template <class L>
+concept TangentialAPrioriSpring = requires(const ContactParams& p) {
+  { L::spring(p) } -> std::same_as<TangentialSpring>;
+};
+
+template <class L>
+concept TangentialCalls = requires(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
+                                   double* const* h) {
+  { L::kFriction } -> std::convertible_to<bool>;
+  { L::force(p, b, k, 0.0, 0.0, h, std::size_t{}) } -> std::same_as<TangentialForce>;
+  { L::stored(p, h, std::size_t{}) } -> std::same_as<double>;
+};
+
+template <class L>
+concept TangentialLawType = DeclaredLaw<L> && HistoryLaw<L> && TangentialCalls<L> &&
+    (TangentialAPrioriSpring<L> || DeclaresNoSpring<L>);
+
+template <class L>
+concept RollingAPrioriSpring = requires(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k) {
+  { L::spring(p, b, k) } -> std::same_as<RollingSpring>;
+};
+
+template <class L>
+concept RollingCalls = requires(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
+                                double* const* h) {
+  { L::kActive } -> std::convertible_to<bool>;
+  { L::moment(p, b, k, 0.0, 0.0, 0.0, 0.0, h, std::size_t{}) } -> std::same_as<RollingCouple>;
+  { L::stored(p, b, k, 0.0, h, std::size_t{}) } -> std::same_as<double>;
+  { L::cap(p, k, 0.0) } -> std::same_as<double>;
+};
+
+template <class L>
+concept RollingLawType = DeclaredLaw<L> && HistoryLaw<L> && RollingCalls<L> &&
+    (RollingAPrioriSpring<L> || DeclaresNoSpring<L>);
+
+}  // namespace rondel

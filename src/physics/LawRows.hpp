@@ -1,0 +1,91 @@
+#pragma once
+// The registry rows: ONE list of law types per kind. Adding a law is one file (its type) plus one row
+// here; each row is checked against its kind's concept (LawConcepts.hpp), so a law that lacks a member
+// fails to compile with the law named in the failed static_assert's instantiation (Row<Law>).
+// Internal to the registry's translation units (LawRegistry.cpp, InitialForces.cpp).
+#include <string>
+
+#include "core/Errors.hpp"
+#include "core/LawSpec.hpp"
+#include "physics/LawConcepts.hpp"
+#include "physics/LawRegistry.hpp"
+#include "physics/NormalLinear.hpp"
+#include "physics/RollingConstantTorque.hpp"
+#include "physics/RollingDisplacementDamping.hpp"
+#include "physics/RollingForceProportional.hpp"
+#include "physics/RollingIwashitaOda.hpp"
+#include "physics/RollingJiangBrittle.hpp"
+#include "physics/RollingJiangPlastic.hpp"
+#include "physics/RollingNone.hpp"
+#include "physics/RollingWang.hpp"
+#include "physics/TangentialLaws.hpp"
+
+namespace rondel::registry {
+
+// A row check per kind: instantiated once per law, so a failure names the law (Row<Law>).
+template <class L>
+struct NormalRow {
+  static_assert(NormalLawType<L>, "this normal law lacks a member that NormalLawType requires (LawConcepts.hpp)");
+  static constexpr bool ok = true;
+};
+template <class L>
+struct TangentialRow {
+  static_assert(TangentialLawType<L>,
+                "this tangential law lacks a member that TangentialLawType requires (LawConcepts.hpp)");
+  static constexpr bool ok = true;
+};
+template <class L>
+struct RollingRow {
+  static_assert(RollingLawType<L>, "this rolling law lacks a member that RollingLawType requires (LawConcepts.hpp)");
+  static constexpr bool ok = true;
+};
+
+// A list of law types of one kind, every row checked by Row<Law>.
+template <template <class> class Row, class... Laws>
+struct LawList {
+  static_assert((Row<Laws>::ok && ...));
+  // Calls f.template operator()<Law>() for the law named `keyword`; false when no law has that name.
+  template <class F>
+  static bool with(const std::string& keyword, F&& f) {
+    return ((keyword == Laws::name ? (f.template operator()<Laws>(), true) : false) || ...);
+  }
+  static LawKind kind(const char* name) { return {name, {LawInfo{Laws::name, Laws::block}...}}; }
+};
+
+// The registry rows. The first law of each list is the default of its contact.<kind> key.
+using NormalLaws = LawList<NormalRow, NormalLinear>;
+using TangentialLaws = LawList<TangentialRow, TangentialCoulomb, TangentialNone>;
+using RollingLaws =
+    LawList<RollingRow, RollingNone, RollingJiangPlastic, RollingJiangBrittle, RollingWang, RollingIwashitaOda,
+            RollingForceProportional, RollingConstantTorque, RollingDisplacementDamping>;
+
+[[noreturn]] inline void unknown(const LawKind& kind, const std::string& keyword) {
+  throw ConfigError("contact." + std::string(kind.kind) + " = " + keyword + " is not one of " + kind.keywords());
+}
+
+// Calls f.template operator()<T, R>() for the selected tangential and rolling laws; throws ConfigError
+// naming the key for an unknown keyword.
+template <class F>
+void with_laws(const LawSelection& laws, F&& f) {
+  const LawCatalog& catalog = law_catalog();
+  if (!catalog.tangential.find(laws.tangential)) unknown(catalog.tangential, laws.tangential);
+  if (!catalog.rolling.find(laws.rolling)) unknown(catalog.rolling, laws.rolling);
+  TangentialLaws::with(laws.tangential, [&]<class T>() {
+    RollingLaws::with(laws.rolling, [&]<class R>() { f.template operator()<T, R>(); });
+  });
+}
+
+// As with_laws, with the normal law first: f.template operator()<N, T, R>().
+template <class F>
+void with_kernel_laws(const LawSelection& laws, F&& f) {
+  if (!law_catalog().normal.find(laws.normal)) unknown(law_catalog().normal, laws.normal);
+  NormalLaws::with(laws.normal,
+                   [&]<class N>() { with_laws(laws, [&]<class T, class R>() { f.template operator()<N, T, R>(); }); });
+}
+
+// KernelOps::initial of the selected laws, instantiated in its own translation unit (InitialForces.cpp)
+// so that it does not change how GCC inlines the laws into the step kernel (LawRegistry.cpp).
+using InitialForces = void (*)(const KernelContext&, ContactTable&, ContactTable&);
+InitialForces select_initial_forces(const LawSelection& laws);
+
+}  // namespace rondel::registry

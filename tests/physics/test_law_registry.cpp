@@ -1,0 +1,222 @@
+// The law registry (physics/LawRegistry): every row is a complete law (the concepts), keywords are unique,
+// declared defaults lie in their declared ranges, the critical step sees each law's a-priori rolling spring
+// as PHYSICS.md section 4 writes it, and the resolved configuration holds exactly the selected law's block.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "OneContactRig.hpp"
+#include "core/Config.hpp"
+#include "core/Errors.hpp"
+#include "physics/CriticalTimeStep.hpp"
+#include "physics/LawConcepts.hpp"
+#include "physics/LawRegistry.hpp"
+#include "physics/RollingWang.hpp"
+
+namespace rondel {
+namespace {
+
+// A rolling law without its cap: the concept refuses it (the registry's static_assert would fail).
+struct RollingWithoutCap {
+  static constexpr const char* name = "without_cap";
+  static constexpr const LawBlock* block = nullptr;
+  static constexpr bool kActive = true;
+  static constexpr std::array<const char*, 0> slots{};
+  static constexpr const char* no_spring = "test";
+  static RollingCouple moment(const ContactParams&, const ContactBodies&, const ContactKinematics&, double, double,
+                              double, double, double* const*, std::size_t) {
+    return {};
+  }
+  static double stored(const ContactParams&, const ContactBodies&, const ContactKinematics&, double, double* const*,
+                       std::size_t) {
+    return 0.0;
+  }
+};
+static_assert(RollingLawType<RollingWang>);
+static_assert(!RollingLawType<RollingWithoutCap>, "a law without cap() must not satisfy the concept");
+
+TEST(LawRegistry, KeywordsAreUniqueWithinEachKind) {
+  for (const LawKind* kind : law_catalog().kinds()) {
+    SCOPED_TRACE(kind->kind);
+    ASSERT_FALSE(kind->laws.empty());
+    std::set<std::string> seen;
+    for (const LawInfo& law : kind->laws) EXPECT_TRUE(seen.insert(law.keyword).second) << law.keyword << " twice";
+  }
+}
+
+TEST(LawRegistry, BlockSectionsAndKeysAreUnique) {
+  std::set<std::string> sections, keys;
+  for (const LawBlock* block : law_catalog().blocks()) {
+    EXPECT_TRUE(sections.insert(block->section).second) << block->section;
+    EXPECT_FALSE(block->params.empty()) << block->section << " declares no parameter";
+    for (const ParamSpec& p : block->params)
+      EXPECT_TRUE(keys.insert(std::string(block->section) + "." + p.key).second) << block->section << "." << p.key;
+  }
+}
+
+TEST(LawRegistry, EveryDefaultLiesInItsRange) {
+  for (const LawBlock* block : law_catalog().blocks())
+    for (const ParamSpec& p : block->params) {
+      if (p.presence != Presence::defaulted) continue;
+      EXPECT_TRUE(p.range.contains(p.def))
+          << block->section << "." << p.key << " = " << p.def << " is outside " << p.range.text();
+    }
+}
+
+TEST(LawRegistry, UnknownKeywordIsAConfigErrorNamingTheKey) {
+  LawSelection laws;
+  laws.rolling = "bogus";
+  try {
+    select_kernel(laws);
+    ADD_FAILURE() << "accepted contact.rolling = bogus";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("contact.rolling"), std::string::npos) << e.what();
+  }
+}
+
+// PHYSICS.md section 4 for two equal discs, tangential law none: the rolling mode has
+// omega^2 = K/I_red, zeta = C/(2 sqrt(K I_red)), with K and C as PHYSICS.md section 3 gives them.
+TEST(LawRegistry, RollingSpringGivesTheCriticalStepOfPhysicsSection4) {
+  const double R = 0.01, m = 2650.0 * std::numbers::pi * R * R, I = 0.5 * m * R * R;
+  ContactParams p;
+  p.k_n = 1e4;
+  p.zeta_n = 0.1;
+  p.delta = 3.0;  // B = delta r: the rolling mode is stiffer than the normal one
+  p.k_r = 1e6;
+  p.c_r = 1.0;
+  p.K_r = 5.0;
+  p.C_r = 0.01;
+  const double I_red = I * I / (I + I), m_eff = 0.5 * m, r = R;  // r = 2 R1 R2/(R1 + R2)
+  const double c_n = 2.0 * p.zeta_n * std::sqrt(m_eff * p.k_n), B = p.delta * r, R_star = 0.5 * R;
+  const std::map<std::string, RollingSpring> formula = {{"jiang_plastic", {p.k_n * B * B / 12.0, c_n * B * B / 12.0}},
+                                                        {"jiang_brittle", {p.k_n * B * B / 12.0, c_n * B * B / 12.0}},
+                                                        {"wang", {p.k_r * R_star * R_star, p.c_r * R_star * R_star}},
+                                                        {"iwashita_oda", {p.K_r, p.C_r}}};
+  int with_spring = 0;
+  for (const LawInfo& law : law_catalog().rolling.laws) {
+    SCOPED_TRACE(law.keyword);
+    const LawSelection laws{"linear", "none", law.keyword};
+    const auto spring = rolling_spring(laws, p, disc_disc_bodies(m, m, I, I), contact_geometry(R, R, false));
+    if (!spring) continue;
+    ++with_spring;
+    const auto expected = formula.find(law.keyword);
+    ASSERT_NE(expected, formula.end()) << "no PHYSICS.md formula in this test for a law with a spring";
+    const double K = expected->second.K, C = expected->second.C;
+    EXPECT_NEAR(spring->K, K, 1e-12 * K);
+    EXPECT_NEAR(spring->C, C, 1e-12 * std::max(C, 1e-300));
+    const double omega = std::sqrt(K / I_red), zeta = C / (2.0 * std::sqrt(K * I_red));
+    const double dt = (2.0 / omega) * (std::sqrt(1.0 + zeta * zeta) - zeta);
+    std::string mode;
+    const double got = contact_critical_step(laws, p, {m, I, R}, {m, I, R}, &mode);
+    EXPECT_EQ(mode, "rolling");
+    EXPECT_NEAR(got, dt, 1e-12 * dt);
+  }
+  EXPECT_EQ(with_spring, static_cast<int>(formula.size())) << "every law of the formula table has a spring";
+}
+
+const std::string kBase = R"(
+[domain]
+xlo = 0
+xhi = 0.2
+ylo = 0
+yhi = 0.1
+[linear]
+k_n = 1e5
+[scene]
+type = lattice_square
+nx = 2
+ny = 1
+radius = 0.005
+x0 = 0.01
+y0 = 0.01
+)";
+
+// The overrides that select `law` of `kind` with every required parameter of its block set to 1.
+std::vector<std::string> selecting(const LawKind& kind, const LawInfo& law) {
+  std::vector<std::string> out{"--contact." + std::string(kind.kind) + "=" + law.keyword};
+  if (std::string(kind.kind) != "tangential") out.insert(out.end(), {"--coulomb.k_s=1e4", "--coulomb.mu=0.5"});
+  if (law.block)
+    for (const ParamSpec& p : law.block->params)
+      if (p.presence == Presence::required) out.push_back("--" + std::string(law.block->section) + "." + p.key + "=1");
+  return out;
+}
+
+TEST(LawRegistry, ResolvedTextHoldsExactlyTheSelectedLawsBlock) {
+  const LawCatalog& catalog = law_catalog();
+  for (const LawKind* kind : {&catalog.tangential, &catalog.rolling})
+    for (const LawInfo& law : kind->laws) {
+      SCOPED_TRACE(std::string(kind->kind) + " " + law.keyword);
+      const Config c = parse_config_text(kBase, selecting(*kind, law));
+      for (const LawInfo& other : kind->laws) {
+        if (!other.block) continue;
+        const bool present = c.resolved_text.find("[" + std::string(other.block->section) + "]\n") != std::string::npos;
+        EXPECT_EQ(present, other.block == law.block) << "[" << other.block->section << "] in\n" << c.resolved_text;
+      }
+    }
+}
+
+// A dashpot alone above the cap at t = 0: KernelOps::initial gives the capped forces of the initial state
+// but leaves the springs as they were (a committing pass would reset them to -F/k, PHYSICS.md section 1).
+TEST(LawRegistry, InitialForcesCommitNoHistory) {
+  ContactParams p;
+  p.k_n = 1e5;
+  p.k_s = 1e4;
+  p.mu = 0.1;
+  p.zeta_t = 0.5;
+  p.k_r = 1e4;
+  p.mu_r = 0.01;
+  p.c_r = 1e3;
+  const double R = 0.01, u0 = 1e-4;
+  testing_rig::OneContactRig rig({"linear", "coulomb", "wang"}, p, R, R, u0, p.k_n * u0);
+  rig.discs().velocity[0] = 10.0 * rig.t;
+  rig.discs().omega[0] = 100.0;
+  rig.start(1e-6);
+  const ContactTable& row = rig.row_table();
+  ASSERT_EQ(row.slot.size(), 2u);  // xi, x_r
+  const double F_n = p.k_n * u0;
+  EXPECT_NEAR(std::fabs(row.F_t[0]), p.mu * F_n, 1e-12 * F_n) << "the tangential dashpot alone is capped";
+  EXPECT_NEAR(std::fabs(row.M1[0]), R / 2 * p.mu_r * F_n, 1e-12 * F_n) << "the rolling dashpot alone is capped";
+  EXPECT_EQ(row.slot[0][0], 0.0) << "xi not committed";
+  EXPECT_EQ(row.slot[1][0], 0.0) << "x_r not committed";
+}
+
+std::string config_error(const std::vector<std::string>& overrides) {
+  try {
+    parse_config_text(kBase, overrides);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "accepted; expected a ConfigError";
+  return "";
+}
+
+TEST(LawRegistry, EveryRequiredParameterAndEveryUnselectedBlockIsRefusedNamingTheKey) {
+  const LawCatalog& catalog = law_catalog();
+  for (const LawInfo& law : catalog.rolling.laws) {
+    if (!law.block) continue;
+    SCOPED_TRACE(law.keyword);
+    const std::vector<std::string> all = selecting(catalog.rolling, law);
+    for (const ParamSpec& p : law.block->params) {
+      const std::string key = std::string(law.block->section) + "." + p.key;
+      if (p.presence == Presence::required) {
+        std::vector<std::string> missing;
+        for (const std::string& o : all)
+          if (o.rfind("--" + key + "=", 0) != 0) missing.push_back(o);
+        EXPECT_NE(config_error(missing).find(key), std::string::npos) << key << " missing";
+      }
+      // The same key with rolling = none: a block of a law that is not selected.
+      const std::string message =
+          config_error({"--coulomb.k_s=1e4", "--coulomb.mu=0.5", "--contact.rolling=none", "--" + key + "=1"});
+      EXPECT_NE(message.find(key), std::string::npos) << message;
+      EXPECT_NE(message.find("contact.rolling = none"), std::string::npos) << message;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rondel
