@@ -55,11 +55,7 @@ StateHeader Simulation::state_header(const char* kind) const {
   h.config = config_.resolved_text;
   h.box_width0 = box0_.width;
   h.box_height0 = box0_.height;
-  const EnergyLedger g = global_ledger();
-  h.ledger = {{"KE0", g.KE0},       {"W_g", g.W_g},       {"W_w", g.W_w},
-              {"W_n", g.W_n},       {"W_t", g.W_t},       {"W_r", g.W_r},
-              {"D_slip", g.D_slip}, {"D_r_plastic", g.D_r_plastic}, {"D_r_dashpot", g.D_r_dashpot},
-              {"E_r_break", g.E_r_break}, {"scale", g.scale}};
+  h.ledger = global_ledger();
   return h;
 }
 
@@ -148,18 +144,12 @@ void Simulation::load_checkpoint(const std::string& path) {
     route_rows_to_owners(pairs_, true, discs_, comm_);
     route_rows_to_owners(wall_rows_, false, discs_, comm_);
   }
-  // The ledger continues: every rank carries the scale, rank 0 the integrals.
-  for (const auto& [name, value] : h.ledger) {
-    if (name == "KE0") ledger_.KE0 = value;
-    else if (name == "scale") ledger_.scale = value;
-    else if (comm_.root()) {
-      double* field = name == "W_g" ? &ledger_.W_g : name == "W_w" ? &ledger_.W_w : name == "W_n" ? &ledger_.W_n
-                      : name == "W_t" ? &ledger_.W_t : name == "W_r" ? &ledger_.W_r : name == "D_slip" ? &ledger_.D_slip
-                      : name == "D_r_plastic" ? &ledger_.D_r_plastic : name == "D_r_dashpot" ? &ledger_.D_r_dashpot
-                      : name == "E_r_break" ? &ledger_.E_r_break : nullptr;
-      if (field) *field = value;
-    }
-  }
+  // The ledger continues: every rank carries the global terms (KE0, the scale), rank 0 the ranks' shares.
+  LedgerTerms::visit_terms(
+      [this](const LedgerTermInfo& t, double& mine, const double& saved) {
+        if (!(t.uses & kTermRankShare) || comm_.root()) mine = saved;
+      },
+      ledger_, h.ledger);
 }
 
 }  // namespace rondel

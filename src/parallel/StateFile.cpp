@@ -125,7 +125,8 @@ void write_state_file(const std::string& path, const StateHeader& h, DiscStore& 
   f.write_attribute("/walls", "box_width0", h.box_width0);
   f.write_attribute("/walls", "box_height0", h.box_height0);
   f.create_group("/ledger");
-  for (const auto& [name, value] : h.ledger) f.write_attribute("/ledger", name, value);
+  h.ledger.for_each_term(
+      [&f](const LedgerTermInfo& t, double value) { f.write_attribute("/ledger", std::string(t.name), value); });
   f.create_group("/run_metadata");
   f.write_attribute("/run_metadata", "ranks", static_cast<std::int64_t>(comm.size()));
   f.write_attribute("/run_metadata", "wall_seconds", wall_seconds);
@@ -140,8 +141,7 @@ StateHeader read_state_header(const std::string& path, const Communicator& comm)
   if (version != kStateFormatVersion)
     throw InputError("'" + path + "' has format version " + std::to_string(version) + "; this Rondel reads version " +
                      std::to_string(kStateFormatVersion));
-  if (!f.has_attribute("/", "complete"))
-    throw InputError("'" + path + "' is incomplete (its writer was interrupted)");
+  if (!f.has_attribute("/", "complete")) throw InputError("'" + path + "' is incomplete (its writer was interrupted)");
   StateHeader h;
   h.kind = f.read_string_attribute("/", "kind");
   h.step = f.read_int_attribute("/", "step");
@@ -154,9 +154,10 @@ StateHeader read_state_header(const std::string& path, const Communicator& comm)
   h.config = f.read_string_attribute("/", "config");
   h.box_width0 = f.read_double_attribute("/walls", "box_width0");
   h.box_height0 = f.read_double_attribute("/walls", "box_height0");
-  for (const char* name : {"KE0", "W_g", "W_w", "W_n", "W_t", "W_r", "D_slip", "D_r_plastic", "D_r_dashpot",
-                           "E_r_break", "scale"})
-    if (f.has_attribute("/ledger", name)) h.ledger.emplace_back(name, f.read_double_attribute("/ledger", name));
+  h.ledger.for_each_term([&f](const LedgerTermInfo& t, double& value) {
+    const std::string name(t.name);
+    if (f.has_attribute("/ledger", name)) value = f.read_double_attribute("/ledger", name);
+  });
   return h;
 }
 
@@ -182,7 +183,8 @@ void read_state_discs(const std::string& path, DiscStore& discs, const Communica
 
 void read_state_rows(const std::string& path, ContactTable& pairs, ContactTable& wall_rows, const Communicator& comm) {
   Hdf5File f(path, Hdf5File::Mode::read, comm);
-  for (auto [group, table] : {std::pair{std::string("/contacts"), &pairs}, std::pair{std::string("/wall_contacts"), &wall_rows}}) {
+  for (auto [group, table] :
+       {std::pair{std::string("/contacts"), &pairs}, std::pair{std::string("/wall_contacts"), &wall_rows}}) {
     table->clear();
     const std::uint64_t total = f.rows(group + "/key");
     const std::uint64_t begin = block_begin(total, comm.rank(), comm.size());
