@@ -15,6 +15,8 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "Simulation.hpp"
@@ -107,20 +109,22 @@ inline std::string first_difference(const std::string& expected, const std::stri
   return "";
 }
 
-// One line per contact row that carries state (history or last forces), every column in hex:
-// "P lo hi | F_n F_t | param | slots | M1 M2 | f1 | tq1 tq2" (W for wall rows).
+// One line per contact row that carries state (history or last forces): "P lo hi |", then every column but
+// the key and the local indices, in the column table's order, as name=value (hex) (W for wall rows).
 inline std::string rows_text(const Simulation& sim) {
   std::string out;
   auto put = [&](const ContactTable& t, const char* tag) {
     for (std::size_t r = 0; r < t.size(); ++r) {
       if (!t.has_state(r)) continue;
       std::ostringstream l;
-      l << tag << ' ' << t.key[r].lo << ' ' << t.key[r].hi << " | " << hex(t.F_n[r]) << ' ' << hex(t.F_t[r]) << " | "
-        << t.param[r] << " |";
-      for (const auto& s : t.slot) l << ' ' << hex(s[r]);
-      if (t.has_moment()) l << " | " << hex(t.M1[r]) << ' ' << hex(t.M2[r]);
-      l << " | " << hex(t.f1[r].x) << ' ' << hex(t.f1[r].y);
-      if (t.tq1.size() == t.size()) l << " | " << hex(t.tq1[r]) << ' ' << hex(t.tq2[r]);
+      l << tag << ' ' << t.key[r].lo << ' ' << t.key[r].hi << " |";
+      t.for_each_column([&](std::string_view name, unsigned uses, const auto& column) {
+        using T = typename std::decay_t<decltype(column)>::value_type;
+        if (uses & kColumnLocalIndex) return;
+        if constexpr (std::is_same_v<T, double>) l << ' ' << name << '=' << hex(column[r]);
+        if constexpr (std::is_same_v<T, Vec2>) l << ' ' << name << '=' << hex(column[r].x) << ',' << hex(column[r].y);
+        if constexpr (std::is_same_v<T, std::int32_t>) l << ' ' << name << '=' << column[r];
+      });
       out += l.str();
       out += '\n';
     }
