@@ -37,18 +37,18 @@ struct LedgerTerms {
   template <class Visitor, class... Terms>
   static void visit_terms(Visitor&& visit, Terms&... terms) {
     constexpr unsigned kWorkShare = kTermWork | kTermRankShare;
-    constexpr unsigned kContactWork = kWorkShare | kTermKernel;
-    constexpr unsigned kContactLoss = kTermDissipation | kTermRankShare | kTermKernel;
+    constexpr unsigned kKernelWork = kWorkShare | kTermKernel;
+    constexpr unsigned kKernelLoss = kTermDissipation | kTermRankShare | kTermKernel;
     visit(LedgerTermInfo{"KE0", "", 0u}, terms.KE0...);
     visit(LedgerTermInfo{"W_g", "W_gravity", kWorkShare}, terms.W_g...);
-    visit(LedgerTermInfo{"W_w", "W_walls", kContactWork}, terms.W_w...);
-    visit(LedgerTermInfo{"W_n", "W_normal", kContactWork}, terms.W_n...);
-    visit(LedgerTermInfo{"W_t", "W_tangential", kContactWork}, terms.W_t...);
-    visit(LedgerTermInfo{"W_r", "W_rolling", kContactWork}, terms.W_r...);
-    visit(LedgerTermInfo{"D_slip", "D_slip", kContactLoss}, terms.D_slip...);
-    visit(LedgerTermInfo{"D_r_plastic", "D_rolling_plastic", kContactLoss}, terms.D_r_plastic...);
-    visit(LedgerTermInfo{"D_r_dashpot", "D_rolling_dashpot", kContactLoss}, terms.D_r_dashpot...);
-    visit(LedgerTermInfo{"E_r_break", "E_rolling_break", kContactLoss}, terms.E_r_break...);
+    visit(LedgerTermInfo{"W_w", "W_walls", kKernelWork}, terms.W_w...);
+    visit(LedgerTermInfo{"W_n", "W_normal", kKernelWork}, terms.W_n...);
+    visit(LedgerTermInfo{"W_t", "W_tangential", kKernelWork}, terms.W_t...);
+    visit(LedgerTermInfo{"W_r", "W_rolling", kKernelWork}, terms.W_r...);
+    visit(LedgerTermInfo{"D_slip", "D_slip", kKernelLoss}, terms.D_slip...);
+    visit(LedgerTermInfo{"D_r_plastic", "D_rolling_plastic", kKernelLoss}, terms.D_r_plastic...);
+    visit(LedgerTermInfo{"D_r_dashpot", "D_rolling_dashpot", kKernelLoss}, terms.D_r_dashpot...);
+    visit(LedgerTermInfo{"E_r_break", "E_rolling_break", kKernelLoss}, terms.E_r_break...);
     visit(LedgerTermInfo{"scale", "", 0u}, terms.scale...);
   }
   // Adds the terms of `other` that have `use` (this step's terms to a total).
