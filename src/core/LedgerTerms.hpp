@@ -33,9 +33,10 @@ struct LedgerTerms {
   double scale = 0.0;  // largest of KE, |W_g|, |W_w| seen at the diagnostics so far
 
   // Visits every term in the checkpoint's order with its description and that term of each of `terms`
-  // (LedgerTerms or types derived from it): visit(info, term_of_terms...).
+  // (LedgerTerms or types derived from it): visit(info, term_of_terms...). Always inlined: the contact
+  // kernel merges its step through it, and a call left there changes how the compiler inlines the kernel.
   template <class Visitor, class... Terms>
-  static void visit_terms(Visitor&& visit, Terms&... terms) {
+  [[gnu::always_inline]] static void visit_terms(Visitor&& visit, Terms&... terms) {
     constexpr unsigned kWorkShare = kTermWork | kTermRankShare;
     constexpr unsigned kKernelWork = kWorkShare | kTermKernel;
     constexpr unsigned kKernelLoss = kTermDissipation | kTermRankShare | kTermKernel;
@@ -52,7 +53,7 @@ struct LedgerTerms {
     visit(LedgerTermInfo{"scale", "", 0u}, terms.scale...);
   }
   // Adds the terms of `other` that have `use` (this step's terms to a total).
-  void add_terms(const LedgerTerms& other, unsigned use) {
+  [[gnu::always_inline]] void add_terms(const LedgerTerms& other, unsigned use) {
     visit_terms(
         [use](const LedgerTermInfo& t, double& total, const double& value) {
           if (t.uses & use) total += value;
