@@ -12,6 +12,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "../support/ContactRows.hpp"
 #include "core/ContactTable.hpp"
 #include "parallel/RecordPacking.hpp"
 
@@ -20,38 +21,12 @@ namespace {
 
 ContactTable rolling_table() { return ContactTable({"xi", "x_r"}, true); }
 
-// Every column of row r set to values that depend on the row and the column, none zero.
+// Every column of row r (but the key) set to values that depend on the row and the column, none zero.
 void fill_row(ContactTable& t, std::size_t r) {
-  int c = 0;
-  t.for_each_column([&](std::string_view, unsigned, auto& column) {
-    using T = typename std::decay_t<decltype(column)>::value_type;
-    const double v = 1.0 + 10.0 * static_cast<double>(r) + 0.125 * ++c;
-    if constexpr (std::is_same_v<T, ContactKey>)
-      return;  // the key is the row's identity
-    else if constexpr (std::is_same_v<T, Vec2>)
-      column[r] = Vec2{v, -v};
-    else
-      column[r] = static_cast<T>(v * 8);
-  });
+  test::fill_row(t, r, [r](ContactKey, int c) { return 8.0 + 80.0 * static_cast<double>(r) + c; });
 }
 
-// "name=value" of the columns of row r with a use in `only`, in the column table's order.
-std::string row_text(const ContactTable& t, std::size_t r, unsigned only = ~0u) {
-  std::string s;
-  t.for_each_column([&](std::string_view name, unsigned uses, const auto& column) {
-    using T = typename std::decay_t<decltype(column)>::value_type;
-    if (!(uses & only)) return;
-    s += std::string(name) + "=";
-    if constexpr (std::is_same_v<T, ContactKey>)
-      s += std::to_string(column[r].lo) + ":" + std::to_string(column[r].hi);
-    else if constexpr (std::is_same_v<T, Vec2>)
-      s += std::to_string(column[r].x) + ":" + std::to_string(column[r].y);
-    else
-      s += std::to_string(column[r]);
-    s += " ";
-  });
-  return s;
-}
+using test::row_text;
 
 std::vector<std::string> column_names(const ContactTable& t) {
   std::vector<std::string> names;

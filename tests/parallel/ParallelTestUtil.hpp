@@ -15,10 +15,9 @@
 #include <set>
 #include <sstream>
 #include <string>
-#include <string_view>
-#include <type_traits>
 #include <vector>
 
+#include "../support/ContactRows.hpp"
 #include "Simulation.hpp"
 #include "core/Errors.hpp"
 #include "core/SceneBuilder.hpp"
@@ -110,23 +109,14 @@ inline std::string first_difference(const std::string& expected, const std::stri
 }
 
 // One line per contact row that carries state (history or last forces): "P lo hi |", then every column but
-// the key and the local indices, in the column table's order, as name=value (hex) (W for wall rows).
+// the local indices as name=value, in the column table's order, doubles in hex (W for wall rows).
 inline std::string rows_text(const Simulation& sim) {
   std::string out;
   auto put = [&](const ContactTable& t, const char* tag) {
     for (std::size_t r = 0; r < t.size(); ++r) {
       if (!t.has_state(r)) continue;
-      std::ostringstream l;
-      l << tag << ' ' << t.key[r].lo << ' ' << t.key[r].hi << " |";
-      t.for_each_column([&](std::string_view name, unsigned uses, const auto& column) {
-        using T = typename std::decay_t<decltype(column)>::value_type;
-        if (uses & kColumnLocalIndex) return;
-        if constexpr (std::is_same_v<T, double>) l << ' ' << name << '=' << hex(column[r]);
-        if constexpr (std::is_same_v<T, Vec2>) l << ' ' << name << '=' << hex(column[r].x) << ',' << hex(column[r].y);
-        if constexpr (std::is_same_v<T, std::int32_t>) l << ' ' << name << '=' << column[r];
-      });
-      out += l.str();
-      out += '\n';
+      out += std::string(tag) + ' ' + std::to_string(t.key[r].lo) + ' ' + std::to_string(t.key[r].hi) + " | " +
+             test::row_text(t, r, ~kColumnLocalIndex) + '\n';
     }
   };
   put(sim.pairs(), "P");

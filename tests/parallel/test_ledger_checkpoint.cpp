@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "../support/ContactRows.hpp"
 #include "../support/TempDir.hpp"
 #include "core/ContactTable.hpp"
 #include "core/DiscStore.hpp"
@@ -46,35 +47,14 @@ class SharedFile {
 // The value of column number `c` of the row with key k: the same on every rank, none zero.
 double column_value(ContactKey k, int c) { return 1000.0 * k.lo + k.hi + 0.125 * c; }
 
-void fill_row(ContactTable& t, std::size_t r) {
-  int c = 0;
-  t.for_each_column([&](std::string_view, unsigned uses, auto& column) {
-    using T = typename std::decay_t<decltype(column)>::value_type;
-    const double v = column_value(t.key[r], ++c);
-    if constexpr (std::is_same_v<T, ContactKey>)
-      return;
-    else if constexpr (std::is_same_v<T, Vec2>)
-      column[r] = Vec2{v, -v};
-    else if (uses & kColumnRecord)
-      column[r] = static_cast<T>(v);
-  });
-}
+void fill_row(ContactTable& t, std::size_t r) { test::fill_row(t, r, column_value, kColumnRecord); }
 
-// Every column of row r is what fill_row wrote, local indices -1 and scratch zero.
+// Row r read back: its record columns are what fill_row wrote, its local indices unset, its torques zero.
 void expect_read_row(const ContactTable& t, std::size_t r) {
-  int c = 0;
-  t.for_each_column([&](std::string_view name, unsigned uses, const auto& column) {
-    using T = typename std::decay_t<decltype(column)>::value_type;
-    const double v = column_value(t.key[r], ++c);
-    if constexpr (std::is_same_v<T, ContactKey>)
-      return;
-    else if constexpr (std::is_same_v<T, Vec2>)
-      EXPECT_TRUE(column[r].x == v && column[r].y == -v) << name;
-    else if (uses & kColumnRecord)
-      EXPECT_EQ(column[r], static_cast<T>(v)) << name << " of row " << r;
-    else
-      EXPECT_EQ(column[r], (uses & kColumnLocalIndex) ? T(-1) : T(0)) << name;
-  });
+  ContactTable written(t.slot_names(), t.has_moment());
+  written.push(t.key[r], -1, -1, 0);
+  fill_row(written, 0);
+  EXPECT_EQ(test::row_text(t, r), test::row_text(written, 0));
 }
 
 struct Written {
