@@ -29,11 +29,12 @@ EnergyLedger Reports::global_ledger() const {
   // Each rank integrates the work of the rows it books; the run's ledger is their sum (KE0 and the energy
   // scale are global already).
   EnergyLedger g = ledger_;
-  for (double* w : {&g.W_g, &g.W_w, &g.W_n, &g.W_t, &g.W_r, &g.D_slip, &g.D_r_plastic, &g.D_r_dashpot, &g.E_r_break}) {
+  g.for_each_term([this](const LedgerTermInfo& t, double& w) {
+    if (!(t.uses & kTermRankShare)) return;
     ExactSum local;
-    local += *w;
-    *w = comm_.exact_sum(local);
-  }
+    local += w;
+    w = comm_.exact_sum(local);
+  });
   return g;
 }
 
@@ -82,11 +83,6 @@ DiagnosticsRow Reports::diagnostics(const ContactSummary& stored, double& scale)
   row.coordination = n > 0 ? 2.0 * row.contacts / n : 0.0;
   row.max_overlap = comm_.max(worst);
   EnergyLedger g = global_ledger();
-  row.W_g = g.W_g;
-  row.W_w = g.W_w;
-  row.W_n = g.W_n;
-  row.W_t = g.W_t;
-  row.W_r = g.W_r;
   ExactSum stored_sum;
   stored_sum += stored.total();
   row.E_stored = comm_.exact_sum(stored_sum);
@@ -94,12 +90,9 @@ DiagnosticsRow Reports::diagnostics(const ContactSummary& stored, double& scale)
   const double ghosts = comm_.sum(static_cast<double>(sim_.ghost_count()));
   row.ghost_fraction = n > 0 ? ghosts / n : 0.0;
   row.migrated = comm_.sum(static_cast<std::int64_t>(sim_.migrated()));
-  row.D_slip = g.D_slip;
-  row.D_r_plastic = g.D_r_plastic;
-  row.D_r_dashpot = g.D_r_dashpot;
-  row.E_r_break = g.E_r_break;
-  row.D_other = -g.W_c() - row.E_stored - row.D_slip - row.D_r_plastic - row.D_r_dashpot - row.E_r_break;
+  row.D_other = g.D_other(row.E_stored);
   row.residual = g.relative_residual(row.ke_trans + row.ke_rot);
+  static_cast<LedgerTerms&>(row) = g;  // the run's ledger terms, scale updated
   scale = g.scale;
   return row;
 }

@@ -26,11 +26,7 @@ StateHeader Restart::header(const Simulation& sim, const char* kind) {
   h.config = config.resolved_text;
   h.box_width0 = sim.box0().width;
   h.box_height0 = sim.box0().height;
-  const EnergyLedger g = sim.global_ledger();
-  h.ledger = {{"KE0", g.KE0},       {"W_g", g.W_g},       {"W_w", g.W_w},
-              {"W_n", g.W_n},       {"W_t", g.W_t},       {"W_r", g.W_r},
-              {"D_slip", g.D_slip}, {"D_r_plastic", g.D_r_plastic}, {"D_r_dashpot", g.D_r_dashpot},
-              {"E_r_break", g.E_r_break}, {"scale", g.scale}};
+  h.ledger = sim.global_ledger();
   return h;
 }
 
@@ -111,20 +107,13 @@ void Restart::read_rows(ContactTable& pairs, ContactTable& wall_rows, const Disc
   route_rows_to_owners(wall_rows, false, discs, comm_);
 }
 
-void Restart::read_ledger(EnergyLedger& ledger_) const {
-  const StateHeader& h = header_;
-  // The ledger continues: every rank carries the scale, rank 0 the integrals.
-  for (const auto& [name, value] : h.ledger) {
-    if (name == "KE0") ledger_.KE0 = value;
-    else if (name == "scale") ledger_.scale = value;
-    else if (comm_.root()) {
-      double* field = name == "W_g" ? &ledger_.W_g : name == "W_w" ? &ledger_.W_w : name == "W_n" ? &ledger_.W_n
-                      : name == "W_t" ? &ledger_.W_t : name == "W_r" ? &ledger_.W_r : name == "D_slip" ? &ledger_.D_slip
-                      : name == "D_r_plastic" ? &ledger_.D_r_plastic : name == "D_r_dashpot" ? &ledger_.D_r_dashpot
-                      : name == "E_r_break" ? &ledger_.E_r_break : nullptr;
-      if (field) *field = value;
-    }
-  }
+void Restart::read_ledger(EnergyLedger& ledger) const {
+  // The ledger continues: every rank carries the global terms (KE0, the scale), rank 0 the ranks' shares.
+  LedgerTerms::visit_terms(
+      [this](const LedgerTermInfo& t, double& mine, const double& saved) {
+        if (!(t.uses & kTermRankShare) || comm_.root()) mine = saved;
+      },
+      ledger, header_.ledger);
 }
 
 }  // namespace rondel

@@ -27,9 +27,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
       write_files_(write_files),
       neighbours_(0.0),
       files_(config_, comm_, write_files) {
-  laws_.tangential = config_.tangential_law == "coulomb" ? TangentialLaw::coulomb : TangentialLaw::none;
-  if (!parse_rolling_law(config_.rolling_law, laws_.rolling))
-    throw ConfigError("contact.rolling = " + config_.rolling_law + " is not one of " + rolling_law_names());
+  laws_ = law_selection(config_);
   kernel_ = select_kernel(laws_);
   pairs_ = make_contact_table(laws_);
   wall_rows_ = make_contact_table(laws_);
@@ -54,14 +52,9 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
   phases_.restart();
   rebuild();
   if (restart) return;  // forces, history and ledger come from the file (no recomputation before the first kick)
-  // Forces at t = 0 for the first half kick: the kernel at the initial state with a zero increment. Its
-  // capping rule may reset springs (a dashpot alone above the cap); the history is restored so that the
-  // run starts with unloaded springs and no work booked.
-  const auto pair_history = pairs_.slot, wall_history = wall_rows_.slot;
-  LedgerStep initial;
-  kernel_.run(KernelContext{discs_, config_.domain, walls_, config_.params, 0.0}, pairs_, wall_rows_, initial);
-  pairs_.slot = pair_history;
-  wall_rows_.slot = wall_history;
+  // Forces at t = 0 for the first half kick: the kernel at the initial state with a zero increment,
+  // committing no history and booking no work (KernelOps::initial).
+  kernel_.initial(KernelContext{discs_, config_.domain, walls_, config_.params, 0.0}, pairs_, wall_rows_);
   ForceAssembly::body_forces(discs_, config_.gravity);
   assembly_.assemble(discs_, pairs_, wall_rows_);
   if (controlled_walls_) boundaries_.measure(walls_, discs_, pairs_, wall_rows_, comm_);

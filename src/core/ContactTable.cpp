@@ -1,42 +1,29 @@
 #include "core/ContactTable.hpp"
 
 #include <algorithm>
+#include <type_traits>
 
 namespace rondel {
 
 ContactTable::ContactTable(std::vector<std::string> slot_names, bool has_moment)
-    : slot(slot_names.size()), slot_names_(std::move(slot_names)), has_moment_(has_moment) {}
+    : slot(slot_names.size()), slot_names_(std::move(slot_names)), has_moment_(has_moment) {
+  for (const auto& s : slot_names_) slot_columns_.push_back("history/" + s);
+}
 
 void ContactTable::clear() {
-  key.clear();
-  i1.clear();
-  i2.clear();
-  param.clear();
-  for (auto& s : slot) s.clear();
-  F_n.clear();
-  F_t.clear();
-  M1.clear();
-  M2.clear();
-  f1.clear();
-  tq1.clear();
-  tq2.clear();
+  for_each_column([](std::string_view, unsigned, auto& column) { column.clear(); });
 }
 
 void ContactTable::push(ContactKey k, std::int32_t a, std::int32_t b, std::int32_t p) {
-  key.push_back(k);
-  i1.push_back(a);
-  i2.push_back(b);
-  param.push_back(p);
-  for (auto& s : slot) s.push_back(0.0);
-  F_n.push_back(0.0);
-  F_t.push_back(0.0);
-  if (has_moment_) {
-    M1.push_back(0.0);
-    M2.push_back(0.0);
-  }
-  f1.push_back({});
-  tq1.push_back(0.0);
-  tq2.push_back(0.0);
+  for_each_column([](std::string_view, unsigned, auto& column) {
+    using T = typename std::decay_t<decltype(column)>::value_type;
+    column.push_back(T{});
+  });
+  const std::size_t n = size() - 1;
+  key[n] = k;
+  i1[n] = a;
+  i2[n] = b;
+  param[n] = p;
 }
 
 void ContactTable::inherit_history(const ContactTable& old) {
@@ -45,30 +32,21 @@ void ContactTable::inherit_history(const ContactTable& old) {
     while (j < old.size() && old.key[j] < key[r]) ++j;
     if (j == old.size()) break;
     if (!(old.key[j] == key[r])) continue;
-    for (std::size_t k = 0; k < slot.size(); ++k) slot[k][r] = old.slot[k][j];
-    F_n[r] = old.F_n[j];
-    F_t[r] = old.F_t[j];
-    if (has_moment_) {
-      M1[r] = old.M1[j];
-      M2[r] = old.M2[j];
-    }
-    f1[r] = old.f1[j];  // the wall-work trapezoid needs last step's force
+    visit_columns(
+        [r, j](std::string_view, unsigned uses, auto& column, const auto& from) {
+          if (uses & kColumnInherit) column[r] = from[j];
+        },
+        *this, old);
   }
 }
 
 void ContactTable::push_copy(const ContactTable& src, std::size_t r) {
-  push(src.key[r], -1, -1, src.param[r]);
-  const std::size_t n = size() - 1;
-  for (std::size_t k = 0; k < slot.size(); ++k) slot[k][n] = src.slot[k][r];
-  F_n[n] = src.F_n[r];
-  F_t[n] = src.F_t[r];
-  if (has_moment_) {
-    M1[n] = src.M1[r];
-    M2[n] = src.M2[r];
-  }
-  f1[n] = src.f1[r];
-  tq1[n] = src.tq1[r];
-  tq2[n] = src.tq2[r];
+  visit_columns(
+      [r](std::string_view, unsigned uses, auto& column, const auto& from) {
+        using T = typename std::decay_t<decltype(column)>::value_type;
+        column.push_back((uses & kColumnLocalIndex) ? unset_column_value<T>(uses) : from[r]);
+      },
+      *this, src);
 }
 
 void ContactTable::sort_unique_by_key() {
@@ -86,17 +64,19 @@ void ContactTable::sort_unique_by_key() {
 }
 
 bool ContactTable::has_state(std::size_t r) const {
-  if (F_n[r] != 0.0 || F_t[r] != 0.0) return true;
-  for (const auto& s : slot)
-    if (s[r] != 0.0) return true;
-  return has_moment_ && (M1[r] != 0.0 || M2[r] != 0.0);
+  bool state = false;
+  for_each_column([&state, r](std::string_view, unsigned uses, const auto& column) {
+    using T = typename std::decay_t<decltype(column)>::value_type;
+    if constexpr (std::is_same_v<T, double>) state = state || ((uses & kColumnState) && column[r] != 0.0);
+  });
+  return state;
 }
 
 std::size_t ContactTable::memory_bytes() const {
-  std::size_t b = key.capacity() * sizeof(ContactKey) + (i1.capacity() + i2.capacity() + param.capacity()) * 4;
-  for (const auto& s : slot) b += s.capacity() * sizeof(double);
-  b += (F_n.capacity() + F_t.capacity() + M1.capacity() + M2.capacity() + tq1.capacity() + tq2.capacity()) * sizeof(double);
-  b += f1.capacity() * sizeof(Vec2);
+  std::size_t b = 0;
+  for_each_column([&b](std::string_view, unsigned, const auto& column) {
+    b += column.capacity() * sizeof(typename std::decay_t<decltype(column)>::value_type);
+  });
   return b;
 }
 

@@ -2,6 +2,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "core/Vec2.hpp"
@@ -18,10 +20,29 @@ struct ContactKey {
   friend bool operator==(const ContactKey& a, const ContactKey& b) { return a.lo == b.lo && a.hi == b.hi; }
 };
 
+// What each contact-table column is used for. Every operation on whole rows (push, copy, inheritance by
+// key, migration records, checkpoints, memory accounting) loops over the column table below instead of
+// naming columns one by one, so a new column is one line there.
+enum ContactColumnUse : unsigned {
+  kColumnRecord = 1u,      // in a row record: travels with migration, written to and read from checkpoints
+  kColumnInherit = 2u,     // copied by key from the old table when the table is rebuilt
+  kColumnState = 4u,       // nonzero means the row carries state worth keeping (has_state)
+  kColumnLocalIndex = 8u,  // a local disc or wall index: -1 in a copied or read row until it is rebuilt
+  kColumnScratch = 16u,    // rewritten by every force evaluation (torques); zero in a read row
+};
+
+// The value a column not carried by a record takes in a copied or read row: -1 for a local index (not
+// known yet), zero otherwise.
+template <class T>
+T unset_column_value(unsigned uses) {
+  if constexpr (std::is_integral_v<T>) return (uses & kColumnLocalIndex) ? T{-1} : T{0};
+  return T{};
+}
+
 // One row per candidate pair (within the interaction range plus skin), structure of arrays, rows in
-// ascending key order. History slots exist only for the laws selected (their names come from the laws).
-// The force columns hold this step's result for the per-disc sums and the previous step's scalars for the
-// trapezoidal work of the energy ledger.
+// ascending key order. History slots exist only for the laws selected (their names come from the laws),
+// the rolling couples only with a rolling law. The force columns hold this step's result for the per-disc
+// sums and the previous step's scalars for the trapezoidal work of the energy ledger.
 class ContactTable {
  public:
   ContactTable() = default;
@@ -44,19 +65,58 @@ class ContactTable {
 
   // Appends a row with zero history.
   void push(ContactKey k, std::int32_t a, std::int32_t b, std::int32_t p);
-  // Appends row r of `src` (same columns) with its key, parameter index, history and last scalars; the
-  // local indices are set to -1 (they are rebuilt).
+  // Appends row r of `src` (same columns) with every column but the local indices, which are set to -1
+  // (they are rebuilt).
   void push_copy(const ContactTable& src, std::size_t r);
   // Sorts rows by key and keeps the first of equal keys (copies of one contact are bit-identical).
   void sort_unique_by_key();
   // True when the row carries state worth keeping (history or last forces).
   bool has_state(std::size_t r) const;
-  // Copies history and last scalars, matched by key, from `old` (both tables in ascending key order).
+  // Copies history and last forces, matched by key, from `old` (both tables in ascending key order).
   // Rows of `old` that are not candidates any more are dropped: their contact has opened.
   void inherit_history(const ContactTable& old);
 
+  // Visits every column present, in the checkpoint's order, with its name (the dataset name under the
+  // contact group, "history/<slot>" for a slot), its uses and that column of each of `tables` (tables of
+  // the same layout as the first): visit(name, uses, column_of_tables...).
+  template <class Visitor, class... Tables>
+  static void visit_columns(Visitor&& visit, Tables&... tables) {
+    const ContactTable& first = first_of(tables...);
+    visit(std::string_view("key"), kColumnRecord, tables.key...);
+    visit(std::string_view("i1"), kColumnLocalIndex, tables.i1...);
+    visit(std::string_view("i2"), kColumnLocalIndex, tables.i2...);
+    visit(std::string_view("param"), kColumnRecord, tables.param...);
+    constexpr unsigned kKept = kColumnRecord | kColumnInherit | kColumnState;
+    for (std::size_t k = 0; k < first.slot.size(); ++k)
+      visit(std::string_view(first.slot_columns_[k]), kKept, tables.slot[k]...);
+    visit(std::string_view("F_n"), kKept, tables.F_n...);
+    visit(std::string_view("F_t"), kKept, tables.F_t...);
+    if (first.has_moment_) {
+      visit(std::string_view("M1"), kKept, tables.M1...);
+      visit(std::string_view("M2"), kKept, tables.M2...);
+    }
+    // The last force only feeds the wall-work trapezoid: it is kept, but is no state by itself.
+    visit(std::string_view("f1"), kColumnRecord | kColumnInherit, tables.f1...);
+    visit(std::string_view("tq1"), kColumnScratch, tables.tq1...);
+    visit(std::string_view("tq2"), kColumnScratch, tables.tq2...);
+  }
+  template <class Visitor>
+  void for_each_column(Visitor&& visit) {
+    visit_columns(visit, *this);
+  }
+  template <class Visitor>
+  void for_each_column(Visitor&& visit) const {
+    visit_columns(visit, *this);
+  }
+
  private:
+  template <class First, class... Rest>
+  static const ContactTable& first_of(First& t, Rest&...) {
+    return t;
+  }
+
   std::vector<std::string> slot_names_;
+  std::vector<std::string> slot_columns_;  // "history/<slot>", the slots' column names
   bool has_moment_ = false;
 };
 

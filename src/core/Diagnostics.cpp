@@ -7,23 +7,38 @@
 
 namespace rondel {
 
+// The ledger's columns: its work terms, E_stored, then its dissipation terms (LedgerTerms' order).
 std::string DiagnosticsWriter::header() {
-  return "step,time,ke_trans,ke_rot,contacts,wall_contacts,coordination,max_overlap_ratio,W_gravity,W_walls,"
-         "W_normal,W_tangential,W_rolling,E_stored,D_slip,D_rolling_plastic,D_rolling_dashpot,E_rolling_break,D_other,"
-         "ledger_residual,imbalance,ghost_fraction,migrated";
+  std::string h = "step,time,ke_trans,ke_rot,contacts,wall_contacts,coordination,max_overlap_ratio";
+  const auto names = [&h](unsigned use) {
+    LedgerTerms{}.for_each_term([&](const LedgerTermInfo& t, double) {
+      if (t.uses & use) (h += ',') += t.column;
+    });
+  };
+  names(kTermWork);
+  h += ",E_stored";
+  names(kTermDissipation);
+  return h + ",D_other,ledger_residual,imbalance,ghost_fraction,migrated";
 }
 
 std::string DiagnosticsWriter::format(const DiagnosticsRow& r) {
   std::ostringstream s;
+  const auto values = [&](unsigned use) {
+    r.for_each_term([&](const LedgerTermInfo& t, double v) {
+      if (t.uses & use) s << ',' << v;
+    });
+  };
   s.precision(12);
   s << r.step << ',';
   s.precision(16);
   s << r.time << ',';
   s.precision(12);
-  s << r.ke_trans << ',' << r.ke_rot << ',' << r.contacts << ','
-    << r.wall_contacts << ',' << r.coordination << ',' << r.max_overlap << ',' << r.W_g << ',' << r.W_w << ','
-    << r.W_n << ',' << r.W_t << ',' << r.W_r << ',' << r.E_stored << ',' << r.D_slip << ',' << r.D_r_plastic << ','
-    << r.D_r_dashpot << ',' << r.E_r_break << ',' << r.D_other << ',' << r.residual << ',' << r.imbalance << ',' << r.ghost_fraction << ',' << r.migrated;
+  s << r.ke_trans << ',' << r.ke_rot << ',' << r.contacts << ',' << r.wall_contacts << ',' << r.coordination << ','
+    << r.max_overlap;
+  values(kTermWork);
+  s << ',' << r.E_stored;
+  values(kTermDissipation);
+  s << ',' << r.D_other << ',' << r.residual << ',' << r.imbalance << ',' << r.ghost_fraction << ',' << r.migrated;
   return s.str();
 }
 
@@ -45,7 +60,10 @@ void DiagnosticsWriter::write(const DiagnosticsRow& row) {
 }
 
 ProgressLine::ProgressLine(std::int64_t total_steps, std::int64_t n_discs, bool enabled)
-    : total_(total_steps), discs_(n_discs), enabled_(enabled), tty_(isatty(STDOUT_FILENO) != 0),
+    : total_(total_steps),
+      discs_(n_discs),
+      enabled_(enabled),
+      tty_(isatty(STDOUT_FILENO) != 0),
       start_(std::chrono::steady_clock::now()) {}
 
 void ProgressLine::update(std::int64_t step) {
@@ -59,8 +77,8 @@ void ProgressLine::update(std::int64_t step) {
   const double rate = elapsed > 0 ? step / elapsed : 0.0;
   const double eta = rate > 0 ? (total_ - step) / rate : 0.0;
   std::printf("%sstep %lld/%lld (%3.0f%%)  %.3g steps/s  %.3g disc-steps/s  ETA %.0f s%s", tty_ ? "\r" : "",
-              static_cast<long long>(step), static_cast<long long>(total_), 100.0 * step / total_, rate,
-              rate * discs_, eta, tty_ ? "   " : "\n");
+              static_cast<long long>(step), static_cast<long long>(total_), 100.0 * step / total_, rate, rate * discs_,
+              eta, tty_ ? "   " : "\n");
   std::fflush(stdout);
   next_plain_ = step + std::max<std::int64_t>(1, total_ / 10);
 }

@@ -4,23 +4,25 @@
 #include <fstream>
 #include <string>
 
+#include "core/LedgerTerms.hpp"
+
 namespace rondel {
 
-struct DiagnosticsRow {
+// A row of diagnostics.csv, with the run's ledger terms (their columns: LedgerTerms' work terms, E_stored,
+// then its dissipation terms).
+struct DiagnosticsRow : LedgerTerms {
   std::int64_t step = 0;
   double time = 0.0;
   double ke_trans = 0.0, ke_rot = 0.0;
   std::int64_t contacts = 0, wall_contacts = 0;
-  double coordination = 0.0;   // 2 x disc-disc contacts / discs
-  double max_overlap = 0.0;    // largest u_n / smaller radius
-  double W_g = 0.0, W_w = 0.0, W_n = 0.0, W_t = 0.0, W_r = 0.0;
-  double E_stored = 0.0;  // energy in the contact springs now
-  double D_slip = 0.0, D_r_plastic = 0.0, D_r_dashpot = 0.0, E_r_break = 0.0;
-  double D_other = 0.0;   // -W_c - E_stored - the dissipation above: dashpots and integration error
-  double residual = 0.0;       // relative ledger residual
-  double imbalance = 1.0;      // max over mean of the per-rank work at the last balance check
-  double ghost_fraction = 0.0; // ghosts over discs, all ranks
-  std::int64_t migrated = 0;   // discs moved between ranks so far
+  double coordination = 0.0;    // 2 x disc-disc contacts / discs
+  double max_overlap = 0.0;     // largest u_n / smaller radius
+  double E_stored = 0.0;        // energy in the contact springs now
+  double D_other = 0.0;         // -W_c - E_stored - the dissipation terms: dashpots and integration error
+  double residual = 0.0;        // relative ledger residual
+  double imbalance = 1.0;       // max over mean of the per-rank work at the last balance check
+  double ghost_fraction = 0.0;  // ghosts over discs, all ranks
+  std::int64_t migrated = 0;    // discs moved between ranks so far
 };
 
 // diagnostics.csv: one header, one row per diagnostics step (rank 0 only).

@@ -1,8 +1,10 @@
 #pragma once
 // Fixed-layout records of discs and contact rows for MPI messages and file blocks. A disc record holds the
-// fields whose use matches (DiscStore's field table); a row record holds the key, the parameter index, the
-// history slots, the last scalars and the last force on disc 1.
+// fields whose use matches (DiscStore's field table); a row record holds the record columns of
+// ContactTable's column table: the key, the parameter index, the history slots, the last scalars and the
+// last force on disc 1.
 #include <cstddef>
+#include <string_view>
 #include <type_traits>
 
 #include "core/ContactTable.hpp"
@@ -41,31 +43,26 @@ inline std::size_t record_bytes(DiscStore& discs, unsigned use) {
 }
 
 inline void pack_row(const ContactTable& t, std::size_t r, ByteBuffer& out) {
-  out.put(t.key[r]);
-  out.put(t.param[r]);
-  for (const auto& s : t.slot) out.put(s[r]);
-  out.put(t.F_n[r]);
-  out.put(t.F_t[r]);
-  if (t.has_moment()) out.put(t.M1[r]), out.put(t.M2[r]);
-  out.put(t.f1[r]);
+  t.for_each_column([&](std::string_view, unsigned uses, const auto& column) {
+    if (uses & kColumnRecord) out.put(column[r]);
+  });
 }
 
+// Appends one row record; columns the record does not carry get their unset value (local indices -1).
 inline void unpack_row(ContactTable& t, ByteReader& in) {
-  const auto key = in.get<ContactKey>();
-  const auto param = in.get<std::int32_t>();
-  t.push(key, -1, -1, param);
-  const std::size_t r = t.size() - 1;
-  for (auto& s : t.slot) s[r] = in.get<double>();
-  t.F_n[r] = in.get<double>();
-  t.F_t[r] = in.get<double>();
-  if (t.has_moment()) t.M1[r] = in.get<double>(), t.M2[r] = in.get<double>();
-  t.f1[r] = in.get<Vec2>();
+  t.for_each_column([&](std::string_view, unsigned uses, auto& column) {
+    using T = typename std::decay_t<decltype(column)>::value_type;
+    column.push_back((uses & kColumnRecord) ? in.get<T>() : unset_column_value<T>(uses));
+  });
 }
 
 // Bytes of one row record of `t`.
 inline std::size_t row_bytes(const ContactTable& t) {
-  return sizeof(ContactKey) + sizeof(std::int32_t) + sizeof(double) * (t.slot.size() + 2 + (t.has_moment() ? 2 : 0)) +
-         sizeof(Vec2);
+  std::size_t bytes = 0;
+  t.for_each_column([&](std::string_view, unsigned uses, const auto& column) {
+    if (uses & kColumnRecord) bytes += sizeof(column[0]);
+  });
+  return bytes;
 }
 
 }  // namespace rondel

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <sstream>
+#include <string_view>
+#include <type_traits>
 
 #include "core/Errors.hpp"
 #include "parallel/CanonicalOrder.hpp"
@@ -69,17 +71,9 @@ void write_rows(Hdf5File& f, const std::string& group, const ContactTable& rows,
   for (std::uint64_t k = 0; k < block.count; ++k) unpack_row(ordered, reader);
   f.create_group(group);
   f.create_group(group + "/history");
-  f.write(group + "/key", ordered.key, block.total, block.offset);
-  f.write(group + "/param", ordered.param, block.total, block.offset);
-  for (std::size_t s = 0; s < ordered.slot.size(); ++s)
-    f.write(group + "/history/" + rows.slot_names()[s], ordered.slot[s], block.total, block.offset);
-  f.write(group + "/F_n", ordered.F_n, block.total, block.offset);
-  f.write(group + "/F_t", ordered.F_t, block.total, block.offset);
-  if (rows.has_moment()) {
-    f.write(group + "/M1", ordered.M1, block.total, block.offset);
-    f.write(group + "/M2", ordered.M2, block.total, block.offset);
-  }
-  f.write(group + "/f1", ordered.f1, block.total, block.offset);
+  ordered.for_each_column([&](std::string_view name, unsigned uses, const auto& column) {
+    if (uses & kColumnRecord) f.write(group + "/" + std::string(name), column, block.total, block.offset);
+  });
 }
 
 void write_walls(Hdf5File& f, const WallSet& walls, const Communicator& comm) {
@@ -131,7 +125,8 @@ void write_state_file(const std::string& path, const StateHeader& h, DiscStore& 
   f.write_attribute("/walls", "box_width0", h.box_width0);
   f.write_attribute("/walls", "box_height0", h.box_height0);
   f.create_group("/ledger");
-  for (const auto& [name, value] : h.ledger) f.write_attribute("/ledger", name, value);
+  h.ledger.for_each_term(
+      [&f](const LedgerTermInfo& t, double value) { f.write_attribute("/ledger", std::string(t.name), value); });
   f.create_group("/run_metadata");
   f.write_attribute("/run_metadata", "ranks", static_cast<std::int64_t>(comm.size()));
   f.write_attribute("/run_metadata", "wall_seconds", wall_seconds);
@@ -146,8 +141,7 @@ StateHeader read_state_header(const std::string& path, const Communicator& comm)
   if (version != kStateFormatVersion)
     throw InputError("'" + path + "' has format version " + std::to_string(version) + "; this Rondel reads version " +
                      std::to_string(kStateFormatVersion));
-  if (!f.has_attribute("/", "complete"))
-    throw InputError("'" + path + "' is incomplete (its writer was interrupted)");
+  if (!f.has_attribute("/", "complete")) throw InputError("'" + path + "' is incomplete (its writer was interrupted)");
   StateHeader h;
   h.kind = f.read_string_attribute("/", "kind");
   h.step = f.read_int_attribute("/", "step");
@@ -160,9 +154,10 @@ StateHeader read_state_header(const std::string& path, const Communicator& comm)
   h.config = f.read_string_attribute("/", "config");
   h.box_width0 = f.read_double_attribute("/walls", "box_width0");
   h.box_height0 = f.read_double_attribute("/walls", "box_height0");
-  for (const char* name : {"KE0", "W_g", "W_w", "W_n", "W_t", "W_r", "D_slip", "D_r_plastic", "D_r_dashpot",
-                           "E_r_break", "scale"})
-    if (f.has_attribute("/ledger", name)) h.ledger.emplace_back(name, f.read_double_attribute("/ledger", name));
+  h.ledger.for_each_term([&f](const LedgerTermInfo& t, double& value) {
+    const std::string name(t.name);
+    if (f.has_attribute("/ledger", name)) value = f.read_double_attribute("/ledger", name);
+  });
   return h;
 }
 
@@ -188,26 +183,19 @@ void read_state_discs(const std::string& path, DiscStore& discs, const Communica
 
 void read_state_rows(const std::string& path, ContactTable& pairs, ContactTable& wall_rows, const Communicator& comm) {
   Hdf5File f(path, Hdf5File::Mode::read, comm);
-  for (auto [group, table] : {std::pair{std::string("/contacts"), &pairs}, std::pair{std::string("/wall_contacts"), &wall_rows}}) {
+  for (auto [group, table] :
+       {std::pair{std::string("/contacts"), &pairs}, std::pair{std::string("/wall_contacts"), &wall_rows}}) {
     table->clear();
     const std::uint64_t total = f.rows(group + "/key");
     const std::uint64_t begin = block_begin(total, comm.rank(), comm.size());
     const std::uint64_t count = block_begin(total, comm.rank() + 1, comm.size()) - begin;
-    table->key = f.read<ContactKey>(group + "/key", begin, count);
-    table->param = f.read<std::int32_t>(group + "/param", begin, count);
-    for (std::size_t s = 0; s < table->slot.size(); ++s)
-      table->slot[s] = f.read<double>(group + "/history/" + table->slot_names()[s], begin, count);
-    table->F_n = f.read<double>(group + "/F_n", begin, count);
-    table->F_t = f.read<double>(group + "/F_t", begin, count);
-    if (table->has_moment()) {
-      table->M1 = f.read<double>(group + "/M1", begin, count);
-      table->M2 = f.read<double>(group + "/M2", begin, count);
-    }
-    table->f1 = f.read<Vec2>(group + "/f1", begin, count);
-    table->i1.assign(count, -1);
-    table->i2.assign(count, -1);
-    table->tq1.assign(count, 0.0);
-    table->tq2.assign(count, 0.0);
+    table->for_each_column([&](std::string_view name, unsigned uses, auto& column) {
+      using T = typename std::decay_t<decltype(column)>::value_type;
+      if (uses & kColumnRecord)
+        column = f.read<T>(group + "/" + std::string(name), begin, count);
+      else
+        column.assign(count, unset_column_value<T>(uses));
+    });
   }
 }
 

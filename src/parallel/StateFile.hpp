@@ -6,6 +6,7 @@
 
 #include "core/ContactTable.hpp"
 #include "core/DiscStore.hpp"
+#include "core/LedgerTerms.hpp"
 #include "core/Wall.hpp"
 #include "parallel/Communicator.hpp"
 
@@ -21,9 +22,9 @@ struct StateHeader {
   std::int64_t step = 0;
   double time = 0.0, dt = 0.0;
   std::string normal_law, tangential_law, rolling_law;
-  std::vector<std::string> slots;  // history slot names, kernel order
-  std::string config;              // the resolved configuration
-  std::vector<std::pair<std::string, double>> ledger;
+  std::vector<std::string> slots;              // history slot names, kernel order
+  std::string config;                          // the resolved configuration
+  LedgerTerms ledger;                          // the run's ledger (terms missing from a file read as zero)
   double box_width0 = 0.0, box_height0 = 0.0;  // the box walls' separation at the start (strain reference)
 };
 

@@ -22,15 +22,15 @@
 #include "core/ContactTable.hpp"
 #include "core/DiscStore.hpp"
 #include "core/Domain.hpp"
+#include "core/LedgerTerms.hpp"
 #include "core/Wall.hpp"
 #include "physics/ContactKinematics.hpp"
 #include "physics/LawTypes.hpp"
 
 namespace rondel {
 
-struct LedgerStep {
-  double W_n = 0.0, W_t = 0.0, W_r = 0.0, W_w = 0.0;
-  double D_slip = 0.0, D_r_plastic = 0.0, D_r_dashpot = 0.0, E_r_break = 0.0;
+// This step's ledger terms: the kernel books those of kTermKernel (the rest stay zero).
+struct LedgerStep : LedgerTerms {
   // The worst overlap above the context's limit this step (u_n / smaller radius; 0 when none), and where.
   double worst_overlap = 0.0;
   ContactKey worst_key;
@@ -239,14 +239,7 @@ struct ContactKernel {
       tab.tq1[r] = k.a1 * T.F_t + M.M1;
       if constexpr (!kWall) tab.tq2[r] = k.a2 * T.F_t + M.M2;
     }
-    ledger.W_n += L.W_n;
-    ledger.W_t += L.W_t;
-    ledger.W_r += L.W_r;
-    ledger.W_w += L.W_w;
-    ledger.D_slip += L.D_slip;
-    ledger.D_r_plastic += L.D_r_plastic;
-    ledger.D_r_dashpot += L.D_r_dashpot;
-    ledger.E_r_break += L.E_r_break;
+    ledger.add_terms(L, kTermKernel);
     if (L.worst_overlap > ledger.worst_overlap) {
       ledger.worst_overlap = L.worst_overlap;
       ledger.worst_key = L.worst_key;

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/ContactRows.hpp"
 #include "app/Simulation.hpp"
 #include "core/Errors.hpp"
 #include "core/SceneBuilder.hpp"
@@ -107,22 +108,15 @@ inline std::string first_difference(const std::string& expected, const std::stri
   return "";
 }
 
-// One line per contact row that carries state (history or last forces), every column in hex:
-// "P lo hi | F_n F_t | param | slots | M1 M2 | f1 | tq1 tq2" (W for wall rows).
+// One line per contact row that carries state (history or last forces): "P lo hi |", then every column but
+// the local indices as name=value, in the column table's order, doubles in hex (W for wall rows).
 inline std::string rows_text(const Simulation& sim) {
   std::string out;
   auto put = [&](const ContactTable& t, const char* tag) {
     for (std::size_t r = 0; r < t.size(); ++r) {
       if (!t.has_state(r)) continue;
-      std::ostringstream l;
-      l << tag << ' ' << t.key[r].lo << ' ' << t.key[r].hi << " | " << hex(t.F_n[r]) << ' ' << hex(t.F_t[r]) << " | "
-        << t.param[r] << " |";
-      for (const auto& s : t.slot) l << ' ' << hex(s[r]);
-      if (t.has_moment()) l << " | " << hex(t.M1[r]) << ' ' << hex(t.M2[r]);
-      l << " | " << hex(t.f1[r].x) << ' ' << hex(t.f1[r].y);
-      if (t.tq1.size() == t.size()) l << " | " << hex(t.tq1[r]) << ' ' << hex(t.tq2[r]);
-      out += l.str();
-      out += '\n';
+      out += std::string(tag) + ' ' + std::to_string(t.key[r].lo) + ' ' + std::to_string(t.key[r].hi) + " | " +
+             test::row_text(t, r, ~kColumnLocalIndex) + '\n';
     }
   };
   put(sim.pairs(), "P");
