@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "Simulation.hpp"
+#include "support/Assertions.hpp"
 #include "support/TempDir.hpp"
 #include "core/Config.hpp"
 #include "core/Errors.hpp"
@@ -116,10 +117,7 @@ std::string setup_error(const std::string& ini, const std::vector<std::string>& 
   return "";
 }
 
-::testing::AssertionResult names(const std::string& message, const std::string& what) {
-  if (message.find(what) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "the message does not name '" << what << "': '" << message << "'";
-}
+using test::names;
 
 TEST(SetupErrors, NonPositiveLatticeRadius) {
   for (const char* radius : {"0", "-0.005"}) {

@@ -3,6 +3,7 @@
 // J, and the equal-cap parameter map of the rolling laws (every law's cap 0.1 F_n R at a wall).
 #include <cmath>
 #include <numbers>
+#include <ostream>
 
 #include "core/ContactParams.hpp"
 
@@ -20,6 +21,7 @@ struct ContactSet {
   const char* name;
   double k_n, k_s, mu;
 };
+inline void PrintTo(const ContactSet& s, std::ostream* os) { *os << "set " << s.name; }
 inline constexpr ContactSet kSetS{"S", 1e6, 0.75e6, 0.5};
 inline constexpr ContactSet kSetJ{"J", 2e8, 1.5e8, 0.5};
 
