@@ -33,7 +33,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-
 using test::read_file;
 using test::TempDir;
 using test::write_file;

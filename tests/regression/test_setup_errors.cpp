@@ -30,8 +30,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh directory under the system temp dir, removed with everything in it at the end of the test.
-
 using test::read_file;
 using test::TempDir;
 using test::write_file;
