@@ -187,7 +187,8 @@ xlo = 0
 xhi = 0.06
 ylo = 0
 yhi = 0.12
-)" + test::falling_contacts_ini() + test::rolling_law_ini("wang") + R"([walls]
+)" + test::falling_contacts_ini() +
+         test::rolling_law_ini("wang") + R"([walls]
 box = bottom left right
 [scene]
 type = random

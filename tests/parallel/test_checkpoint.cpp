@@ -279,7 +279,8 @@ void restart_cases(const std::string& law, const std::vector<std::string>& extra
       EXPECT_EQ(summary.stop_signal, 0);
       EXPECT_EQ(test::first_difference(reference, restarted, "expected", "got"), "")
           << "N steps + checkpoint + restart + N steps differ from 2N steps";
-      EXPECT_EQ(test::first_difference(reference, read_file(out / "final.csv"), "expected", "got"), "") << "final.csv of the restart";
+      EXPECT_EQ(test::first_difference(reference, read_file(out / "final.csv"), "expected", "got"), "")
+          << "final.csv of the restart";
       ASSERT_TRUE(fs::is_regular_file(checkpoint_name(2 * kHalf))) << "the restart wrote no checkpoint at its end";
       fs::rename(checkpoint_name(2 * kHalf), held_restart);
       // The whole state at 2N (contact rows and their history included) as the uninterrupted writer's.

@@ -111,12 +111,14 @@ xlo = 0
 xhi = 0.06
 ylo = 0
 yhi = 0.02
-)" + test::falling_contacts_ini() + test::rolling_law_ini(law) + R"(
+)" + test::falling_contacts_ini() +
+         test::rolling_law_ini(law) + R"(
 [walls]
 box = bottom left right
 [scene]
 type = csv
-file = )" + file + "\n";
+file = )" +
+         file + "\n";
 }
 
 // 2. A disc rolling without slip on the bottom wall crosses a rank border: its wall contact row (tangential

@@ -16,12 +16,12 @@
 #include <vector>
 
 #include "OneContactRig.hpp"
-#include "support/StandardObjects.hpp"
 #include "physics/ContactKinematics.hpp"
 #include "physics/CriticalTimeStep.hpp"
 #include "physics/LawRegistry.hpp"
 #include "physics/LawTypes.hpp"
 #include "physics/RollingJiangPlastic.hpp"
+#include "support/StandardObjects.hpp"
 
 namespace rondel {
 namespace {

@@ -24,9 +24,9 @@
 #include <vector>
 
 #include "OneContactRig.hpp"
-#include "support/StandardObjects.hpp"
 #include "physics/CriticalTimeStep.hpp"
 #include "physics/LawRegistry.hpp"
+#include "support/StandardObjects.hpp"
 
 namespace rondel {
 namespace {

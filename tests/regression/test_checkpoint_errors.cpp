@@ -8,9 +8,9 @@
 // and ends in the bits of an uninterrupted run.
 //
 // One rank (the regression binary, MPI initialised by its main).
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <hdf5.h>
-#include <fcntl.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <sys/wait.h>
@@ -233,7 +233,8 @@ TEST_F(CheckpointErrors, TruncatedFile) {
   // --resume of a directory whose only checkpoint is truncated: the refusal names that file.
   const std::string r = newest_refusal(file.parent_path());
   EXPECT_TRUE(test::names(r, file.parent_path().string()));
-  EXPECT_TRUE(test::names(r, file.filename().string())) << "--resume does not say which checkpoint it passed over, nor why";
+  EXPECT_TRUE(test::names(r, file.filename().string()))
+      << "--resume does not say which checkpoint it passed over, nor why";
 }
 
 TEST_F(CheckpointErrors, CorruptedSuperblock) {

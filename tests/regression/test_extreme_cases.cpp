@@ -21,12 +21,12 @@
 #include <vector>
 
 #include "Simulation.hpp"
-#include "support/Assertions.hpp"
-#include "support/Quiet.hpp"
-#include "support/TempDir.hpp"
 #include "core/Config.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"
+#include "support/Assertions.hpp"
+#include "support/Quiet.hpp"
+#include "support/TempDir.hpp"
 
 namespace rondel {
 namespace {

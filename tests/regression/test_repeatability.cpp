@@ -15,7 +15,8 @@ xlo = 0
 xhi = 0.2
 ylo = 0
 yhi = 0.3
-)" + test::falling_contacts_ini() + R"([walls]
+)" + test::falling_contacts_ini() +
+                           R"([walls]
 box = bottom left right
 [scene]
 type = random

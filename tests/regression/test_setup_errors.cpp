@@ -17,11 +17,11 @@
 #include <vector>
 
 #include "Simulation.hpp"
-#include "support/Assertions.hpp"
-#include "support/TempDir.hpp"
 #include "core/Config.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"
+#include "support/Assertions.hpp"
+#include "support/TempDir.hpp"
 
 extern char** environ;
 
