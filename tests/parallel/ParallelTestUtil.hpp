@@ -21,6 +21,9 @@
 #include "app/Simulation.hpp"
 #include "core/Errors.hpp"
 #include "core/SceneBuilder.hpp"
+#include "support/Assertions.hpp"
+#include "support/Format.hpp"
+#include "support/Scenes.hpp"
 
 namespace rondel::partest {
 
@@ -85,27 +88,13 @@ inline std::vector<std::string> all_gather(const std::string& mine) {
   return out;
 }
 
-inline std::string hex(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%a", v);
-  return buf;
-}
+using test::hex;
+using test::lines_of;
+using test::num;
 
-inline std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);) out.push_back(l);
-  return out;
-}
-
-// "line k: expected '...' got '...'" for the first line where two texts differ ("" when equal).
+// "line k: 1 rank '...', N ranks '...'" for the first line where two texts differ ("" when equal).
 inline std::string first_difference(const std::string& expected, const std::string& actual) {
-  const auto a = lines_of(expected), b = lines_of(actual);
-  for (std::size_t k = 0; k < std::max(a.size(), b.size()); ++k) {
-    const std::string x = k < a.size() ? a[k] : "<none>", y = k < b.size() ? b[k] : "<none>";
-    if (x != y) return "line " + std::to_string(k) + ": 1 rank '" + x + "', N ranks '" + y + "'";
-  }
-  return "";
+  return test::first_difference(expected, actual, "1 rank", "N ranks");
 }
 
 // One line per contact row that carries state (history or last forces): "P lo hi |", then every column but
@@ -183,12 +172,6 @@ inline std::string write_temp(const std::string& stem, const std::string& conten
   return path.string();
 }
 
-inline std::string num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 // Scene (a): a few hundred polydisperse discs falling into a box (walls bottom, left, right) under gravity,
 // Coulomb friction and the Wang rolling law (history: xi, x_r). 9 x 18 cells.
 inline std::string deposition_ini() {
@@ -198,20 +181,8 @@ xlo = 0
 xhi = 0.06
 ylo = 0
 yhi = 0.12
-[gravity]
-y = -9.81
-[linear]
-k_n = 1e7
-e = 0.5
-[coulomb]
-k_s = 7.5e6
-mu = 0.5
-[contact]
-rolling = wang
-[wang]
-k_r = 2e6
-mu_r = 0.1
-[walls]
+)" + test::falling_contacts_ini() +
+         test::rolling_law_ini("wang") + R"([walls]
 box = bottom left right
 [scene]
 type = random

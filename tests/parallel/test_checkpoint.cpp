@@ -34,11 +34,16 @@
 #include <string>
 #include <vector>
 
+#include "ParallelTestUtil.hpp"
 #include "app/Simulation.hpp"
 #include "core/Config.hpp"
 #include "parallel/Communicator.hpp"
 #include "parallel/Hdf5File.hpp"
 #include "parallel/StateFile.hpp"
+#include "support/Assertions.hpp"
+#include "support/Quiet.hpp"
+#include "support/Scenes.hpp"
+#include "support/TempDir.hpp"
 
 namespace rondel {
 namespace {
@@ -47,26 +52,13 @@ namespace fs = std::filesystem;
 
 constexpr int kHalf = 2500;  // N: the checkpoint step; the runs end at 2N
 
-int world_rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-int world_size() {
-  int n = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &n);
-  return n;
-}
-void world_barrier() { MPI_Barrier(MPI_COMM_WORLD); }
+using partest::broadcast;
+using partest::world_rank;
+using partest::world_size;
+using test::QuietCout;
+using test::read_file;
 
-// Rank 0's string on every rank.
-std::string broadcast(std::string s) {
-  long n = static_cast<long>(s.size());
-  MPI_Bcast(&n, 1, MPI_LONG, 0, MPI_COMM_WORLD);
-  s.resize(static_cast<std::size_t>(n));
-  if (n > 0) MPI_Bcast(s.data(), static_cast<int>(n), MPI_CHAR, 0, MPI_COMM_WORLD);
-  return s;
-}
+void world_barrier() { MPI_Barrier(MPI_COMM_WORLD); }
 
 // World ranks 0 .. size-1 as a communicator (the others get none and just wait). Simulation keeps a
 // reference to the Communicator, so this object outlives the simulations built on it.
@@ -122,35 +114,6 @@ class SharedTempDir {
   fs::path path_;
 };
 
-// Swallows std::cout (Simulation::run logs there on rank 0) while alive.
-class QuietCout {
- public:
-  QuietCout() : old_(std::cout.rdbuf(sink_.rdbuf())) {}
-  ~QuietCout() { std::cout.rdbuf(old_); }
-
- private:
-  std::ostringstream sink_;
-  std::streambuf* old_;
-};
-
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-// The first line where two texts differ ("" when equal).
-std::string first_difference(const std::string& a, const std::string& b) {
-  std::istringstream x(a), y(b);
-  std::string la, lb;
-  for (int k = 0;; ++k) {
-    const bool ga = static_cast<bool>(std::getline(x, la)), gb = static_cast<bool>(std::getline(y, lb));
-    if (!ga && !gb) return "";
-    if (!ga) la = "<none>";
-    if (!gb) lb = "<none>";
-    if (la != lb) return "line " + std::to_string(k) + ": expected '" + la + "', got '" + lb + "'";
-  }
-}
-
 // h5diff of two Rondel files without the run metadata and the ledger (FORMAT.md): "" when equal, else the
 // exit status and the first lines of its report. Rank 0 only.
 std::string h5diff(const fs::path& a, const fs::path& b, const fs::path& scratch) {
@@ -160,48 +123,13 @@ std::string h5diff(const fs::path& a, const fs::path& b, const fs::path& scratch
   const int status = std::system(cmd.c_str());
   const int code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
   if (code == 0) return "";
-  std::string text = read_text(report);
+  std::string text = read_file(report);
   if (text.size() > 1500) text = text.substr(0, 1500) + "...";
   return "h5diff exit " + std::to_string(code) + " (" + a.filename().string() + " vs " + b.filename().string() +
          "):\n" + text;
 }
 
-std::string scene_ini(const std::string& law) {
-  const std::string block = law == "wang" ? "[wang]\nk_r = 2e6\nmu_r = 0.1\n" : "[jiang]\ndelta = 0.5\n";
-  return R"(
-[run]
-progress = false
-[diagnostics]
-every = 500
-[domain]
-xlo = 0
-xhi = 0.05
-ylo = 0
-yhi = 0.05
-[gravity]
-y = -9.81
-[linear]
-k_n = 1e7
-e = 0.5
-[coulomb]
-k_s = 7.5e6
-mu = 0.5
-[contact]
-rolling = )" + law + "\n" + block + R"(
-[walls]
-box = bottom right
-lines = 0 0 1 0 0.4 0
-[scene]
-type = random
-count = 130
-region = 0.0005 0.05 0 0.04
-radius_min = 0.001
-radius_max = 0.0018
-seed = 7
-vy = -0.5
-omega = 30
-)";
-}
+std::string scene_ini(const std::string& law) { return test::moving_wall_box_ini(law, "[diagnostics]\nevery = 500\n"); }
 
 struct Case {
   int writer, restart;
@@ -312,7 +240,7 @@ void restart_cases(const std::string& law, const std::vector<std::string>& extra
       ASSERT_TRUE(fs::is_regular_file(checkpoint_name(2 * kHalf))) << checkpoint_name(2 * kHalf);
       fs::rename(checkpoint_name(kHalf), held_n);
       fs::rename(checkpoint_name(2 * kHalf), held_cont);
-      EXPECT_EQ(first_difference(reference, continued), "")
+      EXPECT_EQ(test::first_difference(reference, continued, "expected", "got"), "")
           << "the writer's run (checkpoints at N and 2N) differs from the uninterrupted 1-rank run";
 
       // The checkpoint carries contact history: disc pairs and the moving wall's contacts.
@@ -349,9 +277,10 @@ void restart_cases(const std::string& law, const std::vector<std::string>& extra
     if (root) {
       EXPECT_EQ(summary.steps, kHalf);
       EXPECT_EQ(summary.stop_signal, 0);
-      EXPECT_EQ(first_difference(reference, restarted), "")
+      EXPECT_EQ(test::first_difference(reference, restarted, "expected", "got"), "")
           << "N steps + checkpoint + restart + N steps differ from 2N steps";
-      EXPECT_EQ(first_difference(reference, read_text(out / "final.csv")), "") << "final.csv of the restart";
+      EXPECT_EQ(test::first_difference(reference, read_file(out / "final.csv"), "expected", "got"), "")
+          << "final.csv of the restart";
       ASSERT_TRUE(fs::is_regular_file(checkpoint_name(2 * kHalf))) << "the restart wrote no checkpoint at its end";
       fs::rename(checkpoint_name(2 * kHalf), held_restart);
       // The whole state at 2N (contact rows and their history included) as the uninterrupted writer's.

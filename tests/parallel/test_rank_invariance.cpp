@@ -105,28 +105,20 @@ std::string csv_line(int id, double x, double y, double R, double vx, double vy,
 }
 
 std::string rolling_ini(const std::string& law, const std::string& file) {
-  std::string laws = law == "wang" ? "[wang]\nk_r = 2e6\nmu_r = 0.1\n" : "[jiang]\ndelta = 0.5\n";
   return R"(
 [domain]
 xlo = 0
 xhi = 0.06
 ylo = 0
 yhi = 0.02
-[gravity]
-y = -9.81
-[linear]
-k_n = 1e7
-e = 0.5
-[coulomb]
-k_s = 7.5e6
-mu = 0.5
-[contact]
-rolling = )" + law + "\n" + laws + R"(
+)" + test::falling_contacts_ini() +
+         test::rolling_law_ini(law) + R"(
 [walls]
 box = bottom left right
 [scene]
 type = csv
-file = )" + file + "\n";
+file = )" +
+         file + "\n";
 }
 
 // 2. A disc rolling without slip on the bottom wall crosses a rank border: its wall contact row (tangential

@@ -21,6 +21,7 @@
 #include "physics/LawRegistry.hpp"
 #include "physics/LawTypes.hpp"
 #include "physics/RollingJiangPlastic.hpp"
+#include "support/StandardObjects.hpp"
 
 namespace rondel {
 namespace {
@@ -30,24 +31,11 @@ using testing_rig::OneContactRig;
 using testing_rig::verlet_frequency;
 
 // Disc D5 and contact sets S and J (VALIDATION.md section 0).
-constexpr double kR = 0.005, kDensity = 2650.0, kG = 9.81;
-const double kMass = kDensity * M_PI * kR * kR;
-const double kInertia = 0.5 * kMass * kR * kR;
-
-ContactParams set_S() {
-  ContactParams p;
-  p.k_n = 1e6;
-  p.k_s = 0.75e6;
-  p.mu = 0.5;
-  return p;
-}
-ContactParams set_J() {
-  ContactParams p;
-  p.k_n = 2e8;
-  p.k_s = 1.5e8;
-  p.mu = 0.5;
-  return p;
-}
+constexpr double kR = test::d5::R, kDensity = test::d5::density, kG = test::d5::g;
+const double kMass = test::d5::mass();
+const double kInertia = test::d5::inertia();
+using test::set_J;
+using test::set_S;
 
 LawSelection laws_with(const std::string& t, const std::string& r) {
   LawSelection laws;

@@ -26,6 +26,7 @@
 #include "OneContactRig.hpp"
 #include "physics/CriticalTimeStep.hpp"
 #include "physics/LawRegistry.hpp"
+#include "support/StandardObjects.hpp"
 
 namespace rondel {
 namespace {
@@ -36,13 +37,9 @@ constexpr double kR1 = 0.005;        // the D5 disc (VALIDATION.md section 0)
 constexpr double kDensity = 2650.0;  // kg/m^3, thickness 1 m
 constexpr double kOverlap = 1e-4;    // rest overlap u0 / R1
 
-struct ContactSet {
-  const char* name;
-  double k_n, k_s;
-};
-constexpr ContactSet kSetS{"S", 1e6, 0.75e6};
-constexpr ContactSet kSetJ{"J", 2e8, 1.5e8};
-void PrintTo(const ContactSet& s, std::ostream* os) { *os << "set " << s.name; }
+using test::ContactSet;
+using test::kSetJ;
+using test::kSetS;
 
 // (set, rho (0 = wall), delta)
 using F4Param = std::tuple<ContactSet, double, double>;

@@ -8,9 +8,9 @@
 // and ends in the bits of an uninterrupted run.
 //
 // One rank (the regression binary, MPI initialised by its main).
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <hdf5.h>
-#include <fcntl.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <sys/wait.h>
@@ -37,6 +37,10 @@
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"
 #include "parallel/StateFile.hpp"
+#include "support/Assertions.hpp"
+#include "support/Quiet.hpp"
+#include "support/Scenes.hpp"
+#include "support/TempDir.hpp"
 
 extern char** environ;
 
@@ -45,83 +49,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class CkTempDir {
- public:
-  CkTempDir() {
-    std::string tmpl = (fs::temp_directory_path() / "rondel-ckerr-XXXXXX").string();
-    if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-    path_ = tmpl;
-  }
-  ~CkTempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  CkTempDir(const CkTempDir&) = delete;
-  CkTempDir& operator=(const CkTempDir&) = delete;
-  const fs::path& path() const { return path_; }
-  fs::path operator/(const std::string& name) const { return path_ / name; }
-
- private:
-  fs::path path_;
-};
-
-// Swallows std::cout (the simulation logs there) while alive.
-class Quiet {
- public:
-  Quiet() : old_(std::cout.rdbuf(sink_.rdbuf())) {}
-  ~Quiet() { std::cout.rdbuf(old_); }
-
- private:
-  std::ostringstream sink_;
-  std::streambuf* old_;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-::testing::AssertionResult mentions(const std::string& message, const std::string& what) {
-  if (message.find(what) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "the message does not name '" << what << "': '" << message << "'";
-}
+using test::QuietCout;
+using test::TempDir;
 
 // Discs dropped into a box with a wall moving in from the left, Coulomb friction and a rolling law with
 // history (the law block follows contact.rolling).
-std::string scene(const std::string& law = "wang") {
-  const std::string block = law == "wang" ? "[wang]\nk_r = 2e6\nmu_r = 0.1\n" : "[jiang]\ndelta = 0.5\n";
-  return R"(
-[run]
-progress = false
-[domain]
-xlo = 0
-xhi = 0.05
-ylo = 0
-yhi = 0.05
-[gravity]
-y = -9.81
-[linear]
-k_n = 1e7
-e = 0.5
-[coulomb]
-k_s = 7.5e6
-mu = 0.5
-[contact]
-rolling = )" + law + "\n" + block + R"(
-[walls]
-box = bottom right
-lines = 0 0 1 0 0.4 0
-[scene]
-type = random
-count = 130
-region = 0.0005 0.05 0 0.04
-radius_min = 0.001
-radius_max = 0.0018
-seed = 7
-vy = -0.5
-omega = 30
-)";
-}
+std::string scene(const std::string& law = "wang") { return test::moving_wall_box_ini(law); }
 
 Config config_for(const fs::path& out, const std::string& law = "wang", std::vector<std::string> more = {}) {
   more.push_back("--run.output=" + out.string());
@@ -131,7 +64,7 @@ Config config_for(const fs::path& out, const std::string& law = "wang", std::vec
 // A valid checkpoint after `steps` steps, written into `out`; returns its path.
 fs::path make_checkpoint(const fs::path& out, int steps, const std::string& law = "wang") {
   const Communicator self(MPI_COMM_SELF);
-  Quiet quiet;
+  QuietCout quiet;
   Simulation sim(config_for(out, law, {"--run.overwrite=true"}), self, true);
   for (int s = 0; s < steps; ++s) sim.step();
   return sim.write_checkpoint();
@@ -143,7 +76,7 @@ template <class Error>
 std::string restart_refusal(const fs::path& file, Config config) {
   const Communicator self(MPI_COMM_SELF);
   try {
-    Quiet quiet;
+    QuietCout quiet;
     Simulation sim(std::move(config), self, true, file.string());
   } catch (const Error& e) {
     return e.what();
@@ -166,7 +99,7 @@ std::string restart_refusal(const fs::path& file, const fs::path& out, const std
 std::string scene_file_refusal(const fs::path& file, const fs::path& out) {
   const Communicator self(MPI_COMM_SELF);
   try {
-    Quiet quiet;
+    QuietCout quiet;
     Simulation sim(config_for(out, "wang", {"--scene.type=file", "--scene.file=" + file.string()}), self, true);
   } catch (const InputError& e) {
     return e.what();
@@ -240,7 +173,7 @@ struct H5 {
 class CheckpointErrors : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new CkTempDir();
+    dir_ = new TempDir("rondel-ckerr");
     valid_ = new fs::path(make_checkpoint(*dir_ / "source", 1500));
   }
   static void TearDownTestSuite() {
@@ -255,15 +188,15 @@ class CheckpointErrors : public ::testing::Test {
     return p;
   }
   fs::path out(const std::string& name) const { return *dir_ / ("out-" + name); }
-  static CkTempDir* dir_;
+  static TempDir* dir_;
   static fs::path* valid_;
 };
-CkTempDir* CheckpointErrors::dir_ = nullptr;
+TempDir* CheckpointErrors::dir_ = nullptr;
 fs::path* CheckpointErrors::valid_ = nullptr;
 
 TEST_F(CheckpointErrors, TheValidCheckpointRestarts) {
   const Communicator self(MPI_COMM_SELF);
-  Quiet quiet;
+  QuietCout quiet;
   Simulation sim(config_for(out("valid")), self, true, valid_->string());
   EXPECT_EQ(sim.step_count(), 1500);
   sim.step();
@@ -275,17 +208,17 @@ TEST_F(CheckpointErrors, MissingFiles) {
   const fs::path empty = *dir_ / "empty";
   fs::create_directories(empty);
   std::ofstream(empty / "log.txt") << "a log, no checkpoint\n";
-  EXPECT_TRUE(mentions(newest_refusal(empty), empty.string()));
+  EXPECT_TRUE(test::names(newest_refusal(empty), empty.string()));
   const fs::path nowhere = *dir_ / "no-such-dir";
-  EXPECT_TRUE(mentions(newest_refusal(nowhere), nowhere.string()));
+  EXPECT_TRUE(test::names(newest_refusal(nowhere), nowhere.string()));
   // A restart file that does not exist.
   const fs::path missing = *dir_ / "no-such-checkpoint.h5";
   const std::string m = restart_refusal<InputError>(missing, out("missing"));
-  EXPECT_TRUE(mentions(m, missing.string()));
+  EXPECT_TRUE(test::names(m, missing.string()));
   EXPECT_FALSE(fs::exists(out("missing"))) << "a refused restart created its output directory";
   // scene.type = file with a missing path.
   const std::string s = scene_file_refusal(missing, out("missing-scene"));
-  EXPECT_TRUE(mentions(s, missing.string()));
+  EXPECT_TRUE(test::names(s, missing.string()));
   EXPECT_FALSE(fs::exists(out("missing-scene")));
 }
 
@@ -293,31 +226,32 @@ TEST_F(CheckpointErrors, TruncatedFile) {
   const fs::path file = copy("truncated/checkpoint_0000001500.h5");
   fs::resize_file(file, fs::file_size(*valid_) / 2);
   const std::string m = restart_refusal<InputError>(file, out("truncated"));
-  EXPECT_TRUE(mentions(m, file.string()));
-  EXPECT_TRUE(mentions(m, "truncated"));
+  EXPECT_TRUE(test::names(m, file.string()));
+  EXPECT_TRUE(test::names(m, "truncated"));
   EXPECT_FALSE(fs::exists(out("truncated")));
-  EXPECT_TRUE(mentions(scene_file_refusal(file, out("truncated-scene")), file.string()));
+  EXPECT_TRUE(test::names(scene_file_refusal(file, out("truncated-scene")), file.string()));
   // --resume of a directory whose only checkpoint is truncated: the refusal names that file.
   const std::string r = newest_refusal(file.parent_path());
-  EXPECT_TRUE(mentions(r, file.parent_path().string()));
-  EXPECT_TRUE(mentions(r, file.filename().string())) << "--resume does not say which checkpoint it passed over, nor why";
+  EXPECT_TRUE(test::names(r, file.parent_path().string()));
+  EXPECT_TRUE(test::names(r, file.filename().string()))
+      << "--resume does not say which checkpoint it passed over, nor why";
 }
 
 TEST_F(CheckpointErrors, CorruptedSuperblock) {
   const fs::path file = copy("superblock.h5");
   overwrite_bytes(file, 0, 16, 'X');  // the HDF5 signature and the superblock versions
   const std::string m = restart_refusal<InputError>(file, out("superblock"));
-  EXPECT_TRUE(mentions(m, file.string()));
-  EXPECT_TRUE(mentions(m, "not an HDF5 file"));
+  EXPECT_TRUE(test::names(m, file.string()));
+  EXPECT_TRUE(test::names(m, "not an HDF5 file"));
   EXPECT_FALSE(fs::exists(out("superblock")));
-  EXPECT_TRUE(mentions(scene_file_refusal(file, out("superblock-scene")), file.string()));
+  EXPECT_TRUE(test::names(scene_file_refusal(file, out("superblock-scene")), file.string()));
 }
 
 TEST_F(CheckpointErrors, CorruptedMiddleOfTheFile) {
   const fs::path file = copy("middle.h5");
   overwrite_bytes(file, fs::file_size(file) / 2, 32);
   const std::string m = restart_refusal<InputError>(file, out("middle"));
-  EXPECT_TRUE(mentions(m, file.string()));
+  EXPECT_TRUE(test::names(m, file.string()));
   EXPECT_FALSE(fs::exists(out("middle")));
 }
 
@@ -335,7 +269,7 @@ TEST_F(CheckpointErrors, CorruptedDiscData) {
   ASSERT_GT(size, 64u);
   overwrite_bytes(file, at + size / 2, 32);
   const std::string m = restart_refusal<InputError>(file, out("positions"));
-  EXPECT_TRUE(mentions(m, file.string()));
+  EXPECT_TRUE(test::names(m, file.string()));
   EXPECT_FALSE(fs::exists(out("positions")));
 }
 
@@ -343,11 +277,11 @@ TEST_F(CheckpointErrors, AnotherFormatVersion) {
   const fs::path file = copy("version2.h5");
   H5(file).set_int("/", "format_version", 2);
   const std::string m = restart_refusal<InputError>(file, out("version2"));
-  EXPECT_TRUE(mentions(m, file.string()));
-  EXPECT_TRUE(mentions(m, "format version 2"));
-  EXPECT_TRUE(mentions(m, "version " + std::to_string(kStateFormatVersion)));
+  EXPECT_TRUE(test::names(m, file.string()));
+  EXPECT_TRUE(test::names(m, "format version 2"));
+  EXPECT_TRUE(test::names(m, "version " + std::to_string(kStateFormatVersion)));
   EXPECT_FALSE(fs::exists(out("version2")));
-  EXPECT_TRUE(mentions(scene_file_refusal(file, out("version2-scene")), "format version 2"));
+  EXPECT_TRUE(test::names(scene_file_refusal(file, out("version2-scene")), "format version 2"));
 
   // A file made by hand: the two identifying attributes only, version 99: refused on the version first.
   const fs::path hand = *dir_ / "by-hand.h5";
@@ -364,34 +298,34 @@ TEST_F(CheckpointErrors, AnotherFormatVersion) {
     H5Aclose(a);
     H5Sclose(space);
   }
-  EXPECT_TRUE(mentions(restart_refusal<InputError>(hand, out("by-hand")), "format version 99"));
+  EXPECT_TRUE(test::names(restart_refusal<InputError>(hand, out("by-hand")), "format version 99"));
 
   // An HDF5 file of another program, and a text file.
   const fs::path foreign = *dir_ / "foreign.h5";
   H5Fclose(H5Fcreate(foreign.string().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
   const std::string f = restart_refusal<InputError>(foreign, out("foreign"));
-  EXPECT_TRUE(mentions(f, foreign.string()));
-  EXPECT_TRUE(mentions(f, "not a Rondel checkpoint"));
+  EXPECT_TRUE(test::names(f, foreign.string()));
+  EXPECT_TRUE(test::names(f, "not a Rondel checkpoint"));
   const fs::path text = *dir_ / "text.h5";
   std::ofstream(text) << "id,x,y,radius\n0,0.1,0.1,0.01\n";
-  EXPECT_TRUE(mentions(restart_refusal<InputError>(text, out("text")), text.string()));
+  EXPECT_TRUE(test::names(restart_refusal<InputError>(text, out("text")), text.string()));
 }
 
 TEST_F(CheckpointErrors, IncompleteFile) {
   const fs::path file = copy("incomplete.h5");
   H5(file).remove("/", "complete");
   const std::string m = restart_refusal<InputError>(file, out("incomplete"));
-  EXPECT_TRUE(mentions(m, file.string()));
-  EXPECT_TRUE(mentions(m, "incomplete"));
+  EXPECT_TRUE(test::names(m, file.string()));
+  EXPECT_TRUE(test::names(m, "incomplete"));
 }
 
 TEST_F(CheckpointErrors, LawsOrHistorySlotsDiffer) {
   // Written with wang (xi, x_r); the configuration selects jiang_plastic (xi, theta_r).
   const std::string m = restart_refusal<InputError>(*valid_, out("laws"), "jiang_plastic");
-  EXPECT_TRUE(mentions(m, valid_->string()));
-  EXPECT_TRUE(mentions(m, "wang"));
-  EXPECT_TRUE(mentions(m, "jiang_plastic"));
-  EXPECT_TRUE(mentions(m, "run.reset_history"));
+  EXPECT_TRUE(test::names(m, valid_->string()));
+  EXPECT_TRUE(test::names(m, "wang"));
+  EXPECT_TRUE(test::names(m, "jiang_plastic"));
+  EXPECT_TRUE(test::names(m, "run.reset_history"));
   EXPECT_FALSE(fs::exists(out("laws")));
   // The tangential law differs (no friction: the [coulomb] block goes).
   std::string frictionless = scene("wang");
@@ -400,18 +334,18 @@ TEST_F(CheckpointErrors, LawsOrHistorySlotsDiffer) {
   frictionless.replace(frictionless.find(coulomb), coulomb.size(), "");
   const std::string t = restart_refusal<InputError>(
       *valid_, parse_config_text(frictionless, {"--contact.tangential=none", "--run.output=" + out("tangential").string()}));
-  EXPECT_TRUE(mentions(t, "tangential coulomb"));
-  EXPECT_TRUE(mentions(t, "none"));
+  EXPECT_TRUE(test::names(t, "tangential coulomb"));
+  EXPECT_TRUE(test::names(t, "none"));
   // Same laws, but the file's history slots are not the kernel's.
   const fs::path slots = copy("slots.h5");
   H5(slots).set_string("/", "history_slots", "xi,x_r,extra");
   const std::string s = restart_refusal<InputError>(slots, out("slots"));
-  EXPECT_TRUE(mentions(s, slots.string()));
-  EXPECT_TRUE(mentions(s, "xi,x_r,extra"));
+  EXPECT_TRUE(test::names(s, slots.string()));
+  EXPECT_TRUE(test::names(s, "xi,x_r,extra"));
 
   // Accepted with run.reset_history = true: discs, step and time from the file, no contact history.
   const Communicator self(MPI_COMM_SELF);
-  Quiet quiet;
+  QuietCout quiet;
   Simulation sim(config_for(out("reset"), "jiang_plastic", {"--run.reset_history=true"}), self, true, valid_->string());
   EXPECT_EQ(sim.step_count(), 1500);
   std::size_t with_history = 0;
@@ -432,7 +366,7 @@ TEST_F(CheckpointErrors, OutputDirectoryCannotBeWritten) {
     SCOPED_TRACE(restart ? "restart" : "new run");
     std::string m;
     try {
-      Quiet quiet;
+      QuietCout quiet;
       Simulation sim(config_for(inside), self, true, restart ? valid_->string() : "");
       ADD_FAILURE() << "run.output inside a regular file was accepted";
     } catch (const ConfigError& e) {
@@ -440,9 +374,9 @@ TEST_F(CheckpointErrors, OutputDirectoryCannotBeWritten) {
     } catch (const std::exception& e) {
       ADD_FAILURE() << "expected ConfigError, got " << typeid(e).name() << ": " << e.what();
     }
-    EXPECT_TRUE(mentions(m, "run.output"));
-    EXPECT_TRUE(mentions(m, inside.string()));
-    EXPECT_TRUE(mentions(m, "cannot be written"));
+    EXPECT_TRUE(test::names(m, "run.output"));
+    EXPECT_TRUE(test::names(m, inside.string()));
+    EXPECT_TRUE(test::names(m, "cannot be written"));
   }
 }
 
@@ -451,7 +385,7 @@ TEST_F(CheckpointErrors, InterruptedCheckpointIsNeverPicked) {
   const fs::path run = *dir_ / "interrupted";
   const Communicator self(MPI_COMM_SELF);
   {
-    Quiet quiet;
+    QuietCout quiet;
     Simulation sim(config_for(run, "wang", {"--run.overwrite=true", "--output.checkpoint_keep=5"}), self, true);
     for (int s = 0; s < 300; ++s) sim.step();
     sim.write_checkpoint();
@@ -479,7 +413,7 @@ TEST_F(CheckpointErrors, InterruptedCheckpointIsNeverPicked) {
   std::vector<std::string> skipped;
   EXPECT_EQ(Checkpointing::newest_checkpoint(run.string(), self, &skipped), first.string());
   ASSERT_EQ(skipped.size(), 1u);
-  EXPECT_TRUE(mentions(skipped[0], second.filename().string()));
+  EXPECT_TRUE(test::names(skipped[0], second.filename().string()));
 
   // A newest file without the final "complete" attribute (a writer stopped before its last write).
   const fs::path third = run / Checkpointing::file_name("checkpoint", 1200);
@@ -488,10 +422,10 @@ TEST_F(CheckpointErrors, InterruptedCheckpointIsNeverPicked) {
   skipped.clear();
   EXPECT_EQ(Checkpointing::newest_checkpoint(run.string(), self, &skipped), first.string());
   ASSERT_EQ(skipped.size(), 2u);
-  EXPECT_TRUE(mentions(skipped[0], "incomplete"));
+  EXPECT_TRUE(test::names(skipped[0], "incomplete"));
 
   // The one picked restarts.
-  Quiet quiet;
+  QuietCout quiet;
   Simulation sim(config_for(*dir_ / "interrupted-resumed"), self, true, first.string());
   EXPECT_EQ(sim.step_count(), 300);
 }
@@ -501,13 +435,13 @@ TEST_F(CheckpointErrors, CheckpointsOfAnOverwrittenRunAreNeverPicked) {
   const fs::path run = *dir_ / "overwritten";
   const Communicator self(MPI_COMM_SELF);
   {
-    Quiet quiet;
+    QuietCout quiet;
     Simulation old_run(config_for(run, "wang", {"--run.overwrite=true"}), self, true);
     for (int s = 0; s < 600; ++s) old_run.step();
     old_run.write_checkpoint();
   }
   {
-    Quiet quiet;
+    QuietCout quiet;
     Simulation new_run(config_for(run, "jiang_plastic", {"--run.overwrite=true"}), self, true);
     for (int s = 0; s < 300; ++s) new_run.step();
     new_run.write_checkpoint();
@@ -530,7 +464,7 @@ TEST_F(CheckpointErrors, SnapshotSeriesSurvivesAResume) {
   const Communicator self(MPI_COMM_SELF);
   const std::vector<std::string> every{"--run.overwrite=true", "--output.snapshot_every=100", "--diagnostics.every=100"};
   {
-    Quiet quiet;
+    QuietCout quiet;
     auto more = every;
     more.push_back("--run.steps=400");
     Simulation first(config_for(run, "wang", more), self, true);
@@ -539,13 +473,13 @@ TEST_F(CheckpointErrors, SnapshotSeriesSurvivesAResume) {
   const fs::path checkpoint = run / Checkpointing::file_name("checkpoint", 400);
   ASSERT_TRUE(fs::is_regular_file(checkpoint));
   {
-    Quiet quiet;
+    QuietCout quiet;
     auto more = every;
     more.push_back("--run.steps=600");
     Simulation resumed(config_for(run, "wang", more), self, true, checkpoint.string());
     resumed.run();
   }
-  const std::string xdmf = slurp(run / "snapshots.xdmf");
+  const std::string xdmf = test::read_file(run / "snapshots.xdmf");
   for (int step = 100; step <= 600; step += 100) {
     const std::string name = Checkpointing::file_name("snapshot", step);
     EXPECT_TRUE(fs::is_regular_file(run / name)) << name;
@@ -668,7 +602,7 @@ omega = 5
 
 TEST(CheckpointSignal, SigtermWritesACheckpointAndResumeFinishesTheRun) {
   ASSERT_TRUE(fs::exists(rondel_binary())) << rondel_binary();
-  CkTempDir dir;
+  TempDir dir;
   const fs::path out = dir / "run";
   std::ofstream(dir / "long.ini") << kLongRun;
 
@@ -683,36 +617,36 @@ TEST(CheckpointSignal, SigtermWritesACheckpointAndResumeFinishesTheRun) {
   std::this_thread::sleep_for(std::chrono::milliseconds(700));
   ASSERT_EQ(kill(pid, SIGTERM), 0) << "the run ended before the signal (make kLongRun longer)";
   const int code = wait_for(pid, 120);
-  const std::string err = slurp(dir / "first.err");
+  const std::string err = test::read_file(dir / "first.err");
   ASSERT_EQ(code, 10) << "stderr: " << err;
   const auto written = checkpoints_in(out);
   ASSERT_EQ(written.size(), 1u) << "one checkpoint, at the step of the signal";
   const StateHeader h = read_state_header(written[0].string(), Communicator(MPI_COMM_SELF));
   EXPECT_GT(h.step, 0);
   EXPECT_LT(h.step, 90000) << "the run was not stopped early";
-  const std::string summary = slurp(out / "summary.txt");
-  EXPECT_TRUE(mentions(summary, "stopped by a signal"));
-  EXPECT_TRUE(mentions(summary, "--resume " + out.string()));
-  EXPECT_TRUE(mentions(slurp(out / "log.txt"), "stopped by SIGTERM at step " + std::to_string(h.step)));
+  const std::string summary = test::read_file(out / "summary.txt");
+  EXPECT_TRUE(test::names(summary, "stopped by a signal"));
+  EXPECT_TRUE(test::names(summary, "--resume " + out.string()));
+  EXPECT_TRUE(test::names(test::read_file(out / "log.txt"), "stopped by SIGTERM at step " + std::to_string(h.step)));
   std::cout << "[ signal   ] SIGTERM stopped the run at step " << h.step << " of 90000\n";
 
   // --resume without the INI: the checkpoint's configuration; the run goes on to run.steps = 90000.
   const pid_t again = spawn_rondel(dir.path(), {"--resume", out.string()}, "resume");
   ASSERT_GT(again, 0);
   const int code2 = wait_for(again, 180);
-  ASSERT_EQ(code2, 0) << "stderr: " << slurp(dir / "resume.err");
-  EXPECT_TRUE(mentions(slurp(out / "summary.txt"), "status: complete"));
-  EXPECT_TRUE(mentions(slurp(out / "log.txt"), "resumed at step " + std::to_string(h.step)));
+  ASSERT_EQ(code2, 0) << "stderr: " << test::read_file(dir / "resume.err");
+  EXPECT_TRUE(test::names(test::read_file(out / "summary.txt"), "status: complete"));
+  EXPECT_TRUE(test::names(test::read_file(out / "log.txt"), "resumed at step " + std::to_string(h.step)));
   const auto after = checkpoints_in(out);
   ASSERT_FALSE(after.empty());
   EXPECT_EQ(after.back().filename().string(), Checkpointing::file_name("checkpoint", 90000));
-  const std::string resumed_final = slurp(out / "final.csv");
+  const std::string resumed_final = test::read_file(out / "final.csv");
 
   // The same run without interruption ends in the same bits.
   const fs::path straight = dir / "straight";
   const pid_t ref = spawn_rondel(dir.path(), {"long.ini", "--run.output=" + straight.string()}, "straight");
-  ASSERT_EQ(wait_for(ref, 180), 0) << slurp(dir / "straight.err");
-  const std::string straight_final = slurp(straight / "final.csv");
+  ASSERT_EQ(wait_for(ref, 180), 0) << test::read_file(dir / "straight.err");
+  const std::string straight_final = test::read_file(straight / "final.csv");
   EXPECT_GT(std::count(straight_final.begin(), straight_final.end(), '\n'), 1000);
   EXPECT_TRUE(resumed_final == straight_final) << "final.csv after SIGTERM + --resume differs from the uninterrupted run";
 }

@@ -25,21 +25,20 @@
 #include "core/Config.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"
+#include "support/Assertions.hpp"
+#include "support/Quiet.hpp"
+#include "support/TempDir.hpp"
 
 namespace rondel {
 namespace {
 
 namespace fs = std::filesystem;
 
-
 using test::read_file;
 using test::TempDir;
 using test::write_file;
 
-::testing::AssertionResult names(const std::string& message, const std::string& what) {
-  if (message.find(what) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "the message does not name '" << what << "': '" << message << "'";
-}
+using test::names;
 
 // The number as Simulation's messages print it (6 significant digits).
 std::string fmt6(double v) {
@@ -107,16 +106,7 @@ struct GasCase {
   }
 };
 
-// Swallows what Simulation::run prints on stdout while it is alive.
-class QuietStdout {
- public:
-  QuietStdout() : old_(std::cout.rdbuf(sink_.rdbuf())) {}
-  ~QuietStdout() { std::cout.rdbuf(old_); }
-
- private:
-  std::ostringstream sink_;
-  std::streambuf* old_;
-};
+using test::QuietCout;
 
 // Runs a simulation to its end with the automatic step (Simulation::run checks the kinetic energy and the
 // ledger residual at every diagnostics row, and the overlap at every step, here against `max_overlap`) and
@@ -349,7 +339,7 @@ TEST(ExtremeCases, OutputWrittenBeforeAFailureIsKept) {
   forced.push_back("--run.force_dt=true");
   std::string m;
   {
-    QuietStdout quiet;
+    QuietCout quiet;
     Communicator comm;
     Simulation sim(parse_config_text(c.ini, forced), comm, true);
     try {

@@ -2,11 +2,12 @@
 #include <gtest/gtest.h>
 
 #include "app/Simulation.hpp"
+#include "support/Scenes.hpp"
 
 namespace rondel {
 namespace {
 
-const char* kScene = R"(
+const std::string kScene = R"(
 [run]
 steps = 400
 [domain]
@@ -14,15 +15,8 @@ xlo = 0
 xhi = 0.2
 ylo = 0
 yhi = 0.3
-[gravity]
-y = -9.81
-[linear]
-k_n = 1e7
-e = 0.5
-[coulomb]
-k_s = 7.5e6
-mu = 0.5
-[walls]
+)" + test::falling_contacts_ini() +
+                           R"([walls]
 box = bottom left right
 [scene]
 type = random

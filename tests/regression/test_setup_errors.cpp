@@ -21,6 +21,8 @@
 #include "core/Config.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"
+#include "support/Assertions.hpp"
+#include "support/TempDir.hpp"
 
 extern char** environ;
 
@@ -28,8 +30,6 @@ namespace rondel {
 namespace {
 
 namespace fs = std::filesystem;
-
-// A fresh directory under the system temp dir, removed with everything in it at the end of the test.
 
 using test::read_file;
 using test::TempDir;
@@ -116,10 +116,7 @@ std::string setup_error(const std::string& ini, const std::vector<std::string>& 
   return "";
 }
 
-::testing::AssertionResult names(const std::string& message, const std::string& what) {
-  if (message.find(what) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "the message does not name '" << what << "': '" << message << "'";
-}
+using test::names;
 
 TEST(SetupErrors, NonPositiveLatticeRadius) {
   for (const char* radius : {"0", "-0.005"}) {

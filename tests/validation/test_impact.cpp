@@ -21,6 +21,8 @@
 #include <vector>
 
 #include "app/Simulation.hpp"
+#include "support/Format.hpp"
+#include "support/StandardObjects.hpp"
 #include "support/TempDir.hpp"
 
 namespace rondel {
@@ -28,13 +30,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kR = 0.005;        // D5
-constexpr double kDensity = 2650.0;
-constexpr double kKn = 2e8;         // contact set J
+constexpr double kR = test::d5::R;  // D5
+constexpr double kKn = test::kSetJ.k_n;
 constexpr double kV0 = 1.0;         // relative approach speed [m/s]
 const double kPhases[] = {0.1, 0.3, 0.5, 0.7, 0.9};
 
-double disc_mass() { return kDensity * std::numbers::pi * kR * kR; }  // thickness 1 m
+double disc_mass() { return test::d5::mass(); }
 double m_eff() { return 0.5 * disc_mass(); }
 double w0() { return std::sqrt(kKn / m_eff()); }
 double exact_contact_time(double zeta) {
@@ -45,12 +46,7 @@ double exact_restitution(double zeta) {
 }
 double exact_dissipation(double e) { return 0.5 * m_eff() * kV0 * kV0 * (1 - e * e); }
 
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
+using test::num;
 
 // A scratch directory for the scene file, removed when the test ends.
 struct ScratchDir : test::TempDir {

@@ -28,6 +28,8 @@
 #include <vector>
 
 #include "app/Simulation.hpp"
+#include "support/Format.hpp"
+#include "support/StandardObjects.hpp"
 
 namespace rondel {
 namespace {
@@ -37,8 +39,8 @@ namespace fs = std::filesystem;
 constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = kPi / 180.0;
 // Disc D5 and contact set S (VALIDATION.md section 0).
-constexpr double kR = 0.005, kRho = 2650.0, kThick = 1.0, kG = 9.81;
-constexpr double kKn = 1e6, kKs = 0.75e6, kMu = 0.5;
+constexpr double kR = test::d5::R, kRho = test::d5::density, kThick = test::d5::thickness, kG = test::d5::g;
+constexpr double kKn = test::kSetS.k_n, kKs = test::kSetS.k_s, kMu = test::kSetS.mu;
 const double kMass = kRho * kPi * kR * kR * kThick;
 const double kInertia = 0.5 * kMass * kR * kR;
 const double kWeight = kMass * kG;
@@ -55,19 +57,14 @@ struct LawSetup {
 };
 
 // Equal-cap map parameters (VALIDATION.md section 0).
-constexpr double kJiangDelta = 0.3;
-constexpr double kWangMuR = 0.1, kWangKr = 3e4;
-constexpr double kIoKr = 0.75, kIoEta = 5e-4;
-constexpr double kCtMuR = 0.05;
-constexpr double kDdMuR = 0.05, kDdThetaMax = 0.035;
-constexpr double kFpMuR = 0.1;
+constexpr double kJiangDelta = test::equal_cap::jiang_delta;
+constexpr double kWangMuR = test::equal_cap::wang_mu_r, kWangKr = test::equal_cap::wang_k_r;
+constexpr double kIoKr = test::equal_cap::io_K_r, kIoEta = test::equal_cap::io_eta;
+constexpr double kCtMuR = test::equal_cap::ct_mu_r;
+constexpr double kDdMuR = test::equal_cap::dd_mu_r, kDdThetaMax = test::equal_cap::dd_theta_rmax;
+constexpr double kFpMuR = test::equal_cap::fp_mu_r;
 
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
+using test::num;
 
 // `damped`: add rolling damping so that an elastic-plastic law settles (about half the critical damping of
 // the rolling mode, C ~ 2.4e-3 N m s against 2 sqrt(K (I + m a^2)) = 4.8e-3; displacement_damping

@@ -35,6 +35,8 @@
 #include <vector>
 
 #include "app/Simulation.hpp"
+#include "support/Format.hpp"
+#include "support/StandardObjects.hpp"
 #include "support/TempDir.hpp"
 
 namespace rondel {
@@ -43,28 +45,23 @@ namespace {
 namespace fs = std::filesystem;
 
 // D5 and contact set S.
-constexpr double kR = 0.005;
-constexpr double kDensity = 2650.0;
-constexpr double kG = 9.81;
-constexpr double kKn = 1e6;
-constexpr double kKs = 0.75e6;
-constexpr double kMu = 0.5;
+constexpr double kR = test::d5::R;
+constexpr double kDensity = test::d5::density;
+constexpr double kG = test::d5::g;
+constexpr double kKn = test::kSetS.k_n;
+constexpr double kKs = test::kSetS.k_s;
+constexpr double kMu = test::kSetS.mu;
 constexpr double kDt = 1e-4;
 constexpr double kDuration = 2.0;
 constexpr double kV0 = 1.0;
 
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
+using test::num;
 
 // The disc and its static contact with the wall (VALIDATION.md section 0).
 struct DiscOnWall {
   double m, I, mg, u_n0, a;
   explicit DiscOnWall(double k_n = kKn) {
-    m = kDensity * std::numbers::pi * kR * kR;  // thickness 1 m
+    m = test::d5::mass();
     I = 0.5 * m * kR * kR;
     mg = m * kG;
     u_n0 = mg / k_n;

@@ -1,0 +1,181 @@
+// The partitioners (src/parallel/Partitioner.*) and the cell-to-rank map of Decomposition (DESIGN.md
+// section 6): every cell gets a rank, every rank gets cells, the load is balanced within a bound, and the
+// map is a deterministic function of its inputs (the same on every rank). The pure functions run on every
+// rank of the MPI test binary alike; the Decomposition cases use MPI_COMM_WORLD.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "ParallelTestUtil.hpp"
+#include "core/Errors.hpp"
+#include "parallel/Decomposition.hpp"
+#include "parallel/Partitioner.hpp"
+#include "support/Assertions.hpp"
+
+namespace rondel {
+namespace {
+
+using partest::all_gather;
+using partest::world_size;
+
+// A grid of nx x ny cells: a box of nx x ny units with the interaction range 1.
+CellGrid grid_of(int nx, int ny, bool periodic = false) {
+  return CellGrid(Domain{0.0, static_cast<double>(nx), 0.0, static_cast<double>(ny), periodic, periodic}, 1.0);
+}
+
+// Weight per rank; fails unless every cell has a rank in [0, ranks) and every rank has a cell.
+::testing::AssertionResult weights_per_rank(const std::vector<int>& map, const std::vector<long>& weights, int ranks,
+                                            std::vector<long>* per_rank) {
+  per_rank->assign(static_cast<std::size_t>(ranks), 0);
+  std::vector<int> cells(static_cast<std::size_t>(ranks), 0);
+  for (std::size_t c = 0; c < map.size(); ++c) {
+    if (map[c] < 0 || map[c] >= ranks)
+      return ::testing::AssertionFailure() << "cell " << c << " has rank " << map[c] << " of " << ranks;
+    (*per_rank)[map[c]] += weights[c];
+    ++cells[map[c]];
+  }
+  for (int r = 0; r < ranks; ++r)
+    if (cells[r] == 0) return ::testing::AssertionFailure() << "rank " << r << " of " << ranks << " has no cell";
+  return ::testing::AssertionSuccess();
+}
+
+double imbalance(const std::vector<long>& per_rank) {
+  long total = 0, most = 0;
+  for (long w : per_rank) total += w, most = std::max(most, w);
+  return static_cast<double>(most) * static_cast<double>(per_rank.size()) / static_cast<double>(total);
+}
+
+TEST(GridPartition, EveryCellInOneRectangularBlockOfBalancedSize) {
+  for (const auto& [nx, ny] : std::vector<std::pair<int, int>>{{12, 9}, {7, 5}, {20, 3}, {1, 8}, {16, 16}}) {
+    const CellGrid grid = grid_of(nx, ny);
+    ASSERT_EQ(grid.nx(), nx);
+    ASSERT_EQ(grid.ny(), ny);
+    for (int ranks = 1; ranks <= 6; ++ranks) {
+      std::vector<int> map;
+      try {
+        map = grid_partition(grid, ranks);
+      } catch (const ConfigError&) {
+        continue;  // no px x py layout fits (checked by GridPartition.RefusesRanksWithoutALayout)
+      }
+      const std::string at = std::to_string(nx) + " x " + std::to_string(ny) + ", " + std::to_string(ranks) + " ranks";
+      ASSERT_EQ(map.size(), grid.size()) << at;
+      std::vector<long> cells;
+      ASSERT_TRUE(weights_per_rank(map, std::vector<long>(grid.size(), 1), ranks, &cells)) << at;
+      // Each rank's cells fill their bounding box: a block.
+      std::map<int, std::vector<int>> box;  // rank -> {xmin, xmax, ymin, ymax}
+      for (int cy = 0; cy < ny; ++cy)
+        for (int cx = 0; cx < nx; ++cx) {
+          auto [it, fresh] =
+              box.try_emplace(map[static_cast<std::size_t>(cy) * nx + cx], std::vector<int>{cx, cx, cy, cy});
+          auto& b = it->second;
+          b = {std::min(b[0], cx), std::max(b[1], cx), std::min(b[2], cy), std::max(b[3], cy)};
+        }
+      for (const auto& [r, b] : box)
+        EXPECT_EQ(cells[r], static_cast<long>(b[1] - b[0] + 1) * (b[3] - b[2] + 1)) << at << ": rank " << r;
+      // Block sides differ by at most one cell: the blocks are as equal as the grid allows.
+      std::set<int> widths, heights;
+      for (const auto& [r, b] : box) widths.insert(b[1] - b[0] + 1), heights.insert(b[3] - b[2] + 1);
+      EXPECT_LE(*widths.rbegin() - *widths.begin(), 1) << at;
+      EXPECT_LE(*heights.rbegin() - *heights.begin(), 1) << at;
+    }
+  }
+}
+
+TEST(GridPartition, RefusesRanksWithoutALayout) {
+  // 2 x 2 cells on 5 ranks: neither 1 x 5 nor 5 x 1 blocks fit.
+  try {
+    grid_partition(grid_of(2, 2), 5);
+    FAIL() << "no ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_TRUE(test::names(e.what(), "parallel.partitioner = metis"));
+  }
+}
+
+TEST(MetisPartition, EveryCellAssignedAndUniformWorkBalanced) {
+  const CellGrid grid = grid_of(16, 12, true);
+  const std::vector<long> weights(grid.size(), 3);
+  EXPECT_EQ(metis_partition(grid, 1, weights, {}), std::vector<int>(grid.size(), 0));
+  for (int ranks = 2; ranks <= 5; ++ranks) {
+    const std::vector<int> map = metis_partition(grid, ranks, weights, {});
+    ASSERT_EQ(map.size(), grid.size());
+    std::vector<long> per_rank;
+    ASSERT_TRUE(weights_per_rank(map, weights, ranks, &per_rank)) << ranks << " ranks";
+    EXPECT_LE(imbalance(per_rank), 1.05) << ranks << " ranks";
+    EXPECT_EQ(metis_partition(grid, ranks, weights, {}), map) << "not deterministic, " << ranks << " ranks";
+  }
+}
+
+TEST(MetisPartition, ConcentratedWorkBalanced) {
+  // Work 20 per cell in the bottom-left quarter, 1 elsewhere (a pile in a corner).
+  const CellGrid grid = grid_of(24, 12);
+  std::vector<long> weights(grid.size(), 1);
+  for (int cy = 0; cy < 6; ++cy)
+    for (int cx = 0; cx < 12; ++cx) weights[static_cast<std::size_t>(cy) * 24 + cx] = 20;
+  for (int ranks = 2; ranks <= 4; ++ranks) {
+    std::vector<long> per_rank;
+    ASSERT_TRUE(weights_per_rank(metis_partition(grid, ranks, weights, {}), weights, ranks, &per_rank));
+    EXPECT_LE(imbalance(per_rank), 1.05) << ranks << " ranks";
+  }
+}
+
+TEST(MetisPartition, RelabellingKeepsTheWorkWhereItWas) {
+  // A permuted labelling of the previous map is mapped back to it exactly.
+  const CellGrid grid = grid_of(10, 10);
+  const std::vector<long> weights(grid.size(), 2);
+  const std::vector<int> previous = metis_partition(grid, 4, weights, {});
+  std::vector<int> permuted(previous.size());
+  const int perm[4] = {2, 0, 3, 1};
+  for (std::size_t c = 0; c < previous.size(); ++c) permuted[c] = perm[previous[c]];
+  EXPECT_EQ(relabel_parts(permuted, previous, weights, 4), previous);
+  EXPECT_EQ(relabel_parts(permuted, {}, weights, 4), permuted);  // no previous map: unchanged
+  // A repartition with the previous map keeps most of the weight on its rank.
+  std::vector<long> shifted = weights;
+  shifted[0] = 40;
+  const std::vector<int> next = metis_partition(grid, 4, shifted, previous);
+  long kept = 0, total = 0;
+  for (std::size_t c = 0; c < next.size(); ++c) total += shifted[c], kept += next[c] == previous[c] ? shifted[c] : 0;
+  EXPECT_GE(static_cast<double>(kept), 0.5 * static_cast<double>(total));
+}
+
+// The map of a Decomposition on MPI_COMM_WORLD: every cell has a rank, no rank is empty, every rank holds
+// the same map, and owner(x) is the rank of x's cell.
+void expect_world_map(const Decomposition& d) {
+  const int n = world_size();
+  std::vector<long> cells;
+  ASSERT_TRUE(weights_per_rank(d.cell_rank(), std::vector<long>(d.grid().size(), 1), n, &cells));
+  EXPECT_EQ(d.empty_ranks(), 0);
+  std::string mine;
+  for (int r : d.cell_rank()) mine += std::to_string(r) + ",";
+  for (const std::string& other : all_gather(mine)) EXPECT_EQ(other, mine) << "ranks hold different maps";
+  for (double x : {0.5, 3.2, 11.9})
+    for (double y : {0.1, 5.5}) EXPECT_EQ(d.owner({x, y}), d.cell_rank()[d.grid().cell_of({x, y})]);
+}
+
+TEST(Decomposition, GridAndMetisMapsOnTheWorld) {
+  static const Communicator world(MPI_COMM_WORLD);
+  const Domain domain{0.0, 12.0, 0.0, 8.0, true, false};
+  for (const auto kind : {Decomposition::Partitioner::grid, Decomposition::Partitioner::metis}) {
+    Decomposition d(domain, 1.0, kind, world);
+    std::vector<long> weights(d.grid().size(), 1);
+    for (std::size_t c = 0; c < weights.size() / 3; ++c) weights[c] = 9;
+    d.initial_partition(weights);
+    expect_world_map(d);
+    d.repartition(weights);
+    expect_world_map(d);
+    EXPECT_EQ(d.partitioner(), kind);
+  }
+}
+
+TEST(Decomposition, SumOverRanks) {
+  static const Communicator world(MPI_COMM_WORLD);
+  Decomposition d(Domain{0.0, 6.0, 0.0, 6.0, false, false}, 1.0, Decomposition::Partitioner::grid, world);
+  const std::vector<long> ones(d.grid().size(), 1);
+  EXPECT_EQ(d.sum_over_ranks(ones), std::vector<long>(ones.size(), world_size()));
+}
+
+}  // namespace
+}  // namespace rondel
