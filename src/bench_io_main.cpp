@@ -49,12 +49,18 @@ Options parse(int argc, char** argv) {
     }
     if (i + 1 >= argc) throw rondel::ConfigError("rondel_bench_io: option '" + k + "' needs a value");
     const std::string v = argv[++i];
-    if (k == "--discs") o.discs = std::stol(v);
-    else if (k == "--steps") o.steps = std::stol(v);
-    else if (k == "--warmup") o.warmup = std::stol(v);
-    else if (k == "--repeat") o.repeat = std::stol(v);
-    else if (k == "--every") o.every = std::stol(v);
-    else if (k == "--output") o.output = v;
+    if (k == "--discs")
+      o.discs = std::stol(v);
+    else if (k == "--steps")
+      o.steps = std::stol(v);
+    else if (k == "--warmup")
+      o.warmup = std::stol(v);
+    else if (k == "--repeat")
+      o.repeat = std::stol(v);
+    else if (k == "--every")
+      o.every = std::stol(v);
+    else if (k == "--output")
+      o.output = v;
     else
       throw rondel::ConfigError("rondel_bench_io: unknown option '" + k +
                                 "' (--discs, --steps, --warmup, --repeat, --every, --output, --keep)");
@@ -64,7 +70,6 @@ Options parse(int argc, char** argv) {
     throw rondel::ConfigError("rondel_bench_io: --steps, --repeat and --every must be >= 1, --warmup >= 0");
   return o;
 }
-
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -202,11 +207,12 @@ int main(int argc, char** argv) {
           "  checkpoint every %ld steps: %.4g s of steps; write %.3f %%, write + sync %.3f %% overhead\n"
           "  peak RSS                   %.0f MB over all ranks (%.0f B per disc)\n",
           static_cast<long long>(n), nx, ny, comm.size(), static_cast<long long>(step),
-          static_cast<long long>(pair_rows), static_cast<long long>(with_history), static_cast<long long>(wall_rows), mb,
-          file_bytes / static_cast<double>(n), step_time, o.steps, o.warmup, write.median(), write.best(), o.repeat,
-          mb / write.median(), write_sync.median(), mb / write_sync.median(), raw.median(), mb / raw.median(), read.median(), read.best(),
-          mb / read.median(), restart.median(), restart.best(), o.every, interval, 100.0 * write.median() / interval,
-          100.0 * write_sync.median() / interval, rss / 1e6, rss / static_cast<double>(n));
+          static_cast<long long>(pair_rows), static_cast<long long>(with_history), static_cast<long long>(wall_rows),
+          mb, file_bytes / static_cast<double>(n), step_time, o.steps, o.warmup, write.median(), write.best(), o.repeat,
+          mb / write.median(), write_sync.median(), mb / write_sync.median(), raw.median(), mb / raw.median(),
+          read.median(), read.best(), mb / read.median(), restart.median(), restart.best(), o.every, interval,
+          100.0 * write.median() / interval, 100.0 * write_sync.median() / interval, rss / 1e6,
+          rss / static_cast<double>(n));
     }
     comm.barrier();
     if (!o.keep && comm.root()) {

@@ -31,14 +31,22 @@ Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string k = argv[i], v = argv[i + 1];
-    if (k == "--discs") o.discs = std::stol(v);
-    else if (k == "--steps") o.steps = std::stol(v);
-    else if (k == "--warmup") o.warmup = std::stol(v);
-    else if (k == "--file") o.file = v;
-    else if (k == "--rolling") o.rolling = v;
-    else throw rondel::ConfigError("rondel_bench: unknown option '" + k + "' (--discs, --steps, --warmup, --rolling, --file)");
+    if (k == "--discs")
+      o.discs = std::stol(v);
+    else if (k == "--steps")
+      o.steps = std::stol(v);
+    else if (k == "--warmup")
+      o.warmup = std::stol(v);
+    else if (k == "--file")
+      o.file = v;
+    else if (k == "--rolling")
+      o.rolling = v;
+    else
+      throw rondel::ConfigError("rondel_bench: unknown option '" + k +
+                                "' (--discs, --steps, --warmup, --rolling, --file)");
   }
-  if (argc % 2 == 0) throw rondel::ConfigError("rondel_bench: option '" + std::string(argv[argc - 1]) + "' needs a value");
+  if (argc % 2 == 0)
+    throw rondel::ConfigError("rondel_bench: option '" + std::string(argv[argc - 1]) + "' needs a value");
   if (o.discs != 10000 && o.discs != 40000 && o.discs != 160000)
     throw rondel::ConfigError("rondel_bench: --discs must be 10000, 40000 or 160000 (copies of the 10k packing)");
   return o;
@@ -50,9 +58,15 @@ struct BenchValue {
   const char* value;
 };
 constexpr BenchValue kRollingValues[] = {
-    {"jiang.delta", "0.5"},          {"wang.k_r", "28571.43"},          {"wang.mu_r", "0.1"},
-    {"iwashita_oda.K_r", "4018"},    {"iwashita_oda.C_r", "0"},         {"iwashita_oda.eta", "0.0375"},
-    {"force_proportional.mu_r", "0.1"}, {"constant_torque.mu_r", "0.05"}, {"displacement_damping.mu_r", "0.05"},
+    {"jiang.delta", "0.5"},
+    {"wang.k_r", "28571.43"},
+    {"wang.mu_r", "0.1"},
+    {"iwashita_oda.K_r", "4018"},
+    {"iwashita_oda.C_r", "0"},
+    {"iwashita_oda.eta", "0.0375"},
+    {"force_proportional.mu_r", "0.1"},
+    {"constant_torque.mu_r", "0.05"},
+    {"displacement_damping.mu_r", "0.05"},
 };
 
 // The [contact] rolling line and the law's parameter block, from the law's parameter list.
@@ -80,7 +94,6 @@ void box_of(const std::string& file, double& lo, double& hi) {
   }
   throw rondel::InputError("rondel_bench: '" + file + "' has no 'Periodic box x, y in [lo, hi]' comment");
 }
-
 
 }  // namespace
 
@@ -119,21 +132,22 @@ int main(int argc, char** argv) {
     const double twice = comm.sum(static_cast<double>(border));
     const double ghosts = comm.sum(static_cast<double>(sim.ghost_count()));
     const double comm_time = comm.max(sim.comm_seconds() - comm_before);
-    const double store = comm.sum(static_cast<double>(sim.discs().memory_bytes() + sim.pairs().memory_bytes() +
-                                                      sim.wall_rows().memory_bytes()));
+    const double store = comm.sum(
+        static_cast<double>(sim.discs().memory_bytes() + sim.pairs().memory_bytes() + sim.wall_rows().memory_bytes()));
     const double rss = comm.sum(static_cast<double>(rondel::peak_rss_kib()) * 1024.0);
     if (comm.root())
-      std::printf("rondel_bench: %ld discs, rolling %s, %ld timed steps (after %ld warm-up), dt %.3g s "
-                  "(critical %.3g s, %s mode), %d rank(s)\n"
-                  "  wall time             %.3f s\n  disc-steps per second %.4g\n"
-                  "  contacts per disc     %.3f (coordination %.3f)\n  candidate rows/disc   %.3f\n"
-                  "  neighbour builds      %zu\n  memory per disc       %.0f B in discs and contact rows, %.0f B peak RSS\n"
-                  "  communication         %.3f s (%.1f %% of the wall time, slowest rank)\n"
-                  "  ghosts per disc       %.4f\n  rows computed twice   %.2f %% of all rows (border pairs)\n",
-                  o.discs, o.rolling.c_str(), o.steps, o.warmup, sim.dt(), sim.critical().dt,
-                  sim.critical().mode.c_str(), comm.size(), secs, n * o.steps / secs, all_contacts / n,
-                  2.0 * all_contacts / n, rows / n, sim.neighbour_builds() - builds0, store / n, rss / n, comm_time,
-                  100.0 * comm_time / secs, ghosts / n, 100.0 * twice / rows);
+      std::printf(
+          "rondel_bench: %ld discs, rolling %s, %ld timed steps (after %ld warm-up), dt %.3g s "
+          "(critical %.3g s, %s mode), %d rank(s)\n"
+          "  wall time             %.3f s\n  disc-steps per second %.4g\n"
+          "  contacts per disc     %.3f (coordination %.3f)\n  candidate rows/disc   %.3f\n"
+          "  neighbour builds      %zu\n  memory per disc       %.0f B in discs and contact rows, %.0f B peak RSS\n"
+          "  communication         %.3f s (%.1f %% of the wall time, slowest rank)\n"
+          "  ghosts per disc       %.4f\n  rows computed twice   %.2f %% of all rows (border pairs)\n",
+          o.discs, o.rolling.c_str(), o.steps, o.warmup, sim.dt(), sim.critical().dt, sim.critical().mode.c_str(),
+          comm.size(), secs, n * o.steps / secs, all_contacts / n, 2.0 * all_contacts / n, rows / n,
+          sim.neighbour_builds() - builds0, store / n, rss / n, comm_time, 100.0 * comm_time / secs, ghosts / n,
+          100.0 * twice / rows);
     return 0;
   } catch (const std::exception& e) {
     if (comm.root()) std::cerr << e.what() << '\n';

@@ -22,9 +22,12 @@ std::string resume_directory(int argc, char** argv, bool& has_file) {
   has_file = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--resume" && i + 1 < argc) dir = argv[++i];
-    else if (a.rfind("--resume=", 0) == 0) dir = a.substr(9);
-    else if (a.rfind("--", 0) != 0) has_file = true;
+    if (a == "--resume" && i + 1 < argc)
+      dir = argv[++i];
+    else if (a.rfind("--resume=", 0) == 0)
+      dir = a.substr(9);
+    else if (a.rfind("--", 0) != 0)
+      has_file = true;
   }
   return dir;
 }
@@ -51,7 +54,8 @@ int main(int argc, char** argv) {
       // No INI: the configuration stored in the checkpoint, with the command line's overrides.
       // It continues in DIR itself, unless the command line names another run.output.
       std::vector<std::string> args(argv + 1, argv + argc);
-      const bool named = std::any_of(args.begin(), args.end(), [](const std::string& a) { return a.rfind("--run.output", 0) == 0; });
+      const bool named =
+          std::any_of(args.begin(), args.end(), [](const std::string& a) { return a.rfind("--run.output", 0) == 0; });
       if (!named) args.push_back("--run.output=" + resume);
       config = rondel::parse_config_text(rondel::read_state_header(checkpoint, comm).config, args);
     } else {

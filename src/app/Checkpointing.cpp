@@ -58,7 +58,8 @@ void Checkpointing::adopt_snapshots(std::int64_t step) {
     try {
       const StateHeader h = read_state_header(p.string(), comm_);
       if (h.step > step) continue;
-      snapshots_.push_back({p.filename().string(), h.step, static_cast<std::int64_t>(state_file_discs(p.string(), comm_)), h.time});
+      snapshots_.push_back(
+          {p.filename().string(), h.step, static_cast<std::int64_t>(state_file_discs(p.string(), comm_)), h.time});
     } catch (const InputError&) {
       // not a complete snapshot: left out of the series
     }
@@ -69,8 +70,9 @@ void Checkpointing::remove_old_files() const {
   if (!comm_.root()) return;
   for (const auto& e : fs::directory_iterator(dir_)) {
     const std::string n = e.path().filename().string();
-    const bool ours = ((n.rfind("checkpoint_", 0) == 0 || n.rfind("snapshot_", 0) == 0) && e.path().extension() == ".h5") ||
-                      n.rfind(".checkpoint_", 0) == 0 || n == "snapshots.xdmf";
+    const bool ours =
+        ((n.rfind("checkpoint_", 0) == 0 || n.rfind("snapshot_", 0) == 0) && e.path().extension() == ".h5") ||
+        n.rfind(".checkpoint_", 0) == 0 || n == "snapshots.xdmf";
     if (ours) fs::remove(e.path());
   }
 }

@@ -18,7 +18,7 @@ struct SceneConfig {
   // random
   std::int64_t count = 0;
   double region[4] = {0, 0, 0, 0};  // xlo xhi ylo yhi
-  std::string distribution;          // uniform_radius, uniform_area, list
+  std::string distribution;         // uniform_radius, uniform_area, list
   double radius_min = 0.0, radius_max = 0.0;
   std::vector<double> sizes, fractions;
   std::uint64_t seed = 1;

@@ -5,8 +5,8 @@
 
 namespace rondel {
 
-std::size_t DiscStore::add(std::int64_t id, std::int32_t mat, double R, double density, double thickness,
-                           Vec2 x, Vec2 v, double w) {
+std::size_t DiscStore::add(std::int64_t id, std::int32_t mat, double R, double density, double thickness, Vec2 x,
+                           Vec2 v, double w) {
   if (n_ghost() != 0) throw std::logic_error("DiscStore::add with ghosts present");
   const double m = density * std::numbers::pi * R * R * thickness;
   gid.push_back(id);

@@ -48,8 +48,8 @@ class DiscStore {
   std::size_t n_ghost() const { return size() - n_owned_; }
 
   // Appends an owned disc (only while there are no ghosts). Mass and inertia follow PHYSICS.md section 1.
-  std::size_t add(std::int64_t id, std::int32_t mat, double R, double density, double thickness, Vec2 x,
-                  Vec2 v = {}, double w = 0.0);
+  std::size_t add(std::int64_t id, std::int32_t mat, double R, double density, double thickness, Vec2 x, Vec2 v = {},
+                  double w = 0.0);
   void reserve(std::size_t n);
   void clear();
   // Drops ghosts (everything past n_owned).

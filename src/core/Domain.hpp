@@ -18,25 +18,33 @@ struct Domain {
     Vec2 d = x2 - x1;
     if (periodic_x) {
       const double L = length_x();
-      if (d.x > 0.5 * L) d.x -= L;
-      else if (d.x < -0.5 * L) d.x += L;
+      if (d.x > 0.5 * L)
+        d.x -= L;
+      else if (d.x < -0.5 * L)
+        d.x += L;
     }
     if (periodic_y) {
       const double L = length_y();
-      if (d.y > 0.5 * L) d.y -= L;
-      else if (d.y < -0.5 * L) d.y += L;
+      if (d.y > 0.5 * L)
+        d.y -= L;
+      else if (d.y < -0.5 * L)
+        d.y += L;
     }
     return d;
   }
 
   void wrap(Vec2& x) const {
     if (periodic_x) {
-      if (x.x >= xhi) x.x -= length_x();
-      else if (x.x < xlo) x.x += length_x();
+      if (x.x >= xhi)
+        x.x -= length_x();
+      else if (x.x < xlo)
+        x.x += length_x();
     }
     if (periodic_y) {
-      if (x.y >= yhi) x.y -= length_y();
-      else if (x.y < ylo) x.y += length_y();
+      if (x.y >= yhi)
+        x.y -= length_y();
+      else if (x.y < ylo)
+        x.y += length_y();
     }
   }
 

@@ -21,9 +21,9 @@ void NeighbourList::bin(const DiscStore& discs, const Domain& domain, double R_m
   for (std::size_t i = 0; i < discs.size(); ++i) cell_items_[fill[cell[i]]++] = i;
 }
 
-void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet& walls,
-                          const ContactParamTable& params, const ContactTable& old_pairs, ContactTable& pairs,
-                          const ContactTable& old_walls, ContactTable& wall_rows) {
+void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet& walls, const ContactParamTable& params,
+                          const ContactTable& old_pairs, ContactTable& pairs, const ContactTable& old_walls,
+                          ContactTable& wall_rows) {
   double R_max = 0.0;
   for (double R : discs.radius) R_max = std::max(R_max, R);
   bin(discs, domain, R_max);
@@ -49,8 +49,7 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
       }
     }
   }
-  std::sort(found.begin(), found.end(),
-            [](const auto& x, const auto& y) { return std::get<0>(x) < std::get<0>(y); });
+  std::sort(found.begin(), found.end(), [](const auto& x, const auto& y) { return std::get<0>(x) < std::get<0>(y); });
   pairs.clear();
   for (const auto& [k, i, j] : found)
     pairs.push(k, i, j, static_cast<std::int32_t>(params.pair_index(discs.material[i], discs.material[j])));
@@ -89,7 +88,8 @@ double NeighbourList::max_displacement(const DiscStore& discs, const Domain& dom
 bool NeighbourList::needs_rebuild(double max_disc_disp, const WallSet& walls) const {
   if (!(max_disc_disp <= 0.5 * skin_)) return true;
   double wall_disp = 0.0;
-  for (const auto& w : walls) wall_disp = std::max(wall_disp, std::sqrt(dot(w.displacement_since_build, w.displacement_since_build)));
+  for (const auto& w : walls)
+    wall_disp = std::max(wall_disp, std::sqrt(dot(w.displacement_since_build, w.displacement_since_build)));
   return max_disc_disp + wall_disp > skin_;
 }
 

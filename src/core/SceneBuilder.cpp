@@ -1,8 +1,8 @@
 #include "core/SceneBuilder.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -26,8 +26,11 @@ std::vector<SceneDisc> lattice(const SceneConfig& s, bool hex) {
   for (int j = 0; j < s.ny; ++j)
     for (int i = 0; i < s.nx; ++i) {
       const double shift = (hex && (j % 2 == 1)) ? 0.5 * s.spacing : 0.0;
-      out.push_back({static_cast<std::int64_t>(out.size()), {s.x0 + i * s.spacing + shift, s.y0 + j * row},
-                     s.radius, s.velocity, s.omega});
+      out.push_back({static_cast<std::int64_t>(out.size()),
+                     {s.x0 + i * s.spacing + shift, s.y0 + j * row},
+                     s.radius,
+                     s.velocity,
+                     s.omega});
     }
   return out;
 }
@@ -56,7 +59,8 @@ std::vector<SceneDisc> random_packing(const SceneConfig& s, const Domain& domain
   if (xhi - xlo < 2 * r_max || yhi - ylo < 2 * r_max)
     throw InputError("scene.region is smaller than the largest disc (diameter " + std::to_string(2 * r_max) + ")");
   const double cell = 2.0 * r_max;
-  const int nx = std::max(1, static_cast<int>((xhi - xlo) / cell)), ny = std::max(1, static_cast<int>((yhi - ylo) / cell));
+  const int nx = std::max(1, static_cast<int>((xhi - xlo) / cell)),
+            ny = std::max(1, static_cast<int>((yhi - ylo) / cell));
   const double cx = (xhi - xlo) / nx, cy = (yhi - ylo) / ny;
   std::vector<std::vector<std::size_t>> grid(static_cast<std::size_t>(nx) * ny);
   std::vector<SceneDisc> out;
@@ -160,13 +164,18 @@ std::vector<SceneDisc> csv(const SceneConfig& s, const Domain& domain, const std
 
 std::vector<SceneDisc> build_scene(const SceneConfig& scene, const Domain& domain, const std::string& config_dir) {
   std::vector<SceneDisc> discs;
-  if (scene.type == "lattice_square") discs = lattice(scene, false);
-  else if (scene.type == "lattice_hex") discs = lattice(scene, true);
-  else if (scene.type == "random") discs = random_packing(scene, domain);
-  else discs = csv(scene, domain, config_dir);
+  if (scene.type == "lattice_square")
+    discs = lattice(scene, false);
+  else if (scene.type == "lattice_hex")
+    discs = lattice(scene, true);
+  else if (scene.type == "random")
+    discs = random_packing(scene, domain);
+  else
+    discs = csv(scene, domain, config_dir);
   std::sort(discs.begin(), discs.end(), [](const SceneDisc& a, const SceneDisc& b) { return a.gid < b.gid; });
   for (std::size_t k = 1; k < discs.size(); ++k)
-    if (discs[k].gid == discs[k - 1].gid) throw InputError("scene: disc id " + std::to_string(discs[k].gid) + " appears twice");
+    if (discs[k].gid == discs[k - 1].gid)
+      throw InputError("scene: disc id " + std::to_string(discs[k].gid) + " appears twice");
   return discs;
 }
 

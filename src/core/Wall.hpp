@@ -15,9 +15,9 @@ struct Wall {
   enum class Control { velocity, servo, strain_rate };
   Kind kind = Kind::line;
   Control control = Control::velocity;
-  double target_stress = 0.0;  // servo: normal stress to hold [Pa] = force / (wall length x thickness)
-  double strain_rate = 0.0;    // strain_rate: [1/s], > 0 compresses (the wall moves along its normal)
-  int box_side = -1;           // 0 bottom, 1 left, 2 right, 3 top for walls of walls.box; -1 otherwise
+  double target_stress = 0.0;   // servo: normal stress to hold [Pa] = force / (wall length x thickness)
+  double strain_rate = 0.0;     // strain_rate: [1/s], > 0 compresses (the wall moves along its normal)
+  int box_side = -1;            // 0 bottom, 1 left, 2 right, 3 top for walls of walls.box; -1 otherwise
   double shear_velocity = 0.0;  // box walls: a velocity along the wall [m/s], +x (bottom, top) or +y (left,
                                 // right), added to the servo or strain-rate motion
   bool rough = false;           // walls.rough: the discs near it at the start of a stage are glued to it

@@ -100,8 +100,7 @@ std::vector<ByteBuffer> Communicator::exchange(const std::vector<int>& to, const
   }
   for (std::size_t k = 0; k < to.size(); ++k) {
     requests.emplace_back();
-    MPI_Isend(out[k].bytes.data(), static_cast<int>(out[k].bytes.size()), MPI_BYTE, to[k], 7, comm_,
-              &requests.back());
+    MPI_Isend(out[k].bytes.data(), static_cast<int>(out[k].bytes.size()), MPI_BYTE, to[k], 7, comm_, &requests.back());
   }
   MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
   return in;

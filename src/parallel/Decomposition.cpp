@@ -13,9 +13,9 @@ Decomposition::Decomposition(const Domain& domain, double range, Partitioner par
     : comm_(comm), grid_(domain, range), partitioner_(partitioner) {
   if (static_cast<std::size_t>(comm_.size()) > grid_.size())
     throw ConfigError(std::to_string(comm_.size()) + " MPI ranks but the domain has only " +
-                      std::to_string(grid_.size()) + (grid_.size() == 1 ? " cell (" : " cells (") + std::to_string(grid_.nx()) + " x " +
-                      std::to_string(grid_.ny()) + ", side >= the interaction range): run on at most " +
-                      std::to_string(grid_.size()) + " ranks");
+                      std::to_string(grid_.size()) + (grid_.size() == 1 ? " cell (" : " cells (") +
+                      std::to_string(grid_.nx()) + " x " + std::to_string(grid_.ny()) +
+                      ", side >= the interaction range): run on at most " + std::to_string(grid_.size()) + " ranks");
 }
 
 void Decomposition::set_map(std::vector<int> map) {
@@ -28,8 +28,10 @@ void Decomposition::set_map(std::vector<int> map) {
 }
 
 void Decomposition::initial_partition(const std::vector<long>& weights) {
-  if (partitioner_ == Partitioner::grid) set_map(grid_partition(grid_, comm_.size()));
-  else set_map(comm_.root() ? metis_partition(grid_, comm_.size(), weights, {}) : std::vector<int>(grid_.size()));
+  if (partitioner_ == Partitioner::grid)
+    set_map(grid_partition(grid_, comm_.size()));
+  else
+    set_map(comm_.root() ? metis_partition(grid_, comm_.size(), weights, {}) : std::vector<int>(grid_.size()));
 }
 
 bool Decomposition::repartition(const std::vector<long>& weights) {

@@ -3,9 +3,9 @@
 #include <cstring>
 #include <type_traits>
 
+#include "core/ContactTable.hpp"
 #include "core/Errors.hpp"
 #include "core/Vec2.hpp"
-#include "core/ContactTable.hpp"
 
 namespace rondel {
 
@@ -13,11 +13,16 @@ namespace {
 
 template <class T>
 hid_t memory_type() {
-  if constexpr (std::is_same_v<T, double> || std::is_same_v<T, Vec2>) return H5T_NATIVE_DOUBLE;
-  else if constexpr (std::is_same_v<T, std::int64_t> || std::is_same_v<T, ContactKey>) return H5T_NATIVE_INT64;
-  else if constexpr (std::is_same_v<T, std::int32_t>) return H5T_NATIVE_INT32;
-  else if constexpr (std::is_same_v<T, std::uint32_t>) return H5T_NATIVE_UINT32;
-  else static_assert(sizeof(T) == 0, "unsupported HDF5 element type");
+  if constexpr (std::is_same_v<T, double> || std::is_same_v<T, Vec2>)
+    return H5T_NATIVE_DOUBLE;
+  else if constexpr (std::is_same_v<T, std::int64_t> || std::is_same_v<T, ContactKey>)
+    return H5T_NATIVE_INT64;
+  else if constexpr (std::is_same_v<T, std::int32_t>)
+    return H5T_NATIVE_INT32;
+  else if constexpr (std::is_same_v<T, std::uint32_t>)
+    return H5T_NATIVE_UINT32;
+  else
+    static_assert(sizeof(T) == 0, "unsupported HDF5 element type");
 }
 
 // Values per row of T in memory (a Vec2 or a ContactKey is two numbers).
@@ -37,7 +42,8 @@ std::uint64_t row_checksum(const char* bytes, std::size_t row_bytes, std::uint64
   std::uint64_t sum = 0;
   for (std::uint64_t r = 0; r < rows; ++r) {
     std::uint64_t h = 0xcbf29ce484222325ULL;
-    for (std::size_t b = 0; b < row_bytes; ++b) h = (h ^ static_cast<unsigned char>(bytes[r * row_bytes + b])) * 0x100000001b3ULL;
+    for (std::size_t b = 0; b < row_bytes; ++b)
+      h = (h ^ static_cast<unsigned char>(bytes[r * row_bytes + b])) * 0x100000001b3ULL;
     sum += mix(h + 0x9e3779b97f4a7c15ULL * (first + r + 1));
   }
   return sum;
@@ -60,8 +66,9 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode, const Communicator& comm)
   file_ = mode == Mode::create ? H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id)
                                : H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.id);
   if (file_ < 0)
-    throw InputError(std::string(mode == Mode::create ? "cannot create" : "cannot open") + " the HDF5 file '" + path +
-                     "'" + (mode == Mode::read ? " (missing, truncated or not an HDF5 file)" : " (is the directory writable?)"));
+    throw InputError(
+        std::string(mode == Mode::create ? "cannot create" : "cannot open") + " the HDF5 file '" + path + "'" +
+        (mode == Mode::read ? " (missing, truncated or not an HDF5 file)" : " (is the directory writable?)"));
   xfer_ = H5Pcreate(H5P_DATASET_XFER);
   H5Pset_dxpl_mpio(xfer_, H5FD_MPIO_COLLECTIVE);
 }
@@ -84,34 +91,32 @@ void Hdf5File::create_group(const std::string& name) {
   if (g.id < 0) fail("cannot create group " + name);
 }
 
-bool Hdf5File::exists(const std::string& name) const {
-  return H5Lexists(file_, name.c_str(), H5P_DEFAULT) > 0;
-}
+bool Hdf5File::exists(const std::string& name) const { return H5Lexists(file_, name.c_str(), H5P_DEFAULT) > 0; }
 
 void Hdf5File::write_attribute(const std::string& object, const std::string& name, const std::string& value) {
   Handle type{H5Tcopy(H5T_C_S1), H5Tclose};
   H5Tset_size(type.id, value.empty() ? 1 : value.size());
   H5Tset_strpad(type.id, H5T_STR_NULLPAD);
   Handle space{H5Screate(H5S_SCALAR), H5Sclose};
-  Handle attr{H5Acreate_by_name(file_, object.c_str(), name.c_str(), type.id, space.id, H5P_DEFAULT, H5P_DEFAULT,
-                                H5P_DEFAULT),
-              H5Aclose};
+  Handle attr{
+      H5Acreate_by_name(file_, object.c_str(), name.c_str(), type.id, space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+      H5Aclose};
   const std::string padded = value.empty() ? std::string(1, '\0') : value;
   if (attr.id < 0 || H5Awrite(attr.id, type.id, padded.data()) < 0) fail("cannot write attribute " + name);
 }
 
 void Hdf5File::write_attribute(const std::string& object, const std::string& name, std::int64_t value) {
   Handle space{H5Screate(H5S_SCALAR), H5Sclose};
-  Handle attr{H5Acreate_by_name(file_, object.c_str(), name.c_str(), H5T_STD_I64LE, space.id, H5P_DEFAULT,
-                                H5P_DEFAULT, H5P_DEFAULT),
+  Handle attr{H5Acreate_by_name(file_, object.c_str(), name.c_str(), H5T_STD_I64LE, space.id, H5P_DEFAULT, H5P_DEFAULT,
+                                H5P_DEFAULT),
               H5Aclose};
   if (attr.id < 0 || H5Awrite(attr.id, H5T_NATIVE_INT64, &value) < 0) fail("cannot write attribute " + name);
 }
 
 void Hdf5File::write_attribute(const std::string& object, const std::string& name, double value) {
   Handle space{H5Screate(H5S_SCALAR), H5Sclose};
-  Handle attr{H5Acreate_by_name(file_, object.c_str(), name.c_str(), H5T_IEEE_F64LE, space.id, H5P_DEFAULT,
-                                H5P_DEFAULT, H5P_DEFAULT),
+  Handle attr{H5Acreate_by_name(file_, object.c_str(), name.c_str(), H5T_IEEE_F64LE, space.id, H5P_DEFAULT, H5P_DEFAULT,
+                                H5P_DEFAULT),
               H5Aclose};
   if (attr.id < 0 || H5Awrite(attr.id, H5T_NATIVE_DOUBLE, &value) < 0) fail("cannot write attribute " + name);
 }
@@ -138,14 +143,16 @@ std::string Hdf5File::read_string_attribute(const std::string& object, const std
 std::int64_t Hdf5File::read_int_attribute(const std::string& object, const std::string& name) const {
   Handle attr{H5Aopen_by_name(file_, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose};
   std::int64_t v = 0;
-  if (attr.id < 0 || H5Aread(attr.id, H5T_NATIVE_INT64, &v) < 0) fail("has no integer attribute " + object + ":" + name);
+  if (attr.id < 0 || H5Aread(attr.id, H5T_NATIVE_INT64, &v) < 0)
+    fail("has no integer attribute " + object + ":" + name);
   return v;
 }
 
 double Hdf5File::read_double_attribute(const std::string& object, const std::string& name) const {
   Handle attr{H5Aopen_by_name(file_, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose};
   double v = 0;
-  if (attr.id < 0 || H5Aread(attr.id, H5T_NATIVE_DOUBLE, &v) < 0) fail("has no number attribute " + object + ":" + name);
+  if (attr.id < 0 || H5Aread(attr.id, H5T_NATIVE_DOUBLE, &v) < 0)
+    fail("has no number attribute " + object + ":" + name);
   return v;
 }
 
@@ -173,9 +180,10 @@ void Hdf5File::write(const std::string& name, const std::vector<T>& local, std::
   H5Sselect_hyperslab(space.id, H5S_SELECT_SET, start, nullptr, count, nullptr);
   Handle mem{H5Screate_simple(rank, count, nullptr), H5Sclose};
   if (n_local == 0) H5Sselect_none(mem.id), H5Sselect_none(space.id);
-  if (total > 0 && H5Dwrite(set.id, memory_type<T>(), mem.id, space.id, xfer_, local.data()) < 0) fail("cannot write dataset " + name);
-  const std::uint64_t sum = reduce_sum(row_checksum(reinterpret_cast<const char*>(local.data()),
-                                                    width / components<T>() * sizeof(T), n_local, offset));
+  if (total > 0 && H5Dwrite(set.id, memory_type<T>(), mem.id, space.id, xfer_, local.data()) < 0)
+    fail("cannot write dataset " + name);
+  const std::uint64_t sum = reduce_sum(
+      row_checksum(reinterpret_cast<const char*>(local.data()), width / components<T>() * sizeof(T), n_local, offset));
   Handle scalar{H5Screate(H5S_SCALAR), H5Sclose};
   Handle attr{H5Acreate2(set.id, "checksum", H5T_STD_U64LE, scalar.id, H5P_DEFAULT, H5P_DEFAULT), H5Aclose};
   if (attr.id < 0 || H5Awrite(attr.id, H5T_NATIVE_UINT64, &sum) < 0) fail("cannot write the checksum of " + name);
@@ -199,9 +207,10 @@ std::vector<T> Hdf5File::read(const std::string& name, std::uint64_t offset, std
   H5Sselect_hyperslab(space.id, H5S_SELECT_SET, start, nullptr, cnt, nullptr);
   Handle mem{H5Screate_simple(rank, cnt, nullptr), H5Sclose};
   if (count == 0) H5Sselect_none(mem.id), H5Sselect_none(space.id);
-  if (dims[0] > 0 && H5Dread(set.id, memory_type<T>(), mem.id, space.id, xfer_, out.data()) < 0) fail("cannot read dataset " + name);
-  const std::uint64_t local = row_checksum(reinterpret_cast<const char*>(out.data()), width / components<T>() * sizeof(T),
-                                           count, offset);
+  if (dims[0] > 0 && H5Dread(set.id, memory_type<T>(), mem.id, space.id, xfer_, out.data()) < 0)
+    fail("cannot read dataset " + name);
+  const std::uint64_t local =
+      row_checksum(reinterpret_cast<const char*>(out.data()), width / components<T>() * sizeof(T), count, offset);
   const std::uint64_t sum = partitioned ? reduce_sum(local) : local;
   std::uint64_t stored = 0;
   Handle attr{H5Aopen(set.id, "checksum", H5P_DEFAULT), H5Aclose};

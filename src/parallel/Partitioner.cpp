@@ -19,13 +19,14 @@ std::vector<int> grid_partition(const CellGrid& grid, int ranks) {
     if (ranks % px != 0) continue;
     const int py = ranks / px;
     if (px > grid.nx() || py > grid.ny()) continue;
-    const double aspect = std::fabs(std::log((static_cast<double>(grid.nx()) / px) / (static_cast<double>(grid.ny()) / py)));
+    const double aspect =
+        std::fabs(std::log((static_cast<double>(grid.nx()) / px) / (static_cast<double>(grid.ny()) / py)));
     if (aspect < best) best = aspect, best_px = px;
   }
   if (!std::isfinite(best))
-    throw ConfigError("parallel.partitioner = grid: " + std::to_string(ranks) + " ranks cannot be laid out in blocks of the " +
-                      std::to_string(grid.nx()) + " x " + std::to_string(grid.ny()) +
-                      " cell grid; use fewer ranks or parallel.partitioner = metis");
+    throw ConfigError("parallel.partitioner = grid: " + std::to_string(ranks) +
+                      " ranks cannot be laid out in blocks of the " + std::to_string(grid.nx()) + " x " +
+                      std::to_string(grid.ny()) + " cell grid; use fewer ranks or parallel.partitioner = metis");
   const int px = best_px, py = ranks / px;
   std::vector<int> map(grid.size());
   for (int cy = 0; cy < grid.ny(); ++cy)
@@ -77,8 +78,8 @@ std::vector<int> metis_partition(const CellGrid& grid, int ranks, const std::vec
   options[METIS_OPTION_NUMBERING] = 0;
   options[METIS_OPTION_UFACTOR] = 10;  // allowed load imbalance 1.01
   std::vector<idx_t> part(grid.size());
-  const int status = METIS_PartGraphKway(&n, &ncon, xadj.data(), adjncy.data(), vwgt.data(), nullptr, nullptr,
-                                         &nparts, nullptr, nullptr, options, &objval, part.data());
+  const int status = METIS_PartGraphKway(&n, &ncon, xadj.data(), adjncy.data(), vwgt.data(), nullptr, nullptr, &nparts,
+                                         nullptr, nullptr, options, &objval, part.data());
   if (status != METIS_OK) throw std::runtime_error("METIS_PartGraphKway failed with status " + std::to_string(status));
   std::vector<int> parts(part.begin(), part.end());
   return relabel_parts(parts, previous, weights, ranks);

@@ -147,8 +147,8 @@ struct ContactKernel {
       if (dist2 >= Rs * Rs && !loaded) return false;
       if (dist2 == 0.0) return !(row.coincident = true);  // no normal exists: reported as a failed run
       row.w2 = D.omega[j];
-      row.k = disc_disc_kinematics(d, std::sqrt(dist2), D.radius[i], D.radius[j], D.velocity[i], D.velocity[j],
-                                   row.w1, row.w2);
+      row.k = disc_disc_kinematics(d, std::sqrt(dist2), D.radius[i], D.radius[j], D.velocity[i], D.velocity[j], row.w1,
+                                   row.w2);
       row.b = disc_disc_bodies(D.mass[i], D.mass[j], D.inertia[i], D.inertia[j]);
     }
     return true;

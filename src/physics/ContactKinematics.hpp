@@ -43,8 +43,8 @@ inline ContactKinematics contact_geometry(double R1, double R2, bool wall) {
 }
 
 // d = x2 - x1 (minimum image), dist = |d| > 0.
-inline ContactKinematics disc_disc_kinematics(Vec2 d, double dist, double R1, double R2, Vec2 v1, Vec2 v2,
-                                              double w1, double w2) {
+inline ContactKinematics disc_disc_kinematics(Vec2 d, double dist, double R1, double R2, Vec2 v1, Vec2 v2, double w1,
+                                              double w2) {
   ContactKinematics k;
   k.dist = dist;
   k.n = (1.0 / dist) * d;

@@ -9,9 +9,7 @@
 
 namespace rondel {
 
-double mode_limit(double omega, double zeta) {
-  return (2.0 / omega) * (std::sqrt(1.0 + zeta * zeta) - zeta);
-}
+double mode_limit(double omega, double zeta) { return (2.0 / omega) * (std::sqrt(1.0 + zeta * zeta) - zeta); }
 
 namespace {
 

@@ -9,8 +9,9 @@
 //                          exact in closed form (PHYSICS.md's sum bound k_s/m_t + K/I_red is conservative
 //                          but only 0.77 of the limit for equal discs at delta = 3)
 // A law without an a-priori spring declares `no_spring` instead (displacement_damping's stiffness grows
-// with F_n; force_proportional and constant_torque have no spring). dt_crit is the smallest limit over every material pair and radius pair
-// that can occur (radii sampled geometrically between the smallest and the largest), walls included.
+// with F_n; force_proportional and constant_torque have no spring). dt_crit is the smallest limit over every material
+// pair and radius pair that can occur (radii sampled geometrically between the smallest and the largest), walls
+// included.
 #include <string>
 #include <vector>
 

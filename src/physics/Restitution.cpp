@@ -18,8 +18,10 @@ double zeta_from_restitution(double e) {
   while (restitution_from_zeta(hi) > e) hi *= 2.0;
   for (int it = 0; it < 200; ++it) {
     const double mid = 0.5 * (lo + hi);
-    if (restitution_from_zeta(mid) > e) lo = mid;
-    else hi = mid;
+    if (restitution_from_zeta(mid) > e)
+      lo = mid;
+    else
+      hi = mid;
   }
   return 0.5 * (lo + hi);
 }

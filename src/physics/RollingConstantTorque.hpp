@@ -32,8 +32,8 @@ struct RollingConstantTorque {
   static constexpr bool kActive = true;
   static constexpr std::array<const char*, 0> slots{};
 
-  static RollingCouple moment(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
-                              double F_n, double dt, double w1, double w2, double* const*, std::size_t) {
+  static RollingCouple moment(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double F_n,
+                              double dt, double w1, double w2, double* const*, std::size_t) {
     const double R_eq = harmonic_radius(k);
     double M = -sign(w1 - w2) * p.mu_r * R_eq * F_n;
     if (p.f_lim > 0.0 && dt > 0.0) {
@@ -44,8 +44,8 @@ struct RollingConstantTorque {
     }
     return {M, -M};
   }
-  static double stored(const ContactParams&, const ContactBodies&, const ContactKinematics&, double,
-                       double* const*, std::size_t) {
+  static double stored(const ContactParams&, const ContactBodies&, const ContactKinematics&, double, double* const*,
+                       std::size_t) {
     return 0.0;
   }
   static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) {

@@ -39,8 +39,8 @@ struct RollingDisplacementDamping {
 
   static double R_eq(const ContactKinematics& k) { return harmonic_radius(k); }
 
-  static RollingCouple moment(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
-                              double F_n, double dt, double, double, double* const* hist, std::size_t row) {
+  static RollingCouple moment(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double F_n,
+                              double dt, double, double, double* const* hist, std::size_t row) {
     double& M_k = hist[0][row];
     const double cap = p.mu_r * R_eq(k) * F_n;
     const double k_r = cap / p.theta_rmax;

@@ -28,13 +28,13 @@ struct RollingForceProportional {
   static constexpr bool kActive = true;
   static constexpr std::array<const char*, 0> slots{};
 
-  static RollingCouple moment(const ContactParams& p, const ContactBodies&, const ContactKinematics& k,
-                              double F_n, double, double w1, double w2, double* const*, std::size_t) {
+  static RollingCouple moment(const ContactParams& p, const ContactBodies&, const ContactKinematics& k, double F_n,
+                              double, double w1, double w2, double* const*, std::size_t) {
     const double f = p.mu_r * F_n;
     return {-f * k.a1 * sign(w1), k.wall ? 0.0 : -f * k.a2 * sign(w2)};
   }
-  static double stored(const ContactParams&, const ContactBodies&, const ContactKinematics&, double,
-                       double* const*, std::size_t) {
+  static double stored(const ContactParams&, const ContactBodies&, const ContactKinematics&, double, double* const*,
+                       std::size_t) {
     return 0.0;
   }
   static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) { return p.mu_r * F_n * k.a1; }

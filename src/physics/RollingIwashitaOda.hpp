@@ -30,9 +30,8 @@ inline constexpr ParamSpec kIwashitaOdaParams[] = {
     {"C_r", "N m s/rad", Presence::required, 0.0, kNonNegative, "rolling dashpot", &ContactParams::C_r},
     {"eta", "m", Presence::required, 0.0, kNonNegative, "couple cap eta F_n", &ContactParams::eta},
 };
-inline constexpr LawBlock kIwashitaOdaBlock{"iwashita_oda",
-                                            "Iwashita & Oda 1998 (legacy rolling measure, for comparison)",
-                                            kIwashitaOdaParams};
+inline constexpr LawBlock kIwashitaOdaBlock{
+    "iwashita_oda", "Iwashita & Oda 1998 (legacy rolling measure, for comparison)", kIwashitaOdaParams};
 
 struct RollingIwashitaOda {
   static constexpr const char* name = "iwashita_oda";
@@ -43,8 +42,8 @@ struct RollingIwashitaOda {
   static constexpr bool kActive = true;
   static constexpr std::array<const char*, 1> slots{"theta_r"};
 
-  static RollingCouple moment(const ContactParams& p, const ContactBodies&, const ContactKinematics& k,
-                              double F_n, double dt, double w1, double w2, double* const* hist, std::size_t row) {
+  static RollingCouple moment(const ContactParams& p, const ContactBodies&, const ContactKinematics& k, double F_n,
+                              double dt, double w1, double w2, double* const* hist, std::size_t row) {
     double& theta_r = hist[0][row];
     const double rate = iwashita_oda_rate(k, w1, w2);
     theta_r += rate * dt;

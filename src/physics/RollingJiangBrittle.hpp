@@ -21,8 +21,8 @@ struct RollingJiangBrittle {
   static constexpr bool kActive = true;
   static constexpr std::array<const char*, 2> slots{"theta_r", "broken"};
 
-  static RollingCouple moment(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
-                              double F_n, double dt, double, double, double* const* hist, std::size_t row) {
+  static RollingCouple moment(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double F_n,
+                              double dt, double, double, double* const* hist, std::size_t row) {
     double& theta_r = hist[0][row];
     double& broken = hist[1][row];
     if (broken != 0.0) return {};

@@ -21,8 +21,7 @@ inline constexpr ParamSpec kJiangParams[] = {
     {"delta", "-", Presence::required, 0.0, kPositive, "shape parameter: contact width B = delta r",
      &ContactParams::delta},
 };
-inline constexpr LawBlock kJiangBlock{"jiang", "Jiang, Yu & Harris 2005 (jiang_plastic, jiang_brittle)",
-                                      kJiangParams};
+inline constexpr LawBlock kJiangBlock{"jiang", "Jiang, Yu & Harris 2005 (jiang_plastic, jiang_brittle)", kJiangParams};
 
 struct JiangGeometry {
   double B, K_m, mu_m;
@@ -40,8 +39,10 @@ inline RollingCouple jiang_spring_slider(const JiangGeometry& g, double F_n, dou
   const double before = theta_r;
   const CapResult m = cap_spring_slider(trial, F_n * g.B / 6.0, g.K_m, theta_r);
   RollingCouple c{m.value, -m.value};
-  if (m.capped) c.plastic = std::fabs(m.value * (before - theta_r));
-  else c.dashpot = g.mu_m * thetadot_r * thetadot_r * dt;
+  if (m.capped)
+    c.plastic = std::fabs(m.value * (before - theta_r));
+  else
+    c.dashpot = g.mu_m * thetadot_r * thetadot_r * dt;
   return c;
 }
 
@@ -56,8 +57,8 @@ struct RollingJiangPlastic {
   static constexpr bool kActive = true;
   static constexpr std::array<const char*, 1> slots{"theta_r"};
 
-  static RollingCouple moment(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
-                              double F_n, double dt, double, double, double* const* hist, std::size_t row) {
+  static RollingCouple moment(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double F_n,
+                              double dt, double, double, double* const* hist, std::size_t row) {
     double& theta_r = hist[0][row];
     theta_r += k.thetadot_r * dt;
     return jiang_spring_slider(jiang_geometry(p, b, k), F_n, k.thetadot_r, dt, theta_r);

@@ -33,8 +33,8 @@ struct RollingWang {
   static constexpr bool kActive = true;
   static constexpr std::array<const char*, 1> slots{"x_r"};
 
-  static RollingCouple moment(const ContactParams& p, const ContactBodies&, const ContactKinematics& k,
-                              double F_n, double dt, double, double, double* const* hist, std::size_t row) {
+  static RollingCouple moment(const ContactParams& p, const ContactBodies&, const ContactKinematics& k, double F_n,
+                              double dt, double, double, double* const* hist, std::size_t row) {
     double& x_r = hist[0][row];
     x_r += k.V_r * dt;
     const double trial = -p.k_r * x_r - p.c_r * k.V_r;
@@ -42,8 +42,10 @@ struct RollingWang {
     const CapResult T = cap_spring_slider(trial, p.mu_r * F_n, p.k_r, x_r);
     const double M = k.R_star * T.value;
     RollingCouple c{M, -M};
-    if (T.capped) c.plastic = std::fabs(T.value * (before - x_r));
-    else c.dashpot = p.c_r * k.V_r * k.V_r * dt;
+    if (T.capped)
+      c.plastic = std::fabs(T.value * (before - x_r));
+    else
+      c.dashpot = p.c_r * k.V_r * k.V_r * dt;
     return c;
   }
   static double stored(const ContactParams& p, const ContactBodies&, const ContactKinematics&, double,

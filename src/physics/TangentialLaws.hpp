@@ -20,8 +20,8 @@ struct TangentialNone {
   static constexpr const char* no_spring = "frictionless: no tangential spring";
   static constexpr bool kFriction = false;
   static constexpr std::array<const char*, 0> slots{};
-  static TangentialForce force(const ContactParams&, const ContactBodies&, const ContactKinematics&, double,
-                               double, double* const*, std::size_t) {
+  static TangentialForce force(const ContactParams&, const ContactBodies&, const ContactKinematics&, double, double,
+                               double* const*, std::size_t) {
     return {};
   }
   static double stored(const ContactParams&, double* const*, std::size_t) { return 0.0; }
@@ -32,8 +32,7 @@ inline constexpr ParamSpec kCoulombParams[] = {
     {"mu", "-", Presence::required, 0.0, kNonNegative, "friction coefficient", &ContactParams::mu},
     {"zeta_t", "-", Presence::defaulted, 0.0, kNonNegative, "tangential damping ratio", &ContactParams::zeta_t},
 };
-inline constexpr LawBlock kCoulombBlock{"coulomb", "Cundall-Strack tangential spring with Coulomb cap",
-                                        kCoulombParams};
+inline constexpr LawBlock kCoulombBlock{"coulomb", "Cundall-Strack tangential spring with Coulomb cap", kCoulombParams};
 
 struct TangentialCoulomb {
   static constexpr const char* name = "coulomb";
@@ -41,8 +40,8 @@ struct TangentialCoulomb {
   static TangentialSpring spring(const ContactParams& p) { return {p.k_s, p.zeta_t}; }
   static constexpr bool kFriction = true;
   static constexpr std::array<const char*, 1> slots{"xi"};
-  static TangentialForce force(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
-                               double F_n, double dt, double* const* hist, std::size_t row) {
+  static TangentialForce force(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double F_n,
+                               double dt, double* const* hist, std::size_t row) {
     double& xi = hist[0][row];
     xi += k.V_s * dt;
     const double c_t = p.zeta_t > 0.0 ? 2.0 * p.zeta_t * std::sqrt(b.m_eff * p.k_s) : 0.0;

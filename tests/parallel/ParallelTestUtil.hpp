@@ -66,7 +66,8 @@ inline std::vector<std::string> gather(const std::string& mine) {
   MPI_Gatherv(mine.data(), len, MPI_CHAR, all.data(), lens.data(), displs.data(), MPI_CHAR, 0, MPI_COMM_WORLD);
   std::vector<std::string> out;
   if (world_rank() != 0) return out;
-  for (int r = 0; r < n; ++r) out.push_back(all.substr(static_cast<std::size_t>(displs[r]), static_cast<std::size_t>(lens[r])));
+  for (int r = 0; r < n; ++r)
+    out.push_back(all.substr(static_cast<std::size_t>(displs[r]), static_cast<std::size_t>(lens[r])));
   return out;
 }
 
@@ -124,11 +125,13 @@ inline MergedRows merge_rows(const std::vector<std::string>& per_rank) {
   MergedRows m;
   std::map<std::string, std::map<std::string, std::vector<int>>> by_key;  // key -> line -> ranks
   for (std::size_t r = 0; r < per_rank.size(); ++r)
-    for (const std::string& l : lines_of(per_rank[r])) by_key[l.substr(0, l.find(" |"))][l].push_back(static_cast<int>(r));
+    for (const std::string& l : lines_of(per_rank[r]))
+      by_key[l.substr(0, l.find(" |"))][l].push_back(static_cast<int>(r));
   for (const auto& [key, variants] : by_key) {
     if (variants.size() > 1 && m.error.empty()) {
       m.error = "contact " + key + " differs between ranks:";
-      for (const auto& [line, ranks] : variants) m.error += " [rank " + std::to_string(ranks.front()) + ": " + line + "]";
+      for (const auto& [line, ranks] : variants)
+        m.error += " [rank " + std::to_string(ranks.front()) + ": " + line + "]";
     }
     const auto& [line, ranks] = *variants.begin();
     m.text += line + "\n";
@@ -218,9 +221,11 @@ inline std::string periodic_ini() {
   return R"(
 [domain]
 xlo = 0
-xhi = )" + num(nx * a) + R"(
+xhi = )" +
+         num(nx * a) + R"(
 ylo = 0
-yhi = )" + num(ny * h) + R"(
+yhi = )" +
+         num(ny * h) + R"(
 periodic_x = true
 periodic_y = true
 [linear]
@@ -235,7 +240,8 @@ rolling = jiang_plastic
 delta = 0.5
 [scene]
 type = csv
-file = )" + file + R"(
+file = )" +
+         file + R"(
 vx = 1.5
 vy = 0.8
 max_initial_overlap = 0.05
@@ -249,16 +255,15 @@ max_initial_overlap = 0.05
 struct LockstepResult {
   bool equal = true;
   std::int64_t first_bad_step = -1;
-  std::string what;             // the first difference (all ranks)
-  std::int64_t migrated = 0;    // discs moved between ranks in the N-rank run
-  std::size_t builds = 0;       // neighbour builds of the N-rank run
-  int max_copies = 0;           // most ranks holding one active pair row at a check
-  std::string final_state;      // rank 0: the N-rank final state
+  std::string what;           // the first difference (all ranks)
+  std::int64_t migrated = 0;  // discs moved between ranks in the N-rank run
+  std::size_t builds = 0;     // neighbour builds of the N-rank run
+  int max_copies = 0;         // most ranks holding one active pair row at a check
+  std::string final_state;    // rank 0: the N-rank final state
 };
 
 inline LockstepResult run_lockstep(const std::string& ini, const std::vector<std::string>& overrides, int steps,
-                                   int every,
-                                   const std::function<void(Simulation&, Simulation*)>& each_check = {}) {
+                                   int every, const std::function<void(Simulation&, Simulation*)>& each_check = {}) {
   static const Communicator self(MPI_COMM_SELF);
   static const Communicator world(MPI_COMM_WORLD);
   const bool root = world_rank() == 0;
@@ -276,9 +281,12 @@ inline LockstepResult run_lockstep(const std::string& ini, const std::vector<std
       const std::string ss = ser->state_text();
       const MergedRows sr = merge_rows({rows_text(*ser)});
       const std::string at = "step " + std::to_string(par.step_count()) + ": ";
-      if (ps != ss) verdict = at + "state differs, " + first_difference(ss, ps);
-      else if (!pr.error.empty()) verdict = at + pr.error;
-      else if (pr.text != sr.text) verdict = at + "contact rows differ, " + first_difference(sr.text, pr.text);
+      if (ps != ss)
+        verdict = at + "state differs, " + first_difference(ss, ps);
+      else if (!pr.error.empty())
+        verdict = at + pr.error;
+      else if (pr.text != sr.text)
+        verdict = at + "contact rows differ, " + first_difference(sr.text, pr.text);
       res.final_state = ps;
     }
     verdict = broadcast(verdict);

@@ -90,8 +90,9 @@ class SharedTempDir {
   explicit SharedTempDir(const std::string& tag) {
     std::string path;
     if (world_rank() == 0) {
-      std::string tmpl = (fs::temp_directory_path() /
-                          ("rondel-ckpt-" + tag + "-np" + std::to_string(world_size()) + "-XXXXXX")).string();
+      std::string tmpl =
+          (fs::temp_directory_path() / ("rondel-ckpt-" + tag + "-np" + std::to_string(world_size()) + "-XXXXXX"))
+              .string();
       if (mkdtemp(tmpl.data())) path = tmpl;
     }
     path_ = broadcast(path);
@@ -137,10 +138,14 @@ struct Case {
 
 std::vector<Case> cases_for(int world) {
   switch (world) {
-    case 1: return {{1, 1}};
-    case 2: return {{2, 1}, {1, 2}};
-    case 3: return {{3, 1}};
-    default: return {{1, 4}, {4, 2}};
+    case 1:
+      return {{1, 1}};
+    case 2:
+      return {{2, 1}, {1, 2}};
+    case 3:
+      return {{3, 1}};
+    default:
+      return {{1, 4}, {4, 2}};
   }
 }
 
@@ -168,7 +173,8 @@ CheckpointContent inspect(const fs::path& path) {
   const auto p0 = f.read<Vec2>("/walls/p0", 0, nw);
   std::int64_t moving = -1;
   for (std::uint64_t w = 0; w < nw; ++w)
-    if (velocity[w].x != 0.0 || velocity[w].y != 0.0) moving = static_cast<std::int64_t>(w), c.moving_wall_x = p0[w].x, c.moving_wall_y = p0[w].y;
+    if (velocity[w].x != 0.0 || velocity[w].y != 0.0)
+      moving = static_cast<std::int64_t>(w), c.moving_wall_x = p0[w].x, c.moving_wall_y = p0[w].y;
   for (const char* group : {"/contacts", "/wall_contacts"}) {
     const std::string g = group;
     const std::uint64_t n = f.rows(g + "/key");
@@ -183,8 +189,10 @@ CheckpointContent inspect(const fs::path& path) {
       with += loaded[r];
       if (g == "/wall_contacts" && loaded[r] && key[r].hi == moving) ++on_moving;
     }
-    if (g == "/contacts") c.pair_rows = n, c.pair_rows_with_history = with;
-    else c.wall_rows = n, c.wall_rows_with_history = with, c.moving_wall_rows_with_history = on_moving;
+    if (g == "/contacts")
+      c.pair_rows = n, c.pair_rows_with_history = with;
+    else
+      c.wall_rows = n, c.wall_rows_with_history = with, c.moving_wall_rows_with_history = on_moving;
   }
   return c;
 }
@@ -195,8 +203,8 @@ void restart_cases(const std::string& law, const std::vector<std::string>& extra
   SharedTempDir tmp(law + (extra.empty() ? "" : "-rebalance"));
   const fs::path out = tmp.path() / "run";  // the one run.output of every writer and restart
   std::vector<std::string> overrides{"--run.output=" + out.string(), "--run.overwrite=true",
-                                           "--run.steps=" + std::to_string(2 * kHalf),
-                                           "--output.checkpoint_every=" + std::to_string(kHalf)};
+                                     "--run.steps=" + std::to_string(2 * kHalf),
+                                     "--output.checkpoint_every=" + std::to_string(kHalf)};
   overrides.insert(overrides.end(), extra.begin(), extra.end());
   const std::string ini = scene_ini(law);
   auto checkpoint_name = [&](std::int64_t step) { return out / Checkpointing::file_name("checkpoint", step); };
@@ -216,8 +224,8 @@ void restart_cases(const std::string& law, const std::vector<std::string>& extra
     const Case c = cases_for(W)[k];
     const std::string tag = law + " " + std::to_string(c.writer) + " -> " + std::to_string(c.restart) + " ranks";
     SCOPED_TRACE(tag);
-    const std::string prefix = "case" + std::to_string(k) + "-w" + std::to_string(c.writer) + "-r" +
-                               std::to_string(c.restart);
+    const std::string prefix =
+        "case" + std::to_string(k) + "-w" + std::to_string(c.writer) + "-r" + std::to_string(c.restart);
     const fs::path held_n = tmp.path() / (prefix + "-step_N.h5");
     const fs::path held_cont = tmp.path() / (prefix + "-writer-step_2N.h5");
     const fs::path held_restart = tmp.path() / (prefix + "-restart-step_2N.h5");
@@ -250,13 +258,16 @@ void restart_cases(const std::string& law, const std::vector<std::string>& extra
       EXPECT_EQ(cc.ranks, c.writer);
       EXPECT_EQ(cc.slots.size(), 2u);
       EXPECT_GE(cc.pair_rows_with_history, 20u) << "pairs with history at the checkpoint (of " << cc.pair_rows << ")";
-      EXPECT_GE(cc.wall_rows_with_history, 3u) << "wall rows with history at the checkpoint (of " << cc.wall_rows << ")";
+      EXPECT_GE(cc.wall_rows_with_history, 3u)
+          << "wall rows with history at the checkpoint (of " << cc.wall_rows << ")";
       EXPECT_GE(cc.moving_wall_rows_with_history, 1u) << "no disc touches the moving wall at the checkpoint";
-      EXPECT_GT(std::max(std::fabs(cc.moving_wall_x), std::fabs(cc.moving_wall_y)), 1e-4) << "the moving wall did not move";
+      EXPECT_GT(std::max(std::fabs(cc.moving_wall_x), std::fabs(cc.moving_wall_y)), 1e-4)
+          << "the moving wall did not move";
       if (k == 0)
-        std::cout << "[ ckpt     ] " << law << ": checkpoint at step " << kHalf << " holds " << cc.pair_rows_with_history
-                  << " pair rows and " << cc.wall_rows_with_history << " wall rows with history ("
-                  << cc.moving_wall_rows_with_history << " on the moving wall, now at x = " << cc.moving_wall_x << ")\n";
+        std::cout << "[ ckpt     ] " << law << ": checkpoint at step " << kHalf << " holds "
+                  << cc.pair_rows_with_history << " pair rows and " << cc.wall_rows_with_history
+                  << " wall rows with history (" << cc.moving_wall_rows_with_history
+                  << " on the moving wall, now at x = " << cc.moving_wall_x << ")\n";
     }
     step_n_files.emplace_back(c.writer, held_n);
 
@@ -311,7 +322,8 @@ TEST(Checkpoint, RestartIsBitwiseWithJiangPlasticRolling) { restart_cases("jiang
 // The same with the grid partitioner and a repartition every 500 steps: the decomposition at the checkpoint
 // (rebalanced in the writer, fresh in the restart) leaves no trace in the results.
 TEST(Checkpoint, RestartIsBitwiseWithRebalancing) {
-  restart_cases("wang", {"--parallel.partitioner=grid", "--parallel.force_balance=true", "--parallel.balance_every=500"});
+  restart_cases("wang",
+                {"--parallel.partitioner=grid", "--parallel.force_balance=true", "--parallel.balance_every=500"});
 }
 
 // A servo wall: its velocity at the first step after the restart comes from the wall load of the step

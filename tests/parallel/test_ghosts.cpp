@@ -35,9 +35,8 @@ struct Rec {
 };
 
 Rec record(const DiscStore& d, std::size_t i) {
-  return Rec{d.gid[i],        d.material[i],   d.flags[i],   d.position[i].x, d.position[i].y,
-             d.velocity[i].x, d.velocity[i].y, d.omega[i],   d.radius[i],     d.mass[i],
-             d.inertia[i],    d.force[i].x,    d.force[i].y, d.torque[i]};
+  return Rec{d.gid[i],   d.material[i], d.flags[i], d.position[i].x, d.position[i].y, d.velocity[i].x, d.velocity[i].y,
+             d.omega[i], d.radius[i],   d.mass[i],  d.inertia[i],    d.force[i].x,    d.force[i].y,    d.torque[i]};
 }
 
 // Every owned disc of every rank, by gid, with the rank that stores it (collective).
@@ -94,14 +93,18 @@ class GhostChecker {
     const int me = world_rank();
     int bad = 0;
     auto fail = [&](const std::string& m) {
-      if (++bad <= 5) log += "rank " + std::to_string(me) + " step " + std::to_string(sim_.step_count()) + ": " + m + "\n";
+      if (++bad <= 5)
+        log += "rank " + std::to_string(me) + " step " + std::to_string(sim_.step_count()) + ": " + m + "\n";
     };
-    if (g.disc.size() != total_) fail("the ranks own " + std::to_string(g.disc.size()) + " discs, not " + std::to_string(total_));
+    if (g.disc.size() != total_)
+      fail("the ranks own " + std::to_string(g.disc.size()) + " discs, not " + std::to_string(total_));
     std::set<std::int64_t> owned, ghosts;
     for (std::size_t i = 0; i < d.n_owned(); ++i) owned.insert(d.gid[i]);
     for (std::size_t i = d.n_owned(); i < d.size(); ++i)
       if (!ghosts.insert(d.gid[i]).second) fail("ghost " + std::to_string(d.gid[i]) + " twice");
-    if (ghosts.size() != sim_.ghost_count()) fail("ghost_count() = " + std::to_string(sim_.ghost_count()) + " but " + std::to_string(ghosts.size()) + " ghosts stored");
+    if (ghosts.size() != sim_.ghost_count())
+      fail("ghost_count() = " + std::to_string(sim_.ghost_count()) + " but " + std::to_string(ghosts.size()) +
+           " ghosts stored");
     for (std::int64_t gid : ghosts)
       if (owned.count(gid)) fail("disc " + std::to_string(gid) + " is owned and a ghost");
 
@@ -113,7 +116,9 @@ class GhostChecker {
       for (const auto& [gid, r] : g.disc) {
         const std::size_t cell = dec.grid().cell_of({r.x, r.y});
         const int owner = dec.owner_of_cell(cell);
-        if (owner == me && g.rank.at(gid) != me) fail("disc " + std::to_string(gid) + " lies in a cell of this rank but is stored on rank " + std::to_string(g.rank.at(gid)));
+        if (owner == me && g.rank.at(gid) != me)
+          fail("disc " + std::to_string(gid) + " lies in a cell of this rank but is stored on rank " +
+               std::to_string(g.rank.at(gid)));
         if (owner == me) continue;
         for (std::size_t c : dec.grid().stencil(cell))
           if (dec.owner_of_cell(c) == me) expect.insert(gid);
@@ -142,8 +147,8 @@ class GhostChecker {
         const Vec2 s = dom.separation(d.position[i], {r.x, r.y});
         const double reach = rebuilt ? range : d.radius[i] + r.radius;
         if (dot(s, s) < reach * reach)
-          fail("disc " + std::to_string(gid) + " at distance " + std::to_string(std::sqrt(dot(s, s))) + " of owned disc " +
-               std::to_string(d.gid[i]) + " is missing (reach " + std::to_string(reach) + ")");
+          fail("disc " + std::to_string(gid) + " at distance " + std::to_string(std::sqrt(dot(s, s))) +
+               " of owned disc " + std::to_string(d.gid[i]) + " is missing (reach " + std::to_string(reach) + ")");
       }
 
     // Ghosts are bit copies of their owners.
@@ -155,8 +160,10 @@ class GhostChecker {
         continue;
       }
       const Rec& o = it->second;
-      const std::string who = "ghost " + std::to_string(d.gid[i]) + " (owner rank " + std::to_string(g.rank.at(d.gid[i])) + ")";
-      if (!same_bits(d.position[i].x, o.x) || !same_bits(d.position[i].y, o.y)) fail(who + ": position is not the owner's bits");
+      const std::string who =
+          "ghost " + std::to_string(d.gid[i]) + " (owner rank " + std::to_string(g.rank.at(d.gid[i])) + ")";
+      if (!same_bits(d.position[i].x, o.x) || !same_bits(d.position[i].y, o.y))
+        fail(who + ": position is not the owner's bits");
       if (!same_bits(d.radius[i], o.radius) || !same_bits(d.mass[i], o.mass) || !same_bits(d.inertia[i], o.inertia) ||
           d.flags[i] != o.flags || d.material[i] != o.material)
         fail(who + ": radius, mass, inertia, flags or material differ");
@@ -190,8 +197,8 @@ void report(int bad, const std::string& log, const std::string& what) {
   }
 }
 
-void check_ghosts(const std::string& scene, const std::string& ini, const std::vector<std::string>& overrides, int steps,
-                  int min_rebuild_checks = 3) {
+void check_ghosts(const std::string& scene, const std::string& ini, const std::vector<std::string>& overrides,
+                  int steps, int min_rebuild_checks = 3) {
   static const Communicator world(MPI_COMM_WORLD);
   const Config cfg = parse_config_text(ini, overrides);
   // The whole scene, rebuilt independently of the run.
@@ -227,8 +234,8 @@ void check_ghosts(const std::string& scene, const std::string& ini, const std::v
     builds = sim.neighbour_builds();
     // A balance check at the end of this step may have changed the map after the rebuild: skip the
     // halo rule then (the next step rebuilds with the new map).
-    const bool map_fresh = !(every > 0 && sim.step_count() % every == 0 && sim.config().partitioner == "metis" &&
-                             world_size() > 1);
+    const bool map_fresh =
+        !(every > 0 && sim.step_count() % every == 0 && sim.config().partitioner == "metis" && world_size() > 1);
     if (!(rebuilt || s % 25 == 0)) continue;
     log.clear();
     bad = checker.check(rebuilt, map_fresh, false, log);
@@ -240,8 +247,8 @@ void check_ghosts(const std::string& scene, const std::string& ini, const std::v
   const auto migrated = sim.diagnostics().migrated;
   if (world_rank() == 0)
     std::cout << "[ ghosts   ] " << scene << " on " << world_size() << " ranks: " << rebuild_checks
-              << " checks at rebuilds, " << other_checks << " between; rank 0 held " << ghosts_min << " to " << ghosts_max
-              << " ghosts; " << migrated << " discs migrated\n";
+              << " checks at rebuilds, " << other_checks << " between; rank 0 held " << ghosts_min << " to "
+              << ghosts_max << " ghosts; " << migrated << " discs migrated\n";
   EXPECT_GE(rebuild_checks, min_rebuild_checks) << scene;
   if (world_size() > 1) {
     if (min_rebuild_checks > 0) {

@@ -34,8 +34,10 @@ const std::vector<Variant>& variants() {
   static const std::vector<Variant> v{
       {"grid", {"--parallel.partitioner=grid"}},
       {"metis", {"--parallel.partitioner=metis"}},
-      {"metis+rebalance/10", {"--parallel.partitioner=metis", "--parallel.force_balance=true", "--parallel.balance_every=10"}},
-      {"grid+rebalance/10", {"--parallel.partitioner=grid", "--parallel.force_balance=true", "--parallel.balance_every=10"}},
+      {"metis+rebalance/10",
+       {"--parallel.partitioner=metis", "--parallel.force_balance=true", "--parallel.balance_every=10"}},
+      {"grid+rebalance/10",
+       {"--parallel.partitioner=grid", "--parallel.force_balance=true", "--parallel.balance_every=10"}},
   };
   return v;
 }
@@ -47,8 +49,9 @@ void check_scene(const std::string& scene, const std::string& ini, int steps, in
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (world_rank() == 0)
       std::cout << "[ rank-inv ] " << scene << " / " << var.name << " on " << world_size() << " ranks: " << steps
-                << " steps, " << r.builds << " neighbour builds, " << r.migrated << " discs migrated, an active pair on up to "
-                << r.max_copies << " ranks, " << secs << " s; " << (r.equal ? "bitwise equal" : "DIFFERS") << "\n";
+                << " steps, " << r.builds << " neighbour builds, " << r.migrated
+                << " discs migrated, an active pair on up to " << r.max_copies << " ranks, " << secs << " s; "
+                << (r.equal ? "bitwise equal" : "DIFFERS") << "\n";
     EXPECT_TRUE(r.equal) << scene << " / " << var.name << " on " << world_size() << " ranks: " << r.what;
     EXPECT_GE(r.builds, 5u) << scene << " / " << var.name;
     if (world_size() > 1) {
@@ -61,14 +64,10 @@ void check_scene(const std::string& scene, const std::string& ini, int steps, in
 }
 
 // 1. (a) Deposition into a box with walls, gravity, friction and the Wang rolling law.
-TEST(RankInvariance, DepositionBitwiseEqualToOneRank) {
-  check_scene("deposition", deposition_ini(), 4000, 250, true);
-}
+TEST(RankInvariance, DepositionBitwiseEqualToOneRank) { check_scene("deposition", deposition_ini(), 4000, 250, true); }
 
 // 1. (b) Dense periodic packing with random velocities and a drift across the seams (Jiang plastic rolling).
-TEST(RankInvariance, PeriodicPackingBitwiseEqualToOneRank) {
-  check_scene("periodic", periodic_ini(), 3000, 250, true);
-}
+TEST(RankInvariance, PeriodicPackingBitwiseEqualToOneRank) { check_scene("periodic", periodic_ini(), 3000, 250, true); }
 
 // 1. (c) Plane shear: the packing of (b), periodic in x only, between rough walls (the bottom and top rows are
 // glued to them); the top wall is a servo and both walls shear in opposite directions, so glued discs cross
@@ -77,8 +76,9 @@ TEST(RankInvariance, RoughShearCellBitwiseEqualToOneRank) {
   std::string ini = periodic_ini();
   const std::string from = "periodic_y = true";
   ini.replace(ini.find(from), from.size(), "periodic_y = false");
-  ini += "[walls]\nbox = bottom top\nrough = bottom top\n"
-         "control = top:servo:5e3 top:shear:0.3 bottom:shear:-0.3\n";
+  ini +=
+      "[walls]\nbox = bottom top\nrough = bottom top\n"
+      "control = top:servo:5e3 top:shear:0.3 bottom:shear:-0.3\n";
   check_scene("rough shear", ini, 3000, 250, true);
 }
 
@@ -100,8 +100,8 @@ double border_x(const std::string& ini, const std::vector<std::string>& override
 }
 
 std::string csv_line(int id, double x, double y, double R, double vx, double vy, double w) {
-  return std::to_string(id) + "," + num(x) + "," + num(y) + "," + num(R) + "," + num(vx) + "," + num(vy) + "," + num(w) +
-         "\n";
+  return std::to_string(id) + "," + num(x) + "," + num(y) + "," + num(R) + "," + num(vx) + "," + num(vy) + "," +
+         num(w) + "\n";
 }
 
 std::string rolling_ini(const std::string& law, const std::string& file) {
@@ -149,7 +149,8 @@ TEST(RankInvariance, RollingDiscCrossesBorderWithItsHistory) {
         const ContactTable& w = ser->wall_rows();
         for (std::size_t r = 0; r < w.size(); ++r)
           for (std::size_t k = 0; k < w.slot.size(); ++k)
-            if (w.slot_names()[k] == "x_r" || w.slot_names()[k] == "theta_r") loaded = std::max(loaded, std::fabs(w.slot[k][r]));
+            if (w.slot_names()[k] == "x_r" || w.slot_names()[k] == "theta_r")
+              loaded = std::max(loaded, std::fabs(w.slot[k][r]));
         // The rank whose cell holds the disc now (from the 1-rank positions, same bits).
         const int dec = par.decomposition().owner(ser->discs().position[0]);
         if (seen == 0) dec_start = dec;
@@ -161,8 +162,8 @@ TEST(RankInvariance, RollingDiscCrossesBorderWithItsHistory) {
     EXPECT_TRUE(r.equal) << law << ": " << r.what;
     if (world_rank() == 0) {
       std::cout << "[ rank-inv ] rolling disc (" << law << ") from x = " << x0 << " across x = " << b << ", " << steps
-                << " steps: cell owner " << dec_start << " -> " << dec_end << ", stored on rank " << owner_start[0] << " -> "
-                << owner_end[0] << ", largest rolling spring " << loaded << "\n";
+                << " steps: cell owner " << dec_start << " -> " << dec_end << ", stored on rank " << owner_start[0]
+                << " -> " << owner_end[0] << ", largest rolling spring " << loaded << "\n";
       EXPECT_GT(loaded, 0.0) << law << ": the rolling spring never loaded";
       if (world_size() > 1) {
         EXPECT_NE(dec_start, dec_end) << law << ": the disc did not cross a rank border";
@@ -196,7 +197,8 @@ skin = 0.0001
 partitioner = grid
 [scene]
 type = csv
-file = )" + file + "\n";
+file = )" +
+         file + "\n";
 }
 
 // 2. A two-disc oblique impact with spins, Coulomb friction and the Jiang brittle rolling law (history xi,
@@ -204,7 +206,8 @@ file = )" + file + "\n";
 // the 1-rank row; (ii) drifting across the border during the contact: the row migrates mid-contact.
 TEST(RankInvariance, TwoDiscImpactAtBorder) {
   const double y = 0.01, R1 = kR, R2 = 1.25 * kR;
-  const std::string probe_file = write_temp("rondel-impact-probe", csv_line(0, 0.01, y, R1, 0, 0, 0) + csv_line(1, 0.05, y, R2, 0, 0, 0));
+  const std::string probe_file =
+      write_temp("rondel-impact-probe", csv_line(0, 0.01, y, R1, 0, 0, 0) + csv_line(1, 0.05, y, R2, 0, 0, 0));
   const double b = border_x(impact_ini(probe_file), {}, y);
   struct Case {
     const char* name;
@@ -216,8 +219,8 @@ TEST(RankInvariance, TwoDiscImpactAtBorder) {
                                         csv_line(1, b + R2 + g0 / 2, y + 0.3 * kR, R2, -0.5, 0, -80)};
   // (ii) Common drift 2 m/s, approach +-0.5 m/s: the contact starts with disc 1 0.1 mm left of the border.
   const double V = 2.0, u = 0.5, t_c = g0 / (2 * u), xB = b - 0.0001 - (V - u) * t_c;
-  const Case drift{"drifting across", csv_line(0, xB - R1 - R2 - g0, y, R1, V + u, 0, 300) +
-                                          csv_line(1, xB, y, R2, V - u, 0, -100)};
+  const Case drift{"drifting across",
+                   csv_line(0, xB - R1 - R2 - g0, y, R1, V + u, 0, 300) + csv_line(1, xB, y, R2, V - u, 0, -100)};
   for (const Case& c : {straddle, drift}) {
     const std::string ini = impact_ini(write_temp("rondel-impact", c.csv));
     std::vector<int> owner1;   // rank storing disc 1 at each step
@@ -307,10 +310,11 @@ force_balance = true
     long cells = 0, weight = 0;
     for (std::size_t c = 0; c < weights.size(); ++c)
       if (sim.decomposition().owner_of_cell(c) == world_rank()) ++cells, weight += weights[c];
-    const auto rows = gather("  rank " + std::to_string(world_rank()) + ": " + std::to_string(cells) + " cells, " +
-                             std::to_string(sim.discs().n_owned()) + " owned discs + " + std::to_string(sim.pairs().size()) +
-                             " contact rows = " + std::to_string(sim.discs().n_owned() + sim.pairs().size()) +
-                             " work; partitioner weight " + std::to_string(weight) + "\n");
+    const auto rows =
+        gather("  rank " + std::to_string(world_rank()) + ": " + std::to_string(cells) + " cells, " +
+               std::to_string(sim.discs().n_owned()) + " owned discs + " + std::to_string(sim.pairs().size()) +
+               " contact rows = " + std::to_string(sim.discs().n_owned() + sim.pairs().size()) +
+               " work; partitioner weight " + std::to_string(weight) + "\n");
     if (world_rank() == 0) {
       std::cout << "[ balance  ] " << part << " map after step 1000:\n";
       for (const auto& l : rows) std::cout << l;
@@ -332,8 +336,8 @@ force_balance = true
 
 TEST(BadParallelInput, UnknownPartitionerRefused) {
   bool all = false;
-  const std::string msg = config_error_everywhere(
-      [] { parse_config_text(deposition_ini(), {"--parallel.partitioner=zoltan"}); }, &all);
+  const std::string msg =
+      config_error_everywhere([] { parse_config_text(deposition_ini(), {"--parallel.partitioner=zoltan"}); }, &all);
   EXPECT_TRUE(all) << "parallel.partitioner = zoltan was accepted";
   EXPECT_NE(msg.find("parallel.partitioner"), std::string::npos) << msg;
 }
@@ -342,7 +346,8 @@ std::string tiny_ini(double xhi, const std::string& file) {
   return R"(
 [domain]
 xlo = 0
-xhi = )" + num(xhi) + R"(
+xhi = )" +
+         num(xhi) + R"(
 ylo = 0
 yhi = 0.006
 [gravity]
@@ -356,7 +361,8 @@ tangential = none
 box = bottom left right
 [scene]
 type = csv
-file = )" + file + "\n";
+file = )" +
+         file + "\n";
 }
 
 // A 6 mm box with one 2 mm disc has 1 x 1 cells (range 4.5 mm); a 10 mm box has 2 x 1. More ranks than

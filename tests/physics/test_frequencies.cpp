@@ -55,8 +55,8 @@ double rolling_mode_formula(double m, double I, double a, double k_s, double K) 
 
 // The (tangential displacement, rotation) problem of a disc on a wall: K = [[k_s, k_s a], [k_s a, k_s a^2 + K]],
 // M = diag(m, I). Eigenvalues ascending, eigenvectors M-normalised.
-Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> wall_rolling_problem(double m, double I, double a,
-                                                                                double k_s, double K) {
+Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> wall_rolling_problem(double m, double I, double a, double k_s,
+                                                                               double K) {
   Eigen::Matrix2d Ks, Ms;
   Ks << k_s, k_s * a, k_s * a, k_s * a * a + K;
   Ms << m, 0.0, 0.0, I;
@@ -69,9 +69,7 @@ TEST(Frequencies, RollingModeFormulaGivesTheValidationNumbers) {
   const double a = kR - 0.5 * u0;
   EXPECT_NEAR(u0, 2.0417603e-6, 1e-12);
   EXPECT_NEAR(a, 4.9989791e-3, 1e-10);
-  const struct {
-    double K, expected;
-  } cases[] = {{0.75, 307.288}, {7.5, 897.932}};
+  const struct { double K, expected; } cases[] = {{0.75, 307.288}, {7.5, 897.932}};
   for (const auto& c : cases) {
     const double w = rolling_mode_formula(kMass, kInertia, a, p.k_s, c.K);
     EXPECT_NEAR(w / c.expected, 1.0, 1e-3) << "K = " << c.K;
@@ -137,10 +135,10 @@ TEST_P(RollingModeOnWall, MeasuredFrequencyIsVerletsDiscreteFrequency) {
   }
   const double measured = frequency_from_zero_crossings(omega, dt);
   const double discrete = verlet_frequency(w, dt);
-  std::printf("[rolling mode on a wall, %s, K = %g, dt = %.2f x critical = %.4g s] measured %.6f rad/s, "
-              "discrete (2/dt)asin(w dt/2) %.6f, exact %.6f; measured/discrete - 1 = %.2e, measured/exact - 1 = %.2e\n",
-              c.law.c_str(), c.K, c.safety, dt, measured, discrete, w, measured / discrete - 1.0,
-              measured / w - 1.0);
+  std::printf(
+      "[rolling mode on a wall, %s, K = %g, dt = %.2f x critical = %.4g s] measured %.6f rad/s, "
+      "discrete (2/dt)asin(w dt/2) %.6f, exact %.6f; measured/discrete - 1 = %.2e, measured/exact - 1 = %.2e\n",
+      c.law.c_str(), c.K, c.safety, dt, measured, discrete, w, measured / discrete - 1.0, measured / w - 1.0);
   EXPECT_LT(worst_cap_use, 0.01) << "the springs must stay elastic";
   EXPECT_NEAR(measured / discrete, 1.0, 1e-5);
   EXPECT_NEAR(measured / w, 1.0, 1e-3 + (discrete / w - 1.0));
@@ -152,8 +150,8 @@ TEST_P(RollingModeOnWall, MeasuredFrequencyIsVerletsDiscreteFrequency) {
 }
 
 std::string rolling_case_name(const ::testing::TestParamInfo<RollingCase>& info) {
-  std::string s = info.param.law + (info.param.K < 1.0 ? "_K0p75" : "_K7p5") +
-                  (info.param.safety < 0.5 ? "_dt0p2" : "_dt0p9");
+  std::string s =
+      info.param.law + (info.param.K < 1.0 ? "_K0p75" : "_K7p5") + (info.param.safety < 0.5 ? "_dt0p2" : "_dt0p9");
   return s;
 }
 
@@ -161,8 +159,7 @@ INSTANTIATE_TEST_SUITE_P(SetS, RollingModeOnWall,
                          ::testing::Values(RollingCase{"jiang_plastic", 0.75, 0.2},
                                            RollingCase{"jiang_plastic", 0.75, 0.9},
                                            RollingCase{"jiang_plastic", 7.5, 0.2},
-                                           RollingCase{"jiang_plastic", 7.5, 0.9},
-                                           RollingCase{"wang", 0.75, 0.2},
+                                           RollingCase{"jiang_plastic", 7.5, 0.9}, RollingCase{"wang", 0.75, 0.2},
                                            RollingCase{"wang", 7.5, 0.9}),
                          rolling_case_name);
 
@@ -196,8 +193,8 @@ TEST(Frequencies, TangentialAndNormalModesMeasuredOnAWall) {
   const double a = kR - 0.5 * u0;
   const double w_n = std::sqrt(p.k_n / kMass);
   const double w_t = std::sqrt(p.k_s * (1.0 / kMass + a * a / kInertia));  // 1/m_t with the lever a
-  const double dt = 0.1 * contact_critical_step(laws, p, ContactBody{kMass, kInertia, kR},
-                                                ContactBody{INFINITY, INFINITY, INFINITY});
+  const double dt =
+      0.1 * contact_critical_step(laws, p, ContactBody{kMass, kInertia, kR}, ContactBody{INFINITY, INFINITY, INFINITY});
   OneContactRig rig(laws, p, kR, INFINITY, u0, 0.0, {0.0, -kG});
   DiscStore& D = rig.discs();
   // Pure sliding (no spin) and a small normal velocity: V_s is the tangential mode alone (rolling freely
@@ -212,11 +209,11 @@ TEST(Frequencies, TangentialAndNormalModesMeasuredOnAWall) {
     v_n.push_back(rig.normal_velocity());
   }
   const double mt = frequency_from_zero_crossings(V_s, dt), mn = frequency_from_zero_crossings(v_n, dt);
-  std::printf("[set J wall, dt = %.4g s] tangential: measured %.3f, discrete %.3f; normal: measured %.3f, discrete "
-              "%.3f; measured w_t/w_n = %.6f (Verlet's map undone: %.6f), sqrt(3 k_s/k_n) = %.6f\n",
-              dt, mt, verlet_frequency(w_t, dt), mn, verlet_frequency(w_n, dt), mt / mn,
-              std::sin(0.5 * mt * dt) / std::sin(0.5 * mn * dt),
-              std::sqrt(3.0 * p.k_s / p.k_n));
+  std::printf(
+      "[set J wall, dt = %.4g s] tangential: measured %.3f, discrete %.3f; normal: measured %.3f, discrete "
+      "%.3f; measured w_t/w_n = %.6f (Verlet's map undone: %.6f), sqrt(3 k_s/k_n) = %.6f\n",
+      dt, mt, verlet_frequency(w_t, dt), mn, verlet_frequency(w_n, dt), mt / mn,
+      std::sin(0.5 * mt * dt) / std::sin(0.5 * mn * dt), std::sqrt(3.0 * p.k_s / p.k_n));
   EXPECT_NEAR(mt / verlet_frequency(w_t, dt), 1.0, 1e-5);
   EXPECT_NEAR(mn / verlet_frequency(w_n, dt), 1.0, 1e-5);
   // Undo Verlet's map w -> (2/dt) asin(w dt/2) before taking the ratio (the two corrections differ by ~1e-3).
@@ -252,11 +249,11 @@ TEST_P(JiangRollingMode, LibraryStiffnessCodeEstimateAndMeasuredFrequency) {
   DiscStore& D = rig.discs();
 
   // W from the library's Jiang geometry on the rig's own contact.
-  const ContactBodies bodies =
-      wall ? disc_wall_bodies(D.mass[0], D.inertia[0]) : disc_disc_bodies(D.mass[0], D.mass[1], D.inertia[0], D.inertia[1]);
-  const ContactKinematics k = wall ? disc_wall_kinematics(rig.n, kR - u0, kR, {}, {}, 0.0)
-                                   : disc_disc_kinematics(D.position[1] - D.position[0], kR * (1.0 + rho) - u0, kR,
-                                                          rho * kR, {}, {}, 0.0, 0.0);
+  const ContactBodies bodies = wall ? disc_wall_bodies(D.mass[0], D.inertia[0])
+                                    : disc_disc_bodies(D.mass[0], D.mass[1], D.inertia[0], D.inertia[1]);
+  const ContactKinematics k =
+      wall ? disc_wall_kinematics(rig.n, kR - u0, kR, {}, {}, 0.0)
+           : disc_disc_kinematics(D.position[1] - D.position[0], kR * (1.0 + rho) - u0, kR, rho * kR, {}, {}, 0.0, 0.0);
   const double K_m = jiang_geometry(p, bodies, k).K_m;
   const double I_red = wall ? D.inertia[0] : D.inertia[0] * D.inertia[1] / (D.inertia[0] + D.inertia[1]);
   const double W = std::sqrt(K_m / I_red), w_n = std::sqrt(p.k_n / bodies.m_eff);
@@ -265,7 +262,8 @@ TEST_P(JiangRollingMode, LibraryStiffnessCodeEstimateAndMeasuredFrequency) {
   // The code's estimate without a tangential spring: the smaller of the normal and the rolling limits.
   std::string mode;
   const ContactBody A{D.mass[0], D.inertia[0], kR};
-  const ContactBody B = wall ? ContactBody{INFINITY, INFINITY, INFINITY} : ContactBody{D.mass[1], D.inertia[1], rho * kR};
+  const ContactBody B =
+      wall ? ContactBody{INFINITY, INFINITY, INFINITY} : ContactBody{D.mass[1], D.inertia[1], rho * kR};
   const double dt_code = contact_critical_step(laws, p, A, B, &mode);
   EXPECT_NEAR(dt_code, std::min(2.0 / w_n, 2.0 / W), 1e-12 * dt_code);
   EXPECT_EQ(mode, W > w_n ? "rolling" : "normal");

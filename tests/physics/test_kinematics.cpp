@@ -22,8 +22,8 @@ namespace rondel {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kTol = 1e-10;      // VALIDATION.md section 1
-constexpr double kObjTol = 1e-12;   // K6
+constexpr double kTol = 1e-10;     // VALIDATION.md section 1
+constexpr double kObjTol = 1e-12;  // K6
 constexpr double kR1 = 0.01;
 constexpr double kDensity = 2650.0;
 const double kRhos[] = {1.0, 2.0, 10.0, 100.0};
@@ -157,8 +157,7 @@ Integrated integrate(const Motion& m, const Frame& f = {}) {
     out.mag_s += r.mag_s * dt;
     r.mag_Fn = p.k_n * std::fabs(r.k.u_n) + NormalLinear::c_n(p, b) * r.mag_v;
     r.mag_Ft = p.k_s * out.mag_s + 2.0 * p.zeta_t * std::sqrt(b.m_eff * p.k_s) * r.mag_s + p.mu * r.mag_Fn;
-    r.mag_M = r.k.R_star * (p.k_r * out.mag_r + p.c_r * r.k.R_star * r.mag_w +
-                            p.mu_r * r.mag_Fn);
+    r.mag_M = r.k.R_star * (p.k_r * out.mag_r + p.c_r * r.k.R_star * r.mag_w + p.mu_r * r.mag_Fn);
     out.steps.push_back(r);
   }
   return out;

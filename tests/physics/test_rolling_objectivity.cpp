@@ -71,16 +71,16 @@ ContactParams k7_params() {
   p.k_s = 0.75e4;
   p.zeta_t = 0.2;
   p.mu = 0.5;
-  p.delta = 0.3;      // jiang_*: B = 4e-3 m, K_m = 1.3e-2 N m/rad, M0 = 6.7e-5 N m
-  p.k_r = 300.0;      // wang: k_r R*^2 = 1.3e-2 N m/rad
+  p.delta = 0.3;  // jiang_*: B = 4e-3 m, K_m = 1.3e-2 N m/rad, M0 = 6.7e-5 N m
+  p.k_r = 300.0;  // wang: k_r R*^2 = 1.3e-2 N m/rad
   p.c_r = 2.0;
-  p.mu_r = 0.1;       // wang, force_proportional; constant_torque and displacement_damping too
-  p.K_r = 1.3e-2;     // iwashita_oda
+  p.mu_r = 0.1;    // wang, force_proportional; constant_torque and displacement_damping too
+  p.K_r = 1.3e-2;  // iwashita_oda
   p.C_r = 1e-4;
   p.eta = 6.7e-4;
-  p.f_lim = 0.08;     // constant_torque's limiter on (its default)
+  p.f_lim = 0.08;  // constant_torque's limiter on (its default)
   p.theta_rmax = 0.035;
-  p.nu = 0.3;         // displacement_damping viscous part on
+  p.nu = 0.3;  // displacement_damping viscous part on
   p.f_visc = 0.5;
   return p;
 }
@@ -93,14 +93,14 @@ struct PairState {
 
 struct K7Result {
   double L0 = 0.0;
-  double max_dev = 0.0;       // max_n |L_n - L_0 - expected_n|
+  double max_dev = 0.0;  // max_n |L_n - L_0 - expected_n|
   double L_end = 0.0;
   double expected_end = 0.0;  // L_0 + the trapezoid of -mu_r F_n (a1 + a2) (force_proportional), else L_0
   double max_M = 0.0;         // max |M1| + |M2| over the run (the laws did act)
   double max_Vr = 0.0, max_Vs = 0.0;
-  double min_w = INFINITY;    // smallest spin seen
+  double min_w = INFINITY;  // smallest spin seen
   double min_Fn = INFINITY, max_Fn = 0.0;
-  double max_P = 0.0;         // |total linear momentum| at the end
+  double max_P = 0.0;  // |total linear momentum| at the end
   bool in_contact = true;
 };
 
@@ -142,7 +142,7 @@ K7Result run_k7(double Omega, double dw1, double dw2, double T, double dt) {
   Vec2 f[2];
   double tq[2];
   K7Result out;
-  double brake = 0.0;    // -mu_r F_n (a1 + a2) of the latest force evaluation (force_proportional's formula)
+  double brake = 0.0;  // -mu_r F_n (a1 + a2) of the latest force evaluation (force_proportional's formula)
   auto forces = [&](double h) {
     const Vec2 d = s.x[1] - s.x[0];
     const double dist = std::sqrt(dot(d, d));
@@ -199,10 +199,11 @@ void check_k7(bool perturbed) {
   const double Omega = 5.0, T = 1.0, dt = 1e-4;
   // The perturbation: +2 rad/s on disc 1, -1 rad/s on disc 2 (both spins stay positive).
   const K7Result r = perturbed ? run_k7<Rolling>(Omega, 2.0, -1.0, T, dt) : run_k7<Rolling>(Omega, 0.0, 0.0, T, dt);
-  std::printf("K7 %-21s %-9s L0 %.9e  L_end %.12e  expected %.12e  max dev/L0 %.1e  max|M| %.2e  "
-              "F_n [%.4f, %.4f]  min w %.3f\n",
-              name.c_str(), perturbed ? "perturbed" : "rigid", r.L0, r.L_end, r.expected_end, r.max_dev / r.L0,
-              r.max_M, r.min_Fn, r.max_Fn, r.min_w);
+  std::printf(
+      "K7 %-21s %-9s L0 %.9e  L_end %.12e  expected %.12e  max dev/L0 %.1e  max|M| %.2e  "
+      "F_n [%.4f, %.4f]  min w %.3f\n",
+      name.c_str(), perturbed ? "perturbed" : "rigid", r.L0, r.L_end, r.expected_end, r.max_dev / r.L0, r.max_M,
+      r.min_Fn, r.max_Fn, r.min_w);
   EXPECT_TRUE(r.in_contact);
   EXPECT_GT(r.min_Fn, 0.0);
   EXPECT_LT(r.max_P, 1e-12 * r.L0 / kR1);  // the pair's momentum stays zero: only internal forces act
@@ -296,14 +297,14 @@ TEST(IwashitaOdaMeasure, K8_EqualSpinsOfUnequalDiscsRollInTheLegacyMeasure) {
     }
     const double expected = 0.5 * (kR1 - R2) * w * T;
     const double a_sum = kR1 + R2 - u_n;
-    std::printf("K8 rho %5.0f: iwashita_oda r' theta_r = %+.12e (expected %+.12e), W15 V_r T = %g, dU_s = %.6e\n",
-                rho, r_prime * theta_io, expected, U_w15, U_s);
+    std::printf("K8 rho %5.0f: iwashita_oda r' theta_r = %+.12e (expected %+.12e), W15 V_r T = %g, dU_s = %.6e\n", rho,
+                r_prime * theta_io, expected, U_w15, U_s);
     EXPECT_NEAR(r_prime * theta_io, expected, 1e-10 * std::max(std::fabs(expected), kR1 * w * T));
     if (rho != 1.0) {
       EXPECT_GT(std::fabs(r_prime * theta_io), 1e-3 * kR1 * w * T);  // not 0
     }
-    EXPECT_EQ(U_w15, 0.0);                                         // W15: no rolling
-    EXPECT_NEAR(U_s, a_sum * w * T, 1e-10 * a_sum * w * T);         // K2: it slides by (a1 + a2) omega T
+    EXPECT_EQ(U_w15, 0.0);                                   // W15: no rolling
+    EXPECT_NEAR(U_s, a_sum * w * T, 1e-10 * a_sum * w * T);  // K2: it slides by (a1 + a2) omega T
 
     // The same through the law: its history slot accumulates theta_r, and the couple follows it.
     ContactParams p;

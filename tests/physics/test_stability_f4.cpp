@@ -97,8 +97,7 @@ class F4 : public ::testing::TestWithParam<F4Param> {
     }
     const double B = p_.delta * r;
     K_m_ = p_.k_n * B * B / 12.0;  // J05 Eq. 24 via PHYSICS.md section 3
-    const Eigen::MatrixXd K =
-        p_.k_n * e * e.transpose() + p_.k_s * g * g.transpose() + K_m_ * h * h.transpose();
+    const Eigen::MatrixXd K = p_.k_n * e * e.transpose() + p_.k_s * g * g.transpose() + K_m_ * h * h.transpose();
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(K, M, Eigen::EigenvaluesOnly);
     EXPECT_EQ(solver.info(), Eigen::Success);
     M_ = M;
@@ -137,8 +136,10 @@ class F4 : public ::testing::TestWithParam<F4Param> {
   std::string label() const {
     const auto& [set, rho, delta] = GetParam();
     char buf[96];
-    if (wall_) std::snprintf(buf, sizeof buf, "set %s, wall, delta %g", set.name, delta);
-    else std::snprintf(buf, sizeof buf, "set %s, rho %g, delta %g", set.name, rho, delta);
+    if (wall_)
+      std::snprintf(buf, sizeof buf, "set %s, wall, delta %g", set.name, delta);
+    else
+      std::snprintf(buf, sizeof buf, "set %s, rho %g, delta %g", set.name, rho, delta);
     return buf;
   }
 
@@ -192,9 +193,10 @@ TEST_P(F4, BoundedAt098OfExactLimit) {
   ASSERT_EQ(E.size(), 10001u) << label() << ": energy passed 1e6 x its start";
   const double early = mean(E, 0, 1000), late = mean(E, 9000, 10000);
   const double peak = *std::max_element(E.begin(), E.end());
-  std::printf("[F4 %s] w_max = %.6g rad/s, dt = 0.98 x 2/w_max = %.6g s: mean energy steps 9000-10000 / "
-              "0-1000 = %.5f, peak/start = %.3g\n",
-              label().c_str(), w_max_, dt, late / early, peak / E.front());
+  std::printf(
+      "[F4 %s] w_max = %.6g rad/s, dt = 0.98 x 2/w_max = %.6g s: mean energy steps 9000-10000 / "
+      "0-1000 = %.5f, peak/start = %.3g\n",
+      label().c_str(), w_max_, dt, late / early, peak / E.front());
   EXPECT_EQ(steps_to_tenfold(E, E.size()), 0u) << label() << ": the 10-step mean energy grew 10x at 0.98";
   EXPECT_GT(min_overlap, 0.0) << label() << ": the contact opened";
   EXPECT_LE(late / early, 1.1) << label();
@@ -206,9 +208,10 @@ TEST_P(F4, BlowsUpAt102OfExactLimit) {
   double min_overlap = 0.0;
   const std::vector<double> E = run(dt, 200, 1e6, &min_overlap);
   const std::size_t steps = steps_to_tenfold(E, 200);
-  std::printf("[F4 %s] dt = 1.02 x 2/w_max: 10-step mean energy 10x its start after %zu steps; energy x%.3g "
-              "after %zu steps\n",
-              label().c_str(), steps, E.back() / E.front(), E.size() - 1);
+  std::printf(
+      "[F4 %s] dt = 1.02 x 2/w_max: 10-step mean energy 10x its start after %zu steps; energy x%.3g "
+      "after %zu steps\n",
+      label().c_str(), steps, E.back() / E.front(), E.size() - 1);
   EXPECT_GT(steps, 0u) << label() << ": no 10x growth of the 10-step mean energy within 200 steps";
   EXPECT_GT(min_overlap, 0.0) << label() << ": the contact opened (the run left the linear regime)";
 }

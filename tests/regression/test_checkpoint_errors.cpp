@@ -81,8 +81,9 @@ std::string restart_refusal(const fs::path& file, Config config) {
   } catch (const Error& e) {
     return e.what();
   } catch (const std::exception& e) {
-    ADD_FAILURE() << "restart from " << file << ": expected " << (std::is_same_v<Error, InputError> ? "InputError" : "ConfigError")
-                  << ", got " << typeid(e).name() << ": " << e.what();
+    ADD_FAILURE() << "restart from " << file << ": expected "
+                  << (std::is_same_v<Error, InputError> ? "InputError" : "ConfigError") << ", got " << typeid(e).name()
+                  << ": " << e.what();
     return "";
   }
   ADD_FAILURE() << "the restart from " << file << " was accepted";
@@ -291,8 +292,8 @@ TEST_F(CheckpointErrors, AnotherFormatVersion) {
     const H5 h(hand);
     h.set_string("/", "format", "rondel");
     const hid_t space = H5Screate(H5S_SCALAR);
-    const hid_t a = H5Acreate_by_name(h.file, "/", "format_version", H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT,
-                                      H5P_DEFAULT);
+    const hid_t a =
+        H5Acreate_by_name(h.file, "/", "format_version", H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     const std::int64_t v = 99;
     H5Awrite(a, H5T_NATIVE_INT64, &v);
     H5Aclose(a);
@@ -333,7 +334,8 @@ TEST_F(CheckpointErrors, LawsOrHistorySlotsDiffer) {
   ASSERT_NE(frictionless.find(coulomb), std::string::npos);
   frictionless.replace(frictionless.find(coulomb), coulomb.size(), "");
   const std::string t = restart_refusal<InputError>(
-      *valid_, parse_config_text(frictionless, {"--contact.tangential=none", "--run.output=" + out("tangential").string()}));
+      *valid_,
+      parse_config_text(frictionless, {"--contact.tangential=none", "--run.output=" + out("tangential").string()}));
   EXPECT_TRUE(test::names(t, "tangential coulomb"));
   EXPECT_TRUE(test::names(t, "none"));
   // Same laws, but the file's history slots are not the kernel's.
@@ -462,7 +464,8 @@ TEST_F(CheckpointErrors, CheckpointsOfAnOverwrittenRunAreNeverPicked) {
 TEST_F(CheckpointErrors, SnapshotSeriesSurvivesAResume) {
   const fs::path run = *dir_ / "snapshots";
   const Communicator self(MPI_COMM_SELF);
-  const std::vector<std::string> every{"--run.overwrite=true", "--output.snapshot_every=100", "--diagnostics.every=100"};
+  const std::vector<std::string> every{"--run.overwrite=true", "--output.snapshot_every=100",
+                                       "--diagnostics.every=100"};
   {
     QuietCout quiet;
     auto more = every;
@@ -648,7 +651,8 @@ TEST(CheckpointSignal, SigtermWritesACheckpointAndResumeFinishesTheRun) {
   ASSERT_EQ(wait_for(ref, 180), 0) << test::read_file(dir / "straight.err");
   const std::string straight_final = test::read_file(straight / "final.csv");
   EXPECT_GT(std::count(straight_final.begin(), straight_final.end(), '\n'), 1000);
-  EXPECT_TRUE(resumed_final == straight_final) << "final.csv after SIGTERM + --resume differs from the uninterrupted run";
+  EXPECT_TRUE(resumed_final == straight_final)
+      << "final.csv after SIGTERM + --resume differs from the uninterrupted run";
 }
 
 }  // namespace

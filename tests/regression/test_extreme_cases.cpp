@@ -21,7 +21,6 @@
 #include <vector>
 
 #include "app/Simulation.hpp"
-#include "support/TempDir.hpp"
 #include "core/Config.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"
@@ -113,8 +112,8 @@ using test::QuietCout;
 // checks that it stayed stable: finite energy, a ledger residual below `max_residual`, and no energy
 // gained: KE + stored - W_gravity - W_walls <= KE(0) (1 + `gain`) (the potential energy starts at 0).
 // Returns the final diagnostics.
-DiagnosticsRow expect_stable_run(const std::string& ini, std::vector<std::string> overrides,
-                                 double max_overlap = 0.05, double max_residual = 1e-2, double gain = 1e-3) {
+DiagnosticsRow expect_stable_run(const std::string& ini, std::vector<std::string> overrides, double max_overlap = 0.05,
+                                 double max_residual = 1e-2, double gain = 1e-3) {
   Communicator comm;
   overrides.push_back("--run.max_overlap=" + fmt6(max_overlap));
   Simulation sim(parse_config_text(ini, overrides), comm, false);
@@ -135,11 +134,12 @@ DiagnosticsRow expect_stable_run(const std::string& ini, std::vector<std::string
   EXPECT_LT(row.residual, max_residual);
   EXPECT_LE(E, E0 * (1.0 + gain)) << "energy gained with no work done";
   EXPECT_NE(sim.ledger().W_n, 0.0) << "no contact happened: the case tests nothing";
-  std::printf("[%s] dt = %.4g s (%s mode, %s), %lld steps: KE %.4g -> %.4g J, E_mech/E0 = %.6f, residual %.2e, "
-              "max overlap %.3g R\n",
-              ::testing::UnitTest::GetInstance()->current_test_info()->name(), sim.dt(), sim.critical().mode.c_str(),
-              sim.critical().pair.c_str(), static_cast<long long>(sim.step_count()), E0, row.ke_trans + row.ke_rot,
-              E / E0, row.residual, row.max_overlap);
+  std::printf(
+      "[%s] dt = %.4g s (%s mode, %s), %lld steps: KE %.4g -> %.4g J, E_mech/E0 = %.6f, residual %.2e, "
+      "max overlap %.3g R\n",
+      ::testing::UnitTest::GetInstance()->current_test_info()->name(), sim.dt(), sim.critical().mode.c_str(),
+      sim.critical().pair.c_str(), static_cast<long long>(sim.step_count()), E0, row.ke_trans + row.ke_rot, E / E0,
+      row.residual, row.max_overlap);
   return row;
 }
 

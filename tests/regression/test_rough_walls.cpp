@@ -125,7 +125,8 @@ const ShearRun& shear_run() {
     }
     out.top_force_discs = {fx.value(), fy.value()};
     out.top_force_rows = sim.walls()[1].force;
-    for (std::size_t r = 0; r < sim.wall_rows().size(); ++r) out.glued_wall_rows += is_attached(d.flags[sim.wall_rows().i1[r]]);
+    for (std::size_t r = 0; r < sim.wall_rows().size(); ++r)
+      out.glued_wall_rows += is_attached(d.flags[sim.wall_rows().i1[r]]);
     const ContactTable& p = sim.pairs();
     for (std::size_t r = 0; r < p.size(); ++r) {
       const std::uint32_t a = d.flags[p.i1[r]], b = d.flags[p.i2[r]];
@@ -222,8 +223,8 @@ TEST(RoughWalls, ServoHoldsNormalStressWhileShearing) {
 }
 
 // Energy: the walls feed the sample through the glued discs (W_w > 0: work -F.v of their reactions); the
-// ledger closes with that work (relative residual below 1e-3; measured 3.5e-4). Without the glued discs' work the residual
-// would be of order 1.
+// ledger closes with that work (relative residual below 1e-3; measured 3.5e-4). Without the glued discs' work the
+// residual would be of order 1.
 TEST(RoughWalls, EnergyLedgerClosesWithTheGluedDiscsWork) {
   const ShearRun& r = shear_run();
   EnergyLedger g = r.ledger;

@@ -17,7 +17,6 @@
 #include <vector>
 
 #include "app/Simulation.hpp"
-#include "support/TempDir.hpp"
 #include "core/Config.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"

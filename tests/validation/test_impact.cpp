@@ -32,15 +32,13 @@ namespace fs = std::filesystem;
 
 constexpr double kR = test::d5::R;  // D5
 constexpr double kKn = test::kSetJ.k_n;
-constexpr double kV0 = 1.0;         // relative approach speed [m/s]
+constexpr double kV0 = 1.0;  // relative approach speed [m/s]
 const double kPhases[] = {0.1, 0.3, 0.5, 0.7, 0.9};
 
 double disc_mass() { return test::d5::mass(); }
 double m_eff() { return 0.5 * disc_mass(); }
 double w0() { return std::sqrt(kKn / m_eff()); }
-double exact_contact_time(double zeta) {
-  return std::acos(2 * zeta * zeta - 1) / (w0() * std::sqrt(1 - zeta * zeta));
-}
+double exact_contact_time(double zeta) { return std::acos(2 * zeta * zeta - 1) / (w0() * std::sqrt(1 - zeta * zeta)); }
 double exact_restitution(double zeta) {
   return std::exp(-zeta * std::acos(2 * zeta * zeta - 1) / std::sqrt(1 - zeta * zeta));
 }
@@ -55,13 +53,13 @@ struct ScratchDir : test::TempDir {
 
 struct ImpactResult {
   double dt = 0.0;
-  double e = 0.0;           // (v2 - v1).n after / v0
-  double t_contact = 0.0;   // steps with F_n > 0, times dt
+  double e = 0.0;          // (v2 - v1).n after / v0
+  double t_contact = 0.0;  // steps with F_n > 0, times dt
   double KE0 = 0.0, KE_end = 0.0;
-  double W_nt = 0.0;        // W_n + W_t after separation
+  double W_nt = 0.0;                              // W_n + W_t after separation
   double residual_end = 0.0, residual_max = 0.0;  // ledger |KE - KE0 - W|, at the end and its largest
-  double lateral = 0.0;     // largest |v_y| and |omega| after the impact (must stay 0: a head-on impact)
-  double zeta_n = 0.0;      // the damping ratio the run used (derived from linear.e when that is given)
+  double lateral = 0.0;  // largest |v_y| and |omega| after the impact (must stay 0: a head-on impact)
+  double zeta_n = 0.0;   // the damping ratio the run used (derived from linear.e when that is given)
 };
 
 // Runs one impact. `law` holds the normal-damping override ("--linear.zeta=0.3" or "--linear.e=0.5");
@@ -164,8 +162,8 @@ TEST(Impact, DampedRestitutionAndContactTimeMatchNoTensionFormula) {
       const ImpactResult r = run_impact(zeta_key(zeta), dt, phase);
       worst_e = std::max(worst_e, std::fabs(r.e - e_exact));
       worst_t = std::max(worst_t, std::fabs(r.t_contact - t_c) / dt);
-      EXPECT_LE(std::fabs(r.e - e_exact), 1e-2) << "zeta " << zeta << " phase " << phase << ": e " << r.e
-                                                 << " vs " << e_exact;
+      EXPECT_LE(std::fabs(r.e - e_exact), 1e-2)
+          << "zeta " << zeta << " phase " << phase << ": e " << r.e << " vs " << e_exact;
       // The force is sampled once per step, so the counted duration is t_c within one step at each end.
       EXPECT_LE(std::fabs(r.t_contact - t_c), 2.0 * dt)
           << "zeta " << zeta << " phase " << phase << ": contact " << r.t_contact << " s vs " << t_c << " s";

@@ -72,7 +72,9 @@ using test::num;
 // bare cap). The dashpots do no work at rest, so the static state and the cap are unchanged.
 LawSetup jiang(const std::string& name, bool damped) {
   const double B = kJiangDelta * 2.0 * kR;  // r -> 2R at a wall
-  LawSetup s{name, {"--jiang.delta=" + num(kJiangDelta)}, [B](double F_n, double) { return F_n * B / 6.0; },
+  LawSetup s{name,
+             {"--jiang.delta=" + num(kJiangDelta)},
+             [B](double F_n, double) { return F_n * B / 6.0; },
              [B](double) { return kKn * B * B / 12.0; }};
   // mu_m = c_n B^2/12 with c_n = 2 zeta sqrt(m k_n): zeta = 3.5 gives mu_m = 2.4e-3 N m s. The normal
   // dashpot itself does nothing here (v_n = 0).
@@ -91,7 +93,8 @@ LawSetup iwashita_oda(bool damped) {
   return {"iwashita_oda",
           {"--iwashita_oda.K_r=" + num(kIoKr), "--iwashita_oda.eta=" + num(kIoEta),
            std::string("--iwashita_oda.C_r=") + (damped ? "2.4e-3" : "0")},
-          [](double F_n, double) { return kIoEta * F_n; }, [](double) { return kIoKr; }};
+          [](double F_n, double) { return kIoEta * F_n; },
+          [](double) { return kIoKr; }};
 }
 LawSetup displacement_damping(bool damped) {
   LawSetup s{"displacement_damping",
@@ -110,11 +113,14 @@ LawSetup displacement_damping(bool damped) {
 LawSetup constant_torque(double f_lim = 0.0) {
   return {"constant_torque",
           {"--constant_torque.mu_r=" + num(kCtMuR), "--constant_torque.f_lim=" + num(f_lim)},
-          [](double F_n, double) { return kCtMuR * 2.0 * kR * F_n; }, [](double) { return 0.0; }};
+          [](double F_n, double) { return kCtMuR * 2.0 * kR * F_n; },
+          [](double) { return 0.0; }};
 }
 LawSetup force_proportional() {
-  return {"force_proportional", {"--force_proportional.mu_r=" + num(kFpMuR)},
-          [](double F_n, double a) { return kFpMuR * F_n * a; }, [](double) { return 0.0; }};
+  return {"force_proportional",
+          {"--force_proportional.mu_r=" + num(kFpMuR)},
+          [](double F_n, double a) { return kFpMuR * F_n * a; },
+          [](double) { return 0.0; }};
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -147,8 +153,8 @@ class InclineRun {
  public:
   InclineRun(const LawSetup& law, double beta, double dt) {
     static int counter = 0;
-    const fs::path dir = fs::temp_directory_path() /
-                         ("rondel_incline_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    const fs::path dir =
+        fs::temp_directory_path() / ("rondel_incline_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
     fs::create_directories(dir);
     const fs::path csv = dir / "disc.csv";
     u_n0_ = normal_force(beta) / kKn;
@@ -159,7 +165,8 @@ class InclineRun {
     }
     const std::string ini = "[run]\nprogress = false\ndt = " + num(dt) +
                             "\n[domain]\nxlo = -0.5\nxhi = 1.5\nylo = 0\nyhi = 0.1\n"
-                            "[gravity]\nx = " + num(kG * std::sin(beta)) + "\ny = " + num(-kG * std::cos(beta)) +
+                            "[gravity]\nx = " +
+                            num(kG * std::sin(beta)) + "\ny = " + num(-kG * std::cos(beta)) +
                             "\n[material]\ndensity = " + num(kRho) + "\nthickness = " + num(kThick) +
                             "\n[contact]\nrolling = " + law.name + "\n[linear]\nk_n = " + num(kKn) +
                             "\n[coulomb]\nk_s = " + num(kKs) + "\nmu = " + num(kMu) +
@@ -413,8 +420,8 @@ TEST(Incline, RigidPlasticLawsCreepAtASpeedProportionalToDt) {
     // apparent creep falls with the distance between the windows instead of persisting.
     const Trace near = run_for(law, beta, dt, T, 1.0, {0.2, 0.6, 0.6, 1.0});
     const Trace far = run_for(law, beta, dt, T, 1.0, {0.2, 0.6, 1.6, 2.0});
-    std::printf("creep %-22s (undamped): %.3e m/s (windows 0.4 s apart), %.3e m/s (1.4 s apart)\n",
-                law.name.c_str(), near.creep, far.creep);
+    std::printf("creep %-22s (undamped): %.3e m/s (windows 0.4 s apart), %.3e m/s (1.4 s apart)\n", law.name.c_str(),
+                near.creep, far.creep);
     EXPECT_LT(std::fabs(near.creep), 0.02 * reference);
     EXPECT_LT(std::fabs(far.creep), 0.02 * reference);
   }

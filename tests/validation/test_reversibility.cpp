@@ -47,8 +47,8 @@ void write_scene(const fs::path& file) {
   for (int j = 0; j < kSide; ++j)
     for (int i = 0; i < kSide; ++i) {
       const double R = radius(rng), vx = speed(rng), vy = speed(rng), w = spin(rng);
-      f << j * kSide + i << "," << (i + 0.5) * kSpacing << "," << (j + 0.5) * kSpacing << "," << R << "," << vx
-        << "," << vy << "," << w << "\n";
+      f << j * kSide + i << "," << (i + 0.5) * kSpacing << "," << (j + 0.5) * kSpacing << "," << R << "," << vx << ","
+        << vy << "," << w << "\n";
     }
 }
 
@@ -72,9 +72,9 @@ Snapshot snapshot(const DiscStore& D) {
 }
 
 struct RoundTrip {
-  double max_dx = 0.0;       // largest |x_back - x_0| [m]
-  double max_dv = 0.0;       // largest |v_back + v_0| [m/s]
-  double max_moved = 0.0;    // largest |x_N - x_0| [m]: how far the discs went before turning back
+  double max_dx = 0.0;     // largest |x_back - x_0| [m]
+  double max_dv = 0.0;     // largest |v_back + v_0| [m/s]
+  double max_moved = 0.0;  // largest |x_N - x_0| [m]: how far the discs went before turning back
   std::int64_t contact_steps = 0, wall_contact_steps = 0;
   double KE0 = 0.0, KE_back = 0.0;
 };
@@ -136,15 +136,16 @@ type = csv
 // the time symmetry of the scheme (a velocity-dependent force, a stale force at the reversal, an asymmetric
 // kick) gives errors many orders larger (the weakly damped case below returns 2e-3 m off).
 constexpr int kSteps = 200;
-constexpr double kTolX = 1e-13;   // [m]
-constexpr double kTolV = 3e-11;   // [m/s]; observed 8.9e-13 (speeds ~0.3 m/s, stiff contacts amplify more)
+constexpr double kTolX = 1e-13;  // [m]
+constexpr double kTolV = 3e-11;  // [m/s]; observed 8.9e-13 (speeds ~0.3 m/s, stiff contacts amplify more)
 
 TEST(Reversibility, VelocityVerletRetracesAConservativePacking) {
   const RoundTrip r = round_trip(kSteps);
-  std::printf("  %d steps out and back: max |x_back - x0| = %.3e m (moved up to %.3e m), max |v_back + v0| = %.3e m/s, "
-              "%lld disc-disc and %lld wall contact-steps, KE change %.2e relative\n",
-              kSteps, r.max_dx, r.max_moved, r.max_dv, static_cast<long long>(r.contact_steps),
-              static_cast<long long>(r.wall_contact_steps), (r.KE_back - r.KE0) / r.KE0);
+  std::printf(
+      "  %d steps out and back: max |x_back - x0| = %.3e m (moved up to %.3e m), max |v_back + v0| = %.3e m/s, "
+      "%lld disc-disc and %lld wall contact-steps, KE change %.2e relative\n",
+      kSteps, r.max_dx, r.max_moved, r.max_dv, static_cast<long long>(r.contact_steps),
+      static_cast<long long>(r.wall_contact_steps), (r.KE_back - r.KE0) / r.KE0);
   // The scene really collides, and the discs really move, before turning back.
   EXPECT_GT(r.contact_steps, 1000);
   EXPECT_GT(r.wall_contact_steps, 300);

@@ -129,8 +129,9 @@ Law equal_cap(const std::string& name, bool damped = false) {
     law.M = mu_r * 2 * kR * F_n;
     law.K = law.M / theta_rmax;
     // The viscous part acts only in the elastic regime (f = 0), so the capped rolling phase is unchanged.
-    if (damped) set("displacement_damping.nu", 0.5), set("displacement_damping.f", 0.0),
-        law.damping = "displacement_damping.nu = 0.5, f = 0";
+    if (damped)
+      set("displacement_damping.nu", 0.5), set("displacement_damping.f", 0.0),
+          law.damping = "displacement_damping.nu = 0.5, f = 0";
   } else {
     ADD_FAILURE() << "unknown law " << name;
   }
@@ -149,14 +150,13 @@ class WallRun {
     const DiscOnWall d;
     const fs::path scene = scratch_.path() / "disc.csv";
     std::ofstream(scene) << "id,x,y,radius,vx,vy,omega\n"
-                         << "0,0," << num(kR - d.u_n0) << "," << num(kR) << "," << num(v0) << ",0,"
-                         << num(d.omega0(v0)) << "\n";
+                         << "0,0," << num(kR - d.u_n0) << "," << num(kR) << "," << num(v0) << ",0," << num(d.omega0(v0))
+                         << "\n";
     const std::string ini = "[run]\ndt = " + num(dt) + "\nprogress = false\n" +
-                            "[domain]\nxlo = -0.05\nxhi = 2.5\nylo = 0\nyhi = 0.05\n" +
-                            "[gravity]\ny = " + num(-kG) + "\n" + "[material]\ndensity = " + num(kDensity) + "\n" +
-                            "[linear]\nk_n = " + num(kKn) + "\n" + "[coulomb]\nk_s = " + num(kKs) +
-                            "\nmu = " + num(kMu) + "\n" + "[walls]\nbox = bottom\n" +
-                            "[scene]\ntype = csv\nfile = " + scene.string() + "\n";
+                            "[domain]\nxlo = -0.05\nxhi = 2.5\nylo = 0\nyhi = 0.05\n" + "[gravity]\ny = " + num(-kG) +
+                            "\n" + "[material]\ndensity = " + num(kDensity) + "\n" + "[linear]\nk_n = " + num(kKn) +
+                            "\n" + "[coulomb]\nk_s = " + num(kKs) + "\nmu = " + num(kMu) + "\n" +
+                            "[walls]\nbox = bottom\n" + "[scene]\ntype = csv\nfile = " + scene.string() + "\n";
     sim_ = std::make_unique<Simulation>(parse_config_text(ini, law.overrides), comm_, false);
     x0_ = sim_->discs().position[0].x;
   }
@@ -203,8 +203,12 @@ struct Trace {
     return static_cast<std::size_t>(std::max_element(x.begin(), last) - x.begin());
   }
   double first_stop_x() const { return x[first_stop()]; }
-  double min_from(std::size_t i) const { return *std::min_element(x.begin() + static_cast<std::ptrdiff_t>(i), x.end()); }
-  double max_from(std::size_t i) const { return *std::max_element(x.begin() + static_cast<std::ptrdiff_t>(i), x.end()); }
+  double min_from(std::size_t i) const {
+    return *std::min_element(x.begin() + static_cast<std::ptrdiff_t>(i), x.end());
+  }
+  double max_from(std::size_t i) const {
+    return *std::max_element(x.begin() + static_cast<std::ptrdiff_t>(i), x.end());
+  }
   double max_all() const { return max_from(0); }
   double mean_from(std::size_t i) const {
     double s = 0;
@@ -376,8 +380,8 @@ TEST(RollingWall, ConstantTorqueDefaultLimiterCreepsOnAndStopsLater) {
   print_residual(b);
   EXPECT_NEAR(b.first_stop_x() - s, extra, 0.15 * extra);
   EXPECT_GT(b.first_stop_x(), a.first_stop_x() + 1e-6);  // further
-  EXPECT_GT(t_on, t_off + 50 * kDt);                      // later
-  EXPECT_NEAR(b.x_end(), b.first_stop_x(), 1e-9);         // and then at rest
+  EXPECT_GT(t_on, t_off + 50 * kDt);                     // later
+  EXPECT_NEAR(b.x_end(), b.first_stop_x(), 1e-9);        // and then at rest
   EXPECT_LE(b.residual_max, 1e-3);
 }
 
@@ -477,10 +481,11 @@ void check_settles(const std::string& name) {
     // Report where the energy went: the viscous pulses of the first two steps (and the Coulomb slip they
     // excite: ~0.1 N m excites the tangential mode beyond mu F_n) take KE0 - KE(2 dt) before the couple
     // reaches its cap; the first stop is short of s1 accordingly, never beyond it.
-    std::printf("    kinetic energy lost in the first two steps %.4e J (%.2f %% of KE0); ledger at t = 2 s: "
-                "D_r_dashpot %.3e J, D_slip %.3e J, D_r_plastic %.4e J\n",
-                d.KE0(kV0) - KE_loaded, 100 * (d.KE0(kV0) - KE_loaded) / d.KE0(kV0), sim.ledger().D_r_dashpot,
-                sim.ledger().D_slip, sim.ledger().D_r_plastic);
+    std::printf(
+        "    kinetic energy lost in the first two steps %.4e J (%.2f %% of KE0); ledger at t = 2 s: "
+        "D_r_dashpot %.3e J, D_slip %.3e J, D_r_plastic %.4e J\n",
+        d.KE0(kV0) - KE_loaded, 100 * (d.KE0(kV0) - KE_loaded) / d.KE0(kV0), sim.ledger().D_r_dashpot,
+        sim.ledger().D_slip, sim.ledger().D_r_plastic);
     EXPECT_LT(top, s1);
   }
 }
