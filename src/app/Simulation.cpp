@@ -55,8 +55,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
   // Forces at t = 0 for the first half kick: the kernel at the initial state with a zero increment,
   // committing no history and booking no work (KernelOps::initial).
   kernel_.initial(KernelContext{discs_, config_.domain, walls_, config_.params, 0.0}, pairs_, wall_rows_);
-  ForceAssembly::body_forces(discs_, config_.gravity);
-  assembly_.assemble(discs_, pairs_, wall_rows_);
+  assembly_.assemble(discs_, BodyForce{config_.gravity}, pairs_, wall_rows_);
   if (controlled_walls_) boundaries_.measure(walls_, discs_, pairs_, wall_rows_, comm_);
   ledger_.start(kinetic_energy());
 }
@@ -256,9 +255,8 @@ void Simulation::step() {
     exchange_.update_ghosts(discs_, comm_);
     phases_.lap(PhaseTimes::communication);
   }
-  // 4. Zero forces; body forces (gravity). The glued discs' last reaction forces are booked first.
-  const double W_glued_last = rough_walls_ ? Boundaries::glued_work_half(discs_, dt_) : 0.0;
-  ForceAssembly::body_forces(discs_, config_.gravity);
+  // 4. Body forces (gravity): the first term of each disc's sum in step 6.
+  const BodyForce body{config_.gravity};
   // 5. Contact kernel over every row.
   LedgerStep work;
   kernel_.run(KernelContext{discs_, config_.domain, walls_, config_.params, dt_, config_.max_overlap}, pairs_,
@@ -267,8 +265,8 @@ void Simulation::step() {
   if (comm_.any(work.worst_overlap > 0.0)) report_overlap(work);
   phases_.lap(PhaseTimes::communication);
   // 6. Per-disc sums in ascending partner gid, walls last.
-  if (rough_walls_) work.W_w += W_glued_last;
-  assembly_.assemble(discs_, pairs_, wall_rows_);
+  if (rough_walls_) work.W_w += Boundaries::glued_work_half(discs_, dt_);  // the last step's reaction forces
+  assembly_.assemble(discs_, body, pairs_, wall_rows_);
   if (rough_walls_) work.W_w += Boundaries::glued_work_half(discs_, dt_);  // this step's reaction forces
   phases_.lap(PhaseTimes::force);
   if (controlled_walls_) boundaries_.measure(walls_, discs_, pairs_, wall_rows_, comm_);

@@ -41,17 +41,13 @@ void ForceAssembly::build(const DiscStore& discs, const ContactTable& pairs, con
   }
 }
 
-void ForceAssembly::body_forces(DiscStore& discs, Vec2 gravity) {
-  const std::size_t n = discs.n_owned();
-  for (std::size_t i = 0; i < n; ++i) discs.force[i] = (discs.flags[i] & kFlagFixed) ? Vec2{} : discs.mass[i] * gravity;
-}
-
-void ForceAssembly::assemble(DiscStore& discs, const ContactTable& pairs, const ContactTable& wall_rows) const {
+void ForceAssembly::assemble(DiscStore& discs, const BodyForce& body, const ContactTable& pairs,
+                             const ContactTable& wall_rows) const {
   const std::size_t n = discs.n_owned();
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t flags = discs.flags[i];
-    Vec2 F = discs.force[i];  // the body force comes first in the sum
-    double T = 0.0;           // no body couple
+    Vec2 F = body.on(discs.mass[i], flags);  // the body force comes first in the sum
+    double T = 0.0;                          // no body couple
     for (std::uint32_t e = start_[i]; e < start_[i + 1]; ++e) {
       const std::uint32_t r = row_[e];
       switch (side_[e]) {

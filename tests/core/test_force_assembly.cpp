@@ -92,8 +92,7 @@ std::vector<Term> terms_in_order(const Scene& s, std::size_t i) {
 void expect_documented_order(Scene& s) {
   ForceAssembly fa;
   fa.build(s.discs, s.pairs, s.walls);
-  ForceAssembly::body_forces(s.discs, kGravity);
-  fa.assemble(s.discs, s.pairs, s.walls);
+  fa.assemble(s.discs, BodyForce{kGravity}, s.pairs, s.walls);
   for (std::size_t i = 0; i < s.discs.n_owned(); ++i) {
     const bool fixed = s.discs.flags[i] & kFlagFixed, glued = is_attached(s.discs.flags[i]);
     Vec2 F = fixed ? Vec2{} : s.discs.mass[i] * kGravity;
@@ -137,11 +136,9 @@ TEST(ForceAssembly, RowOrderDoesNotChangeTheBits) {
   const ContactTable pairs = reversed(b.pairs), walls = reversed(b.walls);
   ForceAssembly fa, fb;
   fa.build(a.discs, a.pairs, a.walls);
-  ForceAssembly::body_forces(a.discs, kGravity);
-  fa.assemble(a.discs, a.pairs, a.walls);
+  fa.assemble(a.discs, BodyForce{kGravity}, a.pairs, a.walls);
   fb.build(b.discs, pairs, walls);
-  ForceAssembly::body_forces(b.discs, kGravity);
-  fb.assemble(b.discs, pairs, walls);
+  fb.assemble(b.discs, BodyForce{kGravity}, pairs, walls);
   for (std::size_t i = 0; i < a.discs.n_owned(); ++i) {
     EXPECT_TRUE(same_bits(a.discs.force[i].x, b.discs.force[i].x)) << "disc gid " << a.discs.gid[i];
     EXPECT_TRUE(same_bits(a.discs.force[i].y, b.discs.force[i].y)) << "disc gid " << a.discs.gid[i];
@@ -155,8 +152,7 @@ TEST(ForceAssembly, DiscWithoutContactsGetsGravityOnly) {
   ContactTable pairs({}, false), walls({}, false);
   ForceAssembly fa;
   fa.build(discs, pairs, walls);
-  ForceAssembly::body_forces(discs, kGravity);
-  fa.assemble(discs, pairs, walls);
+  fa.assemble(discs, BodyForce{kGravity}, pairs, walls);
   EXPECT_TRUE(same_bits(discs.force[0].x, discs.mass[0] * kGravity.x));
   EXPECT_TRUE(same_bits(discs.force[0].y, discs.mass[0] * kGravity.y));
   EXPECT_EQ(discs.torque[0], 0.0);
@@ -186,8 +182,7 @@ TEST(ForceAssembly, GhostsAreNotAssembled) {
   pairs.tq2.back() = 0.25;
   ForceAssembly fa;
   fa.build(discs, pairs, walls);
-  ForceAssembly::body_forces(discs, Vec2{});
-  fa.assemble(discs, pairs, walls);
+  fa.assemble(discs, BodyForce{Vec2{}}, pairs, walls);
   EXPECT_EQ(discs.force[0].x, 2.0);
   EXPECT_EQ(discs.force[0].y, -1.0);
   EXPECT_EQ(discs.torque[0], 0.5);

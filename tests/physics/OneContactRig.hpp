@@ -122,8 +122,7 @@ class OneContactRig {
     return ops_.stored(KernelContext{discs_, domain_, walls_, params_, dt_}, pairs_, wall_rows_).total();
   }
   void assemble() {
-    ForceAssembly::body_forces(discs_, gravity_);
-    assembly_.assemble(discs_, pairs_, wall_rows_);
+    assembly_.assemble(discs_, BodyForce{gravity_}, pairs_, wall_rows_);
     if (wall_) {
       discs_.force[0] += preload_ * walls_[0].proximity(discs_.position[0]).n;
     } else {
