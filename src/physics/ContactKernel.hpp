@@ -171,6 +171,52 @@ struct ContactKernel {
     tab.tq2[r] = 0.0;
   }
 
+  // The worst overlap above the context's limit (u_n / smaller radius), and where.
+  template <bool kWall>
+  [[gnu::always_inline]] static void note_overlap(const KernelContext& c, const ContactKinematics& k,
+                                                  const ContactKey& key, LedgerStep& L) {
+    const double R_small = kWall ? k.R1 : std::min(k.R1, k.R2);
+    if (k.u_n > c.overlap_limit * R_small && k.u_n > L.worst_overlap * R_small) {
+      L.worst_overlap = k.u_n / R_small;
+      L.worst_key = key;
+      L.worst_at_wall = kWall;
+    }
+  }
+
+  // The ledger's share of a booked row: the trapezoid of last and this step's force and couples, and the
+  // laws' dissipation.
+  template <bool kWall>
+  [[gnu::always_inline]] static void book_work(const ContactTable& tab, std::size_t r, const Row& row, double F_n,
+                                               const TangentialForce& T, const RollingCouple& M, Vec2 f1, double dt,
+                                               LedgerStep& L) {
+    const ContactKinematics& k = row.k;
+    L.W_n += 0.5 * (tab.F_n[r] + F_n) * k.v_n * dt;
+    L.W_t += 0.5 * (tab.F_t[r] + T.F_t) * k.V_s * dt;
+    L.D_slip += T.slip;
+    if constexpr (Rolling::kActive) {
+      L.W_r += 0.5 * ((tab.M1[r] + M.M1) * row.w1 + (tab.M2[r] + M.M2) * row.w2) * dt;
+      L.D_r_plastic += M.plastic;
+      L.D_r_dashpot += M.dashpot;
+      L.E_r_break += M.released;
+    }
+    if constexpr (kWall) L.W_w += 0.5 * dot(tab.f1[r] + f1, row.v_wall) * dt;
+  }
+
+  // This step's result into the row's columns (the per-disc sums read f1, tq1, tq2).
+  template <bool kWall>
+  [[gnu::always_inline]] static void store_row(ContactTable& tab, std::size_t r, const ContactKinematics& k, double F_n,
+                                               const TangentialForce& T, const RollingCouple& M, Vec2 f1) {
+    tab.F_n[r] = F_n;
+    tab.F_t[r] = T.F_t;
+    if constexpr (Rolling::kActive) {
+      tab.M1[r] = M.M1;
+      tab.M2[r] = M.M2;
+    }
+    tab.f1[r] = f1;
+    tab.tq1[r] = k.a1 * T.F_t + M.M1;
+    if constexpr (!kWall) tab.tq2[r] = k.a2 * T.F_t + M.M2;
+  }
+
   template <bool kWall, bool kCommit = true>
   static void run_rows(const KernelContext& c, ContactTable& tab, LedgerStep& ledger) {
     const std::size_t n_owned = c.discs.n_owned();
@@ -202,12 +248,7 @@ struct ContactKernel {
         continue;
       }
 
-      const double R_small = kWall ? k.R1 : std::min(k.R1, k.R2);
-      if (k.u_n > c.overlap_limit * R_small && k.u_n > L.worst_overlap * R_small) {
-        L.worst_overlap = k.u_n / R_small;
-        L.worst_key = tab.key[r];
-        L.worst_at_wall = kWall;
-      }
+      note_overlap<kWall>(c, k, tab.key[r], L);
       const ContactParams& p = params[static_cast<std::size_t>(tab.param[r])];
       const double F_n = Normal::force(p, row.b, k);
       History<kCommit> hist(h, r);
@@ -217,27 +258,8 @@ struct ContactKernel {
         if (p.rolling) M = Rolling::moment(p, row.b, k, F_n, dt, row.w1, row.w2, hist.r(), hist.row);
       }
       const Vec2 f1 = T.F_t * k.t - F_n * k.n;
-      if (book) {
-        L.W_n += 0.5 * (tab.F_n[r] + F_n) * k.v_n * dt;
-        L.W_t += 0.5 * (tab.F_t[r] + T.F_t) * k.V_s * dt;
-        L.D_slip += T.slip;
-        if constexpr (Rolling::kActive) {
-          L.W_r += 0.5 * ((tab.M1[r] + M.M1) * row.w1 + (tab.M2[r] + M.M2) * row.w2) * dt;
-          L.D_r_plastic += M.plastic;
-          L.D_r_dashpot += M.dashpot;
-          L.E_r_break += M.released;
-        }
-        if constexpr (kWall) L.W_w += 0.5 * dot(tab.f1[r] + f1, row.v_wall) * dt;
-      }
-      tab.F_n[r] = F_n;
-      tab.F_t[r] = T.F_t;
-      if constexpr (Rolling::kActive) {
-        tab.M1[r] = M.M1;
-        tab.M2[r] = M.M2;
-      }
-      tab.f1[r] = f1;
-      tab.tq1[r] = k.a1 * T.F_t + M.M1;
-      if constexpr (!kWall) tab.tq2[r] = k.a2 * T.F_t + M.M2;
+      if (book) book_work<kWall>(tab, r, row, F_n, T, M, f1, dt, L);
+      store_row<kWall>(tab, r, k, F_n, T, M, f1);
     }
     ledger.add_terms(L, kTermKernel);
     if (L.worst_overlap > ledger.worst_overlap) {
