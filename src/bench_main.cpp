@@ -1,4 +1,4 @@
-// rondel_bench: the standard speed benchmark (../shared/bench/README.md). Loads the jammed periodic
+// rondel_bench: the standard speed benchmark (bench/README.md). Loads the jammed periodic
 // packing of 10,000 discs, or its exact periodic copies (40,000 = 2 x 2, 160,000 = 4 x 4), runs the
 // warm-up and the timed steps with linear contacts and friction, and prints disc-steps per second,
 // contacts per disc and memory per disc.
@@ -23,7 +23,7 @@ namespace {
 
 struct Options {
   long discs = 10000, steps = 5000, warmup = 1000;
-  std::string file = "../shared/bench/jammed10k.csv";
+  std::string file = "bench/jammed10k.csv";
   std::string rolling = "none";
 };
 

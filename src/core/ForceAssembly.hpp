@@ -9,12 +9,12 @@
 namespace rondel {
 
 // Sums each owned disc's contact contributions in a fixed order: ascending partner gid, then walls by
-// wall id (DESIGN.md section 4, step 6). The order is built once per neighbour-list build, so the sum does
+// wall id (docs/design.md section 4, step 6). The order is built once per neighbour-list build, so the sum does
 // not depend on storage order, rank count or when the list was rebuilt.
 class ForceAssembly {
  public:
   void build(const DiscStore& discs, const ContactTable& pairs, const ContactTable& wall_rows);
-  // Zero forces; body forces (DESIGN.md section 4, step 4): force = m g, 0 for fixed discs. (There is no
+  // Zero forces; body forces (docs/design.md section 4, step 4): force = m g, 0 for fixed discs. (There is no
   // body couple: assemble() starts each torque at 0, so this pass writes the forces only.)
   static void body_forces(DiscStore& discs, Vec2 gravity);
   // Step 6: force = the body force of body_forces() + the contributions, torque = the contributions. Fixed
