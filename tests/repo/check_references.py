@@ -9,6 +9,8 @@ A clone is all a user has, so:
      (docs/..., tools/..., inputs/..., src/..., bench/..., tests/...), and every relative Markdown link in
      them, must exist (a '*' in a path is a glob that must match something; a path without an extension may
      be the stem of existing files, as an output prefix such as docs/repose/pile_none is).
+  3. every "docs/<page>.md section N" (or "sections N and M") names a section that the page has (a heading
+     "## N. ...").
 Each failure is printed as FILE:LINE: what; the exit status is 1 when there is one, 2 when the check
 itself cannot run, 0 otherwise.
   /usr/bin/python3 tests/repo/check_references.py [REPO_ROOT]
@@ -32,6 +34,9 @@ OUTSIDE = [
 PATH = re.compile(r"(?<![\w/.<>-])((?:docs|tools|inputs|src|bench|tests)/[A-Za-z0-9_.*/-]*)")
 # Relative Markdown links and images: [text](target) with a target that is not a URL or an anchor.
 LINK = re.compile(r"\]\(([^)\s#]+)(?:#[^)]*)?\)")
+# "docs/physics.md section 4", "docs/design.md sections 8 and 10", "docs/validation.md sections 0, 2 and 6".
+SECTION = re.compile(r"(docs/[\w-]+\.md)(?:'s)? sections? (\d+(?:(?:, | and |, and )\d+)*)")
+HEADING = re.compile(r"^## (\d+)\.", re.M)
 # Paths the prose names on purpose although they do not exist: the example of how to add a law.
 EXAMPLES = {"src/physics/RollingMyLaw.hpp", "tests/physics/test_rolling_mylaw.cpp"}
 
@@ -96,6 +101,16 @@ def main(argv):
                 m = pattern.search(line)
                 if m:
                     failures.append(f"{f}:{n}: '{m.group(0)}' {what}")
+    sections = {}
+    for f, text in texts.items():
+        for n, line in enumerate(text.splitlines(), 1):
+            for m in SECTION.finditer(line):
+                page = m.group(1)
+                if page not in sections:
+                    sections[page] = set(HEADING.findall(texts.get(page, "")))
+                for number in re.findall(r"\d+", m.group(2)):
+                    if number not in sections[page]:
+                        failures.append(f"{f}:{n}: {page} has no section {number}")
     for f in documented_pages(files):
         here = os.path.dirname(f)
         for n, line in enumerate(texts.get(f, "").splitlines(), 1):
