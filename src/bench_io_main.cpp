@@ -1,4 +1,4 @@
-// rondel_bench_io: the cost of checkpoints (DESIGN.md section 7, FORMAT.md). Builds a square lattice of N
+// rondel_bench_io: the cost of checkpoints (docs/design.md section 7, FORMAT.md). Builds a square lattice of N
 // discs in a periodic box, slightly compressed (spacing 2 R (1 - 0.0025), so every disc has four loaded
 // contacts) and spinning (so the tangential springs load), with Coulomb friction and the Wang rolling law;
 // runs a few warm-up steps, times the steps, then times write_checkpoint() and the restart read: the

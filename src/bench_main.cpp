@@ -1,8 +1,11 @@
-// rondel_bench: the standard speed benchmark (../shared/bench/README.md). Loads the jammed periodic
+// rondel_bench: the standard speed benchmark (bench/README.md). Loads the jammed periodic
 // packing of 10,000 discs, or its exact periodic copies (40,000 = 2 x 2, 160,000 = 4 x 4), runs the
 // warm-up and the timed steps with linear contacts and friction, and prints disc-steps per second,
 // contacts per disc and memory per disc.
 //   rondel_bench [--discs 10000|40000|160000] [--steps 5000] [--warmup 1000] [--rolling LAW] [--file PATH]
+// Without --file it reads bench/jammed10k.csv of the working directory (a clone's root) and, when that is
+// missing, the one of the source tree it was built from (RONDEL_SOURCE_DIR, set by CMakeLists.txt), so it runs
+// from a build directory as well; the packing is described in bench/README.md.
 // Rolling parameters follow the benchmark README (wang k_r = 2/7 k_n, mu_r = 0.1; jiang_* delta = 0.5); the
 // other laws get the equivalent cap for the mean radius (iwashita_oda K_r = k_r R*^2, eta = mu_r R*;
 // force_proportional mu_r = 0.1; constant_torque and displacement_damping mu_r = 0.05).
@@ -23,7 +26,7 @@ namespace {
 
 struct Options {
   long discs = 10000, steps = 5000, warmup = 1000;
-  std::string file = "../shared/bench/jammed10k.csv";
+  std::string file;  // empty: the default packing (default_packing)
   std::string rolling = "none";
 };
 
@@ -82,6 +85,18 @@ std::string rolling_block(const std::string& law) {
   return text;
 }
 
+// The packing shipped in the repository: relative to the working directory first, then in the source tree of
+// this build, so that neither a clone's root nor its build directory needs a path outside the repository.
+std::string default_packing() {
+  const std::string relative = "bench/jammed10k.csv";
+  const std::string in_source = std::string(RONDEL_SOURCE_DIR) + "/" + relative;
+  for (const std::string& file : {relative, in_source})
+    if (std::ifstream(file)) return file;
+  throw rondel::InputError("rondel_bench: cannot read the benchmark packing: neither '" + relative +
+                           "' (relative to the working directory) nor '" + in_source +
+                           "' (the source tree of this build) exists; use --file PATH");
+}
+
 // The periodic box from the file's comment line "Periodic box x, y in [lo, hi]".
 void box_of(const std::string& file, double& lo, double& hi) {
   std::ifstream in(file);
@@ -101,7 +116,8 @@ int main(int argc, char** argv) {
   rondel::MpiEnvironment mpi(&argc, &argv);
   rondel::Communicator comm;
   try {
-    const Options o = parse(argc, argv);
+    Options o = parse(argc, argv);
+    if (o.file.empty()) o.file = default_packing();
     double lo = 0, hi = 0;
     box_of(o.file, lo, hi);
     const int copies = static_cast<int>(std::lround(std::sqrt(o.discs / 10000.0)));

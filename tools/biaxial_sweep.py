@@ -66,7 +66,7 @@ def done(outdir):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default="rondel-output-biaxial/sweep")
-    ap.add_argument("--rondel", default=os.path.join(ROOT, "build-j", "rondel"))
+    ap.add_argument("--rondel", default=os.path.join(ROOT, "build", "rondel"))
     ap.add_argument("--prepare", default=os.path.join(ROOT, "inputs", "biaxial_prepare.ini"))
     ap.add_argument("--shear", default=os.path.join(ROOT, "inputs", "biaxial_jiang.ini"))
     ap.add_argument("--deltas", default="0,0.4,1.6")

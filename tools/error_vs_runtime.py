@@ -1,12 +1,12 @@
 #!/usr/bin/python3
-"""Error against run time for Rondel's validation cases with exact answers (VALIDATION.md section 7).
+"""Error against run time for Rondel's validation cases with exact answers (docs/validation.md section 7).
 
 For each case, runs dt_k = dt0 / 2^k (k = 0 .. levels-1, dt0 = 0.2 dt_crit, dt_crit read from the run's
-log.txt and checked against PHYSICS.md section 4 computed here) and records the step size, steps, wall time
+log.txt and checked against docs/physics.md section 4 computed here) and records the step size, steps, wall time
 (of the subprocess, and the figure in summary.txt), the error against the exact answer and the observed order
 p_k = log2(err_k / err_{k+1}), plus a least-squares slope of log(error) against log(dt) over all levels.
 
-Cases (the exact answers are computed here from the formulas of VALIDATION.md / PHYSICS.md):
+Cases (the exact answers are computed here from the formulas of docs/validation.md / docs/physics.md):
   a   two-disc normal impact (two D5, set J, 1 m/s), zeta = 0: |1 - e|, worst of --phases contact-onset
       phases                                                                    (VALIDATION 4; 7 says 3)
   a2  the same with dt0 the largest step below 0.2 dt_crit that divides the contact time t_c = pi/w0
@@ -48,7 +48,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 # ---------------------------------------------------------------------------------------------------------
-# Standard objects (VALIDATION.md section 0)
+# Standard objects (docs/validation.md section 0)
 G = 9.81
 RHO = 2650.0
 THICK = 1.0
@@ -71,7 +71,7 @@ SET_J = dict(k_n=2e8, k_s=1.5e8, mu=0.5)
 # ---------------------------------------------------------------------------------------------------------
 # Exact answers
 def restitution_exact(zeta):
-    """No-tension linear spring-dashpot restitution (VALIDATION.md section 4)."""
+    """No-tension linear spring-dashpot restitution (docs/validation.md section 4)."""
     if zeta == 0.0:
         return 1.0
     if zeta < 1.0:
@@ -140,7 +140,7 @@ def constant_torque_compliant_stop(disc, M):
 
 
 def rolling_mode_low(disc, K):
-    """Lowest root of m I w^4 - [k_s (I + m a^2) + m K] w^2 + k_s K = 0 (VALIDATION.md section 5), and its
+    """Lowest root of m I w^4 - [k_s (I + m a^2) + m K] w^2 + k_s K = 0 (docs/validation.md section 5), and its
     mode shape X/Theta (x and theta amplitudes) from the 2x2 system."""
     m, I, a, ks = disc.m, disc.I, disc.a, disc.k_s
     A, B, C = m * I, ks * (I + m * a * a) + m * K, ks * K
@@ -151,7 +151,7 @@ def rolling_mode_low(disc, K):
 
 
 # ---------------------------------------------------------------------------------------------------------
-# Critical time step, PHYSICS.md section 4 (a check on the log's figure)
+# Critical time step, docs/physics.md section 4 (a check on the log's figure)
 def mode_limit(w, zeta):
     return (2.0 / w) * (math.sqrt(1 + zeta * zeta) - zeta)
 
@@ -300,7 +300,7 @@ class Case:
         self.crit_mode = res["crit_mode"]
         rel = abs(self.dt_crit - self.dt_crit_tool) / self.dt_crit_tool
         if rel > 1e-5:
-            self.notes.append(f"dt_crit: log {self.dt_crit:.6g} s differs from PHYSICS.md section 4 "
+            self.notes.append(f"dt_crit: log {self.dt_crit:.6g} s differs from docs/physics.md section 4 "
                               f"{self.dt_crit_tool:.6g} s by {rel:.2e} relative")
         return self.dt_crit
 
@@ -370,7 +370,7 @@ class ImpactCase(Case):
 
 
 def impact_verlet_replica(w0, zeta, dt, gap, v):
-    """Velocity Verlet on the relative normal coordinate, as PHYSICS.md sections 1-2 prescribe (force from the
+    """Velocity Verlet on the relative normal coordinate, as docs/physics.md sections 1-2 prescribe (force from the
     drifted positions, dashpot on the half-step velocity, no tension); returns the restitution coefficient."""
     u, ud, acc, touched = -gap, v, 0.0, False
     for _ in range(10 ** 7):
@@ -840,7 +840,7 @@ def main(argv=None):
         md.append(f"| {r['case']} | {r['ranks']} | {r['k']} | {r['dt']:.4e} | {r['dt_over_crit']:.5f} | {r['steps']} | "
                   f"{r['runs']} | {r['wall_subprocess']:.3f} | {r['wall_summary']:.4g} | {r['error']:.3e} | "
                   f"{fmt(r['order'], '.2f')} | {fmt(r.get('error_alt'), '.3e')} | {fmt(r.get('order_alt'), '.2f')} |")
-    md += ["", "| case | error measure | exact | dt_crit [s] (log / PHYSICS.md 4) | limiting mode | expected p "
+    md += ["", "| case | error measure | exact | dt_crit [s] (log / docs/physics.md 4) | limiting mode | expected p "
            "| fitted p (all levels) | p of the last pair | alt. error: fitted p |",
            "|---|---|---|---|---|---|---|---|---|"]
     for key, R in results.items():
@@ -912,7 +912,7 @@ def plot(results, path, rank_label):
         ax.grid(True, which="both", alpha=0.25)
     handles, labels = ax2.get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=2, fontsize=7.5, frameon=False)
-    fig.suptitle("Rondel: error against run time, VALIDATION.md section 7", fontsize=11)
+    fig.suptitle("Rondel: error against run time, docs/validation.md section 7", fontsize=11)
     fig.tight_layout(rect=(0, 0.16, 1, 1))
     fig.savefig(path, dpi=110)
     plt.close(fig)

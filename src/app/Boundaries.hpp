@@ -12,7 +12,7 @@
 
 namespace rondel {
 
-// Loads and motions of the walls (DESIGN.md section 4, step 2).
+// Loads and motions of the walls (docs/design.md section 4, step 2).
 //  - measure(): each wall's load from the discs in the last step, summed exactly over ranks, so a servo
 //    sees the same force on any rank count;
 //  - steer(): velocities of controlled walls. A servo moves along its normal with

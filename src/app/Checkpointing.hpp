@@ -8,7 +8,7 @@
 
 namespace rondel {
 
-// Checkpoint and snapshot files of an output directory (DESIGN.md section 7, FORMAT.md):
+// Checkpoint and snapshot files of an output directory (docs/design.md section 7, FORMAT.md):
 //  - checkpoint_<step>.h5, written under a temporary name (.checkpoint_<step>.h5.part) and renamed when
 //    complete, so a killed writer never leaves a file that looks usable; the newest `keep` are kept;
 //  - snapshot_<step>.h5 with the selected fields, and snapshots.xdmf listing them for ParaView.

@@ -1,4 +1,4 @@
-// A run's state in a Rondel file, both ways (DESIGN.md section 7, FORMAT.md): the header written with a
+// A run's state in a Rondel file, both ways (docs/design.md section 7, FORMAT.md): the header written with a
 // checkpoint or snapshot, and a restart or a scene taken back from one.
 #include "app/Restart.hpp"
 

@@ -1,4 +1,4 @@
-// The output directory of a run and its files (DESIGN.md section 7, FORMAT.md).
+// The output directory of a run and its files (docs/design.md section 7, FORMAT.md).
 #include "app/RunFiles.hpp"
 
 #include <filesystem>

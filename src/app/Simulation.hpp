@@ -23,7 +23,7 @@
 
 namespace rondel {
 
-// The composition root: builds the objects from the configuration and steps them (DESIGN.md section 4).
+// The composition root: builds the objects from the configuration and steps them (docs/design.md section 4).
 // All set-up checks happen in the constructor, before any file is written. The run loop is Runner's, the
 // files RunFiles', the file state Restart's, the reports Reports' and the measures Measures'.
 class Simulation {
@@ -36,7 +36,7 @@ class Simulation {
 
   // Runs config.steps steps with diagnostics and output; returns the summary (also logged).
   RunSummary run() { return Runner(*this).run(); }
-  // One time step (DESIGN.md section 4).
+  // One time step (docs/design.md section 4).
   void step();
 
   const Config& config() const { return config_; }

@@ -16,7 +16,7 @@ struct ContactParams {
   double k_s = 0.0;
   double zeta_t = 0.0;
   double mu = 0.0;
-  // rolling laws (PHYSICS.md section 3)
+  // rolling laws (docs/physics.md section 3)
   bool rolling = true;        // false: no rolling resistance at this pair (e.g. frictionless walls)
   double delta = 0.0;         // jiang_*: contact width B = delta r
   double k_r = 0.0;           // wang

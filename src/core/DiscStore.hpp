@@ -8,7 +8,7 @@
 namespace rondel {
 
 // What each disc field is used for. Ghost packing, migration and checkpoints loop over this table
-// (DESIGN.md section 2) instead of naming fields one by one.
+// (docs/design.md section 2) instead of naming fields one by one.
 enum DiscFieldUse : unsigned {
   kGhostCreate = 1u,  // copied when a ghost is created
   kGhostStep = 2u,    // refreshed on ghosts every step between rebuilds
@@ -47,7 +47,7 @@ class DiscStore {
   std::size_t n_owned() const { return n_owned_; }
   std::size_t n_ghost() const { return size() - n_owned_; }
 
-  // Appends an owned disc (only while there are no ghosts). Mass and inertia follow PHYSICS.md section 1.
+  // Appends an owned disc (only while there are no ghosts). Mass and inertia follow docs/physics.md section 1.
   std::size_t add(std::int64_t id, std::int32_t mat, double R, double density, double thickness, Vec2 x, Vec2 v = {},
                   double w = 0.0);
   void reserve(std::size_t n);

@@ -6,7 +6,7 @@ namespace rondel {
 
 // An order-independent exact sum of doubles: every addend is placed exactly into a long fixed-point
 // accumulator (68 limbs of 32 bits spanning the whole double range), so the result does not depend on the
-// order of the additions nor on how they are split over ranks (DESIGN.md section 5). Limbs add limb-wise,
+// order of the additions nor on how they are split over ranks (docs/design.md section 5). Limbs add limb-wise,
 // which is what the MPI reduction does. Non-finite addends make the sum NaN.
 class ExactSum {
  public:

@@ -10,7 +10,7 @@
 namespace rondel {
 
 // Sums each owned disc's contact contributions in a fixed order: ascending partner gid, then walls by
-// wall id (DESIGN.md section 4, step 6). The order is built once per neighbour-list build, so the sum does
+// wall id (docs/design.md section 4, step 6). The order is built once per neighbour-list build, so the sum does
 // not depend on storage order, rank count or when the list was rebuilt.
 class ForceAssembly {
  public:

@@ -5,7 +5,7 @@
 
 namespace rondel {
 
-// Velocity Verlet for translation and rotation (DESIGN.md section 4, steps 1 and 7). The drift uses the
+// Velocity Verlet for translation and rotation (docs/design.md section 4, steps 1 and 7). The drift uses the
 // half-step velocities, which are also the velocities the springs and the ledger see.
 struct Integrator {
   // v += F/m dt/2; omega += T/I dt/2; x += v dt; theta += omega dt; wrap. Returns the work of gravity

@@ -1,5 +1,5 @@
 #pragma once
-// The terms of the energy ledger (PHYSICS.md section 5), declared once. The per-step accumulation
+// The terms of the energy ledger (docs/physics.md section 5), declared once. The per-step accumulation
 // (LedgerStep, EnergyLedger::add), the sums over ranks, the columns of diagnostics.csv and the /ledger
 // attributes of a checkpoint (written and read back) all loop over LedgerTerms::visit_terms, so a new term
 // is one member and one line there. It lives in core so that the diagnostics writer (core) and the ledger

@@ -5,7 +5,7 @@ namespace rondel {
 
 // SIGTERM, SIGINT and SIGUSR1 ask the run to write a checkpoint and stop (a cluster's time limit, Ctrl-C,
 // or a user's request). The handler only records the signal; the time loop polls it, and every rank agrees
-// on the step (DESIGN.md section 7). The flag is process-wide by nature (a signal handler cannot reach an
+// on the step (docs/design.md section 7). The flag is process-wide by nature (a signal handler cannot reach an
 // object), the one global of the code.
 class StopSignal {
  public:

@@ -1,6 +1,6 @@
 #pragma once
 // A 2D vector of doubles. Plain arithmetic only, so every rank evaluates the same expressions in the
-// same order (DESIGN.md section 5; compiled with -ffp-contract=off).
+// same order (docs/design.md section 5; compiled with -ffp-contract=off).
 namespace rondel {
 
 struct Vec2 {

@@ -7,7 +7,7 @@
 namespace rondel {
 
 // A global wall (every rank has all of them): an infinite line or a segment. Walls translate with a
-// prescribed velocity and never rotate (PHYSICS.md section 1: a wall is disc 2 with R2 -> inf).
+// prescribed velocity and never rotate (docs/physics.md section 1: a wall is disc 2 with R2 -> inf).
 struct Wall {
   enum class Kind { line, segment };
   // How the wall moves: a prescribed velocity (0 = fixed); a servo holding a normal stress; or a constant

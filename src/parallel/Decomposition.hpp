@@ -9,7 +9,7 @@
 
 namespace rondel {
 
-// The cell-to-rank map of the domain decomposition (DESIGN.md section 6). Cells have side >= the
+// The cell-to-rank map of the domain decomposition (docs/design.md section 6). Cells have side >= the
 // interaction range (largest contact distance plus skin), so a disc interacts only with discs of its own
 // and the 8 neighbouring cells; every rank holds the whole map.
 class Decomposition {

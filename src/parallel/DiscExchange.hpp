@@ -9,7 +9,7 @@
 
 namespace rondel {
 
-// Moves discs between ranks (DESIGN.md section 6):
+// Moves discs between ranks (docs/design.md section 6):
 //  - migrate(): every owned disc goes to the owner of its cell, with every contact row that carries state
 //    (history and last forces; a pair's row exists on both ranks of a border pair, so copies are identical);
 //  - build_ghosts(): each owned disc is copied to every other rank owning one of the 8 cells around its

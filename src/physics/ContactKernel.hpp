@@ -1,10 +1,10 @@
 #pragma once
 // The fused contact kernel: one pass over the contact rows, templated on the selected (normal,
-// tangential, rolling) laws so that a `none` law compiles to nothing (DESIGN.md section 3). Every row is
+// tangential, rolling) laws so that a `none` law compiles to nothing (docs/design.md section 3). Every row is
 // evaluated in its canonical frame from the discs' positions and half-step velocities; its forces go to
 // the row's columns and are summed per disc afterwards (ForceAssembly), in ascending partner gid.
 //
-// Energy ledger (PHYSICS.md section 5): the work of each contact on the relative motion is integrated
+// Energy ledger (docs/physics.md section 5): the work of each contact on the relative motion is integrated
 // with the half-step velocities and the trapezoid of last and this step's force,
 //   dW_n = (F_n' + F_n)/2 v_n dt,  dW_t = (F_t' + F_t)/2 V_s dt,  dW_r = sum_i (M_i' + M_i)/2 omega_i dt,
 // and a moving wall's work on a disc is (f' + f)/2 . v_wall dt. The laws report Coulomb slip, rolling

@@ -1,11 +1,11 @@
 #pragma once
 // Objective contact kinematics of Wang et al. 2015 (W15 Eqs. 11-13), written in the canonical frame of
-// PHYSICS.md section 1: disc 1 is the lower gid, n points from 1 to 2, t = z x n.
+// docs/physics.md section 1: disc 1 is the lower gid, n points from 1 to 2, t = z x n.
 //   u_n = R1 + R2 - |d|,  a_i = R_i - u_n/2 (contact-point levers, a1 + a2 = |d|)
 //   v_n = (v2 - v1).n,  V_t = (v1 - v2).t,  V_s = V_t + a1 w1 + a2 w2,
 //   V_r = R* (w1 - w2), R* = R1 R2/(R1 + R2),  thetadot_r = w1 - w2.
 // At a wall (disc 2, R2 -> inf, never rotating): u_n = R1 - dist, R* -> R1, the a2 w2 term vanishes and
-// v2 is the wall's velocity. Velocities are the half-step ones of velocity Verlet (PHYSICS.md section 1).
+// v2 is the wall's velocity. Velocities are the half-step ones of velocity Verlet (docs/physics.md section 1).
 #include <cmath>
 
 #include "core/Vec2.hpp"

@@ -50,7 +50,7 @@ double contact_critical_step(const LawSelection& laws, const ContactParams& p, c
     const double w2_r = roll.K * H;
     const double zeta_r = roll.C * std::sqrt(H / roll.K) / 2.0;
     if (w2_t > 0.0) {
-      // Largest eigenvalue of the coupled pair. PHYSICS.md's sum bound w2_t + w2_r is conservative but
+      // Largest eigenvalue of the coupled pair. docs/physics.md's sum bound w2_t + w2_r is conservative but
       // falls to 0.77 of the limit for equal discs at delta = 3 (C = 0 decouples the modes there).
       const double half = 0.5 * (w2_t - w2_r);
       const double w2 = 0.5 * (w2_t + w2_r) + std::sqrt(half * half + k_s * roll.K * C * C);

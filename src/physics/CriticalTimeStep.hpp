@@ -1,12 +1,12 @@
 #pragma once
-// Critical time step of velocity Verlet (PHYSICS.md section 4): for each contact mode of angular
+// Critical time step of velocity Verlet (docs/physics.md section 4): for each contact mode of angular
 // frequency w and damping ratio zeta, dt < (2/w)(sqrt(1 + zeta^2) - zeta). Modes:
 //   normal                 w^2 = k_n/m_eff
 //   tangential (rotation)  w^2 = k_s/m_t,  1/m_t = 1/m1 + 1/m2 + R1^2/I1 + R2^2/I2
 //   rolling                w^2 = K/I_red,  I_red = I1 I2/(I1 + I2) (a wall: I1), K the rolling stiffness
 //                          (each law's spring(), e.g. jiang_*: k_n B^2/12; wang: k_r R*^2; iwashita_oda: K_r)
 //   tangential and rolling together: the larger eigenvalue of the coupled 2 x 2 problem in (s, theta_r),
-//                          exact in closed form (PHYSICS.md's sum bound k_s/m_t + K/I_red is conservative
+//                          exact in closed form (docs/physics.md's sum bound k_s/m_t + K/I_red is conservative
 //                          but only 0.77 of the limit for equal discs at delta = 3)
 // A law without an a-priori spring declares `no_spring` instead (displacement_damping's stiffness grows
 // with F_n; force_proportional and constant_torque have no spring). dt_crit is the smallest limit over every material

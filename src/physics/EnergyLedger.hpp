@@ -1,5 +1,5 @@
 #pragma once
-// Energy ledger (PHYSICS.md section 5): the work of gravity W_g, of moving walls on discs W_w, and of the
+// Energy ledger (docs/physics.md section 5): the work of gravity W_g, of moving walls on discs W_w, and of the
 // contact forces and couples W_c = W_n + W_t + W_r on the relative motion (negative when they resist),
 // integrated with the half-step velocities. Residual |KE - KE0 - W_g - W_w - W_c| relative to the largest
 // of KE, |W_g| and |W_w| so far is the run's reported integration error.

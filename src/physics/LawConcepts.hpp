@@ -6,7 +6,7 @@
 // Every law: `name` (its keyword for contact.<kind>), `block` (its INI parameter block, core/LawSpec.hpp,
 // or nullptr when it has no parameters). Tangential and rolling laws: `slots` (history columns, in the
 // order the law indexes them) and either `spring(...)` (its a-priori spring for the critical step,
-// PHYSICS.md section 4) or `no_spring` (why there is none: no spring, or one that grows with F_n).
+// docs/physics.md section 4) or `no_spring` (why there is none: no spring, or one that grows with F_n).
 #include <concepts>
 #include <cstddef>
 

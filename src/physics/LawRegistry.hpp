@@ -40,7 +40,7 @@ std::vector<std::string> history_slots(const LawSelection& laws);
 // An empty contact table with exactly the columns the selected laws need.
 ContactTable make_contact_table(const LawSelection& laws);
 
-// The springs of the selected laws for the critical step of one contact (PHYSICS.md section 4); none
+// The springs of the selected laws for the critical step of one contact (docs/physics.md section 4); none
 // for a law that declares no a-priori spring, and no rolling spring where p.rolling is false.
 std::optional<TangentialSpring> tangential_spring(const LawSelection& laws, const ContactParams& p);
 std::optional<RollingSpring> rolling_spring(const LawSelection& laws, const ContactParams& p, const ContactBodies& b,

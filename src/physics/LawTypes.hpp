@@ -17,7 +17,7 @@ inline ContactBodies disc_wall_bodies(double m1, double I1) { return {m1, INFINI
 
 inline double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }  // sign(0) = 0
 
-// The capping rule of PHYSICS.md section 1 for a spring-slider: given the trial value (spring + dashpot),
+// The capping rule of docs/physics.md section 1 for a spring-slider: given the trial value (spring + dashpot),
 // returns the force (or couple) and resets the spring so that the spring alone equals it when capped.
 // `spring` is the displacement-like state, `stiffness` its stiffness (value = -stiffness * spring + ...).
 struct CapResult {
@@ -50,7 +50,7 @@ struct TangentialForce {
   double slip = 0.0;
 };
 
-// The springs a law contributes to the critical step (PHYSICS.md section 4), for one contact before it
+// The springs a law contributes to the critical step (docs/physics.md section 4), for one contact before it
 // moves. A law without an a-priori spring says so with a `no_spring` reason instead (see LawConcepts.hpp).
 struct TangentialSpring {
   double k = 0.0;     // [N/m]

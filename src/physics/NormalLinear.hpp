@@ -1,7 +1,7 @@
 #pragma once
-// Linear spring-dashpot normal law without tension (PHYSICS.md section 2):
+// Linear spring-dashpot normal law without tension (docs/physics.md section 2):
 //   F_n = max(0, k_n u_n - c_n v_n),  c_n = 2 zeta sqrt(m_eff k_n)  (or a user-given c_n) [N, per thickness]
-// Damping ratio and restitution are related by VALIDATION.md section 4 (see Restitution.hpp).
+// Damping ratio and restitution are related by docs/validation.md section 4 (see Restitution.hpp).
 #include <cmath>
 
 #include "core/ContactParams.hpp"

@@ -1,6 +1,6 @@
 #pragma once
 // constant_torque: the commercial manual's constant torque method with its moment limiter (CM Eq. 3276);
-// PHYSICS.md section 3.
+// docs/physics.md section 3.
 //   M = -sign(omega1 - omega2) mu_r R_eq F_n,  R_eq = 2 R1 R2/(R1 + R2) (harmonic mean, -> 2 R1 at a wall)
 //   limiter, read literally: |M| <= f_lim min(I1 |omega1|, I2 |omega2|)/dt (a wall contributes no term);
 //   f_lim = 0 switches it off. +M on disc 1, -M on disc 2.

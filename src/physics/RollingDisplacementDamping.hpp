@@ -1,6 +1,6 @@
 #pragma once
 // displacement_damping: the commercial manual's displacement damping method (CM Eqs. 3277-3278);
-// PHYSICS.md section 3.
+// docs/physics.md section 3.
 //   R_eq = 2 R1 R2/(R1 + R2) (-> 2 R1 at a wall),  k_r = mu_r R_eq F_n/theta_rmax      [N m/rad]
 //   trial = M_k - k_r (omega1 - omega2) dt; |trial| > mu_r R_eq F_n: "at the limit", M_k clamped to it;
 //   otherwise "elastic", M_k = trial.

@@ -1,9 +1,9 @@
 #pragma once
-// force_proportional: the commercial manual's force proportional method (CM Eq. 3275); PHYSICS.md
+// force_proportional: the commercial manual's force proportional method (CM Eq. 3275); docs/physics.md
 // section 3. Each disc gets its own couple from its own spin:
 //   M_i = -mu_r F_n a_i sign(omega_i)      [N m],  a_i = R_i - u_n/2 (a wall gets none)
 // Not objective: a pair in rigid rotation is braked, so the angular momentum of an isolated pair is not
-// conserved (dL/dt = -mu_r F_n (a1 + a2) for a pair spinning together, VALIDATION.md case K7).
+// conserved (dL/dt = -mu_r F_n (a1 + a2) for a pair spinning together, docs/validation.md case K7).
 // Parameter mu_r [-]. No history.
 #include <array>
 #include <cmath>

@@ -1,7 +1,7 @@
 #pragma once
-// iwashita_oda: Iwashita & Oda 1998 (IO98) as summarised in J05 Table 1; PHYSICS.md section 3. Legacy
+// iwashita_oda: Iwashita & Oda 1998 (IO98) as summarised in J05 Table 1; docs/physics.md section 3. Legacy
 // rolling measure kept on purpose for comparison studies: it is zero in rigid rotation but not in pure
-// sliding of unequal discs (it gives (R1 - R2) omega T/2 where W15 gives 0, VALIDATION.md case K8).
+// sliding of unequal discs (it gives (R1 - R2) omega T/2 where W15 gives 0, docs/validation.md case K8).
 //   r' = (R1 + R2)/2;  dbeta = turn of the contact direction = -V_t dt/|d| (W15 Eqs. 17, 19a)
 //   da = R1 (dtheta1 - dbeta),  db = R2 (dtheta2 - dbeta),  dU_r = (da - db)/2,  theta_r += dU_r/r'
 //   at a wall (no wall limit exists, J05 section 2.2): theta_r += (omega1 - omega_wall) dt

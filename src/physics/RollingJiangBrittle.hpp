@@ -1,5 +1,5 @@
 #pragma once
-// jiang_brittle: Jiang, Yu & Harris 2005 (J05) Model 2, Eq. 36; PHYSICS.md section 3.
+// jiang_brittle: Jiang, Yu & Harris 2005 (J05) Model 2, Eq. 36; docs/physics.md section 3.
 // As jiang_plastic (B, K_m, mu_m, cap M0 = F_n B/6) while |theta_r| <= theta_r0 = 2 F_n/(k_n B), which is
 // where the spring alone reaches M0 (K_m theta_r0 = M0). Once |theta_r| passes theta_r0 the contact breaks:
 // M = 0 until the contact opens (then the history is zeroed). The stored rolling energy K_m theta_r^2/2 of

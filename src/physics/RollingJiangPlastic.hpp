@@ -1,5 +1,5 @@
 #pragma once
-// jiang_plastic: Jiang, Yu & Harris 2005 (J05) Model 1, Eqs. 24, 29, 33, 35, 49c; PHYSICS.md section 3.
+// jiang_plastic: Jiang, Yu & Harris 2005 (J05) Model 1, Eqs. 24, 29, 33, 35, 49c; docs/physics.md section 3.
 //   contact width B = delta r, r = 2 R1 R2/(R1 + R2) (-> 2 R1 at a wall, J05 Eq. 11)      [m]
 //   K_m = k_n B^2/12 [N m/rad],  mu_m = c_n B^2/12 [N m s/rad]
 //   theta_r += thetadot_r dt;  trial M = -K_m theta_r - mu_m thetadot_r  [N m, per thickness]

@@ -1,6 +1,6 @@
 #pragma once
 // wang: Wang, Alonso-Marroquin, Xue & Xie 2015 (W15) Eq. 28, a spring-slider on the objective rolling
-// displacement (W15 Eq. 11); PHYSICS.md section 3.
+// displacement (W15 Eq. 11); docs/physics.md section 3.
 //   x_r += V_r dt,  V_r = R* (w1 - w2), R* = R1 R2/(R1 + R2) (-> R1 at a wall)            [m]
 //   trial T_r = -k_r x_r - c_r V_r, capped at mu_r F_n by the capping rule (x_r = -T_r/k_r)  [N]
 //   M = R* T_r, +M on disc 1 and -M on disc 2                                                [N m]

@@ -1,5 +1,5 @@
 #pragma once
-// Tangential laws (PHYSICS.md section 2), in the canonical frame: F_t acts on disc 1 along t.
+// Tangential laws (docs/physics.md section 2), in the canonical frame: F_t acts on disc 1 along t.
 //  - none: frictionless, no history.
 //  - coulomb (Cundall & Strack 1979): xi += V_s dt; trial F_t = -k_s xi - c_t V_s,
 //    c_t = 2 zeta_t sqrt(m_eff k_s); cap mu F_n by the capping rule (F_t = mu F_n sign(trial), xi = -F_t/k_s).

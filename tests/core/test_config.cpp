@@ -1,4 +1,4 @@
-// Configuration refusals (DESIGN.md section 8): an unknown key, a missing required one, a value out of
+// Configuration refusals (docs/design.md section 8): an unknown key, a missing required one, a value out of
 // range, or a parameter block for a law that is not selected raises ConfigError naming the key, before
 // any work starts. Valid input parses, the command line wins over the file, and --help lists every key
 // with its unit.

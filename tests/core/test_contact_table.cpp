@@ -1,4 +1,4 @@
-// ContactTable (DESIGN.md section 2): rows keyed by (lo gid, hi gid), columns declared once in its column
+// ContactTable (docs/design.md section 2): rows keyed by (lo gid, hi gid), columns declared once in its column
 // table. Push, clear, sorting, inheritance of history by key, copies, the state test and the memory
 // accounting on small tables with and without the rolling columns and history slots; the row records of
 // migration and checkpoints (parallel/RecordPacking.hpp, header-only) carry exactly the record columns; and a

@@ -1,5 +1,5 @@
 // ExactSum (src/core/ExactSum.*): the order-independent exact accumulator behind every global sum
-// (DESIGN.md section 5). The result must not depend on the order of the additions nor on how they are
+// (docs/design.md section 5). The result must not depend on the order of the additions nor on how they are
 // split (merged like the MPI reduction), and must be exact where the exact sum is a double.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // ForceAssembly (src/core/ForceAssembly.*): each owned disc's force and torque are summed in one fixed
-// order (DESIGN.md section 4, step 6): gravity m g first, then the pair rows by ascending partner gid,
+// order (docs/design.md section 4, step 6): gravity m g first, then the pair rows by ascending partner gid,
 // then the wall rows by ascending wall id, whatever the storage order of discs and rows. Fixed discs get
 // zero, except that a disc glued to a wall keeps its contact force (no gravity, no torque). The addends
 // below are chosen so that any other order gives other bits.

@@ -1,4 +1,4 @@
-// Neighbour search against brute force (DESIGN.md section 9): the cell grid plus Verlet list must find
+// Neighbour search against brute force (docs/design.md section 9): the cell grid plus Verlet list must find
 // exactly the pairs with gap < skin (|d| < R1 + R2 + skin, minimum image) and the wall rows with
 // distance < R + skin, in ascending key order, carry history by key across rebuilds, and ask for a
 // rebuild when a disc has moved more than half the skin.

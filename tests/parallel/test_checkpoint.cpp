@@ -1,4 +1,4 @@
-// Checkpoints and restarts (DESIGN.md section 7, FORMAT.md): a run of 2N steps and a run of N steps,
+// Checkpoints and restarts (docs/design.md section 7, FORMAT.md): a run of 2N steps and a run of N steps,
 // checkpoint, restart (on another rank count) and N more steps end in the same bits; two checkpoints of one
 // step written on different rank counts compare equal with h5diff (run metadata and ledger excluded).
 //

@@ -1,4 +1,4 @@
-// Ghosts (DESIGN.md section 6): on every rank, after construction and after steps, the ghost set is the
+// Ghosts (docs/design.md section 6): on every rank, after construction and after steps, the ghost set is the
 // set the halo rule gives by brute force over the whole scene, every disc within interaction range of an
 // owned disc is present locally (minimum image), and every ghost is a bit copy of its owner.
 //

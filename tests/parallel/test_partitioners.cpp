@@ -1,4 +1,4 @@
-// The partitioners (src/parallel/Partitioner.*) and the cell-to-rank map of Decomposition (DESIGN.md
+// The partitioners (src/parallel/Partitioner.*) and the cell-to-rank map of Decomposition (docs/design.md
 // section 6): every cell gets a rank, every rank gets cells, the load is balanced within a bound, and the
 // map is a deterministic function of its inputs (the same on every rank). The pure functions run on every
 // rank of the MPI test binary alike; the Decomposition cases use MPI_COMM_WORLD.

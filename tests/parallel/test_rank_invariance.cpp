@@ -1,6 +1,6 @@
-// Rank invariance (DESIGN.md section 5, VALIDATION.md section 8): a run on N ranks gives the bits of the
+// Rank invariance (docs/design.md section 5, docs/validation.md section 8): a run on N ranks gives the bits of the
 // 1-rank run, with either partitioner and with forced rebalancing; contact history travels with its discs.
-// Also: the METIS partition balances a strongly non-uniform pile (DESIGN.md section 6), and bad parallel
+// Also: the METIS partition balances a strongly non-uniform pile (docs/design.md section 6), and bad parallel
 // input is refused on every rank.
 //
 // Every test is collective (the whole binary runs on 1 to 4 ranks, mpi.np1 ... mpi.np4). The 1-rank
@@ -82,7 +82,7 @@ TEST(RankInvariance, RoughShearCellBitwiseEqualToOneRank) {
   check_scene("rough shear", ini, 3000, 250, true);
 }
 
-// --- VALIDATION.md section 8: a rolling disc and a two-disc impact at a subdomain boundary ---------------
+// --- docs/validation.md section 8: a rolling disc and a two-disc impact at a subdomain boundary ---------------
 
 constexpr double kR = 0.002, kDensity = 2650.0, kG = 9.81, kKn = 1e7;
 
@@ -263,7 +263,7 @@ TEST(RankInvariance, TwoDiscImpactAtBorder) {
   }
 }
 
-// --- DESIGN.md section 6: METIS balance on a strongly non-uniform scene ---------------------------------
+// --- docs/design.md section 6: METIS balance on a strongly non-uniform scene ---------------------------------
 
 // A random pile in the bottom-left quarter of a wide box, settling under gravity; balance checks every 1000
 // steps with forced repartitioning. sim.imbalance() is measured at a check before that check repartitions,

@@ -1,10 +1,10 @@
 #pragma once
 // A single contact (two discs, or a disc on a wall) integrated with the library's own pieces, in the order
-// of Simulation::step (DESIGN.md section 4): Integrator::half_kick_drift, the fused contact kernel selected
+// of Simulation::step (docs/design.md section 4): Integrator::half_kick_drift, the fused contact kernel selected
 // by select_kernel, ForceAssembly, Integrator::half_kick. No neighbour list: the one row is always present.
-// Used by the frequency tests and stability test F4 (VALIDATION.md section 5).
+// Used by the frequency tests and stability test F4 (docs/validation.md section 5).
 //
-// Geometry (PHYSICS.md section 1 conventions):
+// Geometry (docs/physics.md section 1 conventions):
 //  - two discs: disc 1 (gid 1, radius R1) at the origin, disc 2 (gid 2, radius R2) at (R1 + R2 - u0, 0),
 //    so n = (1, 0) and t = (0, 1);
 //  - a wall (R2 = inf): the bottom wall y = 0, disc 1 at (0, R1 - u0), so n = (0, -1) and t = (1, 0).

@@ -1,4 +1,4 @@
-// Frequencies of one contact (VALIDATION.md section 5; PHYSICS.md section 4), from the formulas and
+// Frequencies of one contact (docs/validation.md section 5; docs/physics.md section 4), from the formulas and
 // measured on a small simulation that uses the library's kinematics, laws, kernel, force assembly and
 // integrator (OneContactRig.hpp), compared with velocity Verlet's discrete frequency (2/dt) asin(w dt/2):
 //  - the rolling mode of a D5 disc resting on a wall (slip spring k_s and rolling spring K in series):
@@ -30,7 +30,7 @@ using testing_rig::frequency_from_zero_crossings;
 using testing_rig::OneContactRig;
 using testing_rig::verlet_frequency;
 
-// Disc D5 and contact sets S and J (VALIDATION.md section 0).
+// Disc D5 and contact sets S and J (docs/validation.md section 0).
 constexpr double kR = test::d5::R, kDensity = test::d5::density, kG = test::d5::g;
 const double kMass = test::d5::mass();
 const double kInertia = test::d5::inertia();

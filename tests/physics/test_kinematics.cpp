@@ -1,7 +1,7 @@
-// Objective contact kinematics, VALIDATION.md section 1, cases K1-K6 (W15 Eqs. 11-13 in the canonical frame
-// of PHYSICS.md section 1). Each case prescribes a motion; the test evaluates the kinematics routine at the
+// Objective contact kinematics, docs/validation.md section 1, cases K1-K6 (W15 Eqs. 11-13 in the canonical frame
+// of docs/physics.md section 1). Each case prescribes a motion; the test evaluates the kinematics routine at the
 // midpoint of every step (the half-step state the integrator hands it) and integrates dU_r = V_r dt and
-// dU_s = V_s dt. The expected values come from the formulas of VALIDATION.md, evaluated here.
+// dU_s = V_s dt. The expected values come from the formulas of docs/validation.md, evaluated here.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -22,7 +22,7 @@ namespace rondel {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kTol = 1e-10;     // VALIDATION.md section 1
+constexpr double kTol = 1e-10;     // docs/validation.md section 1
 constexpr double kObjTol = 1e-12;  // K6
 constexpr double kR1 = 0.01;
 constexpr double kDensity = 2650.0;
@@ -59,7 +59,7 @@ struct Motion {
 
 // A change of observer: positions and velocities turned by alpha0 + Omega t about c, a rigid spin Omega
 // superposed (omega_i += Omega, v_i += Omega z x (x_i - c)) and a uniform drift U. A wall cannot spin
-// (PHYSICS.md section 1: walls translate only), so wall cases get rotations and drifts only.
+// (docs/physics.md section 1: walls translate only), so wall cases get rotations and drifts only.
 struct Frame {
   double alpha0 = 0.0;
   double Omega = 0.0;
@@ -97,7 +97,7 @@ ContactBodies bodies(const Instant& s) {
 }
 
 // Laws with their dashpots on, so that v_n, V_s and V_r enter the forces directly. The rolling couple M comes
-// from `wang` (W15 Eq. 28), the law built on the objective V_r; VALIDATION.md's K6 lists M among the scalars.
+// from `wang` (W15 Eq. 28), the law built on the objective V_r; docs/validation.md's K6 lists M among the scalars.
 ContactParams law_params() {
   ContactParams p;
   p.k_n = 1e6;
@@ -175,7 +175,7 @@ Instant pair_at(double R2, double u_n, Vec2 x1, double angle) {
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// The cases. Each returns the motion; the tests below assert the VALIDATION.md values and K6 reuses them.
+// The cases. Each returns the motion; the tests below assert the docs/validation.md values and K6 reuses them.
 
 // K1: disc 1 rolls without slip around disc 2, which is fixed at the origin. The orbit angle follows
 // phi(s) = dphi (s - sin(2 pi s)/(2 pi)), s = t/T, so the rate is not constant; its integrand is a
@@ -317,7 +317,7 @@ TEST(Kinematics, K1_OrbitWithoutSlipRollsByR2Dphi) {
     // Per step: no slip at any instant, not just on balance.
     for (const StepResult& s : r.steps) ASSERT_LE(std::fabs(s.k.V_s), 1e-12 * std::fabs(s.k.V_t)) << rho;
   }
-  // Cross-check of the formula against the numbers of VALIDATION.md (1e-3, 2e-3, 1e-2, 1e-1 m).
+  // Cross-check of the formula against the numbers of docs/validation.md (1e-3, 2e-3, 1e-2, 1e-1 m).
   const double table[] = {1e-3, 2e-3, 1e-2, 1e-1};
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(kRhos[i] * kR1 * dphi, table[i], 1e-15);
 }
@@ -345,7 +345,7 @@ TEST(Kinematics, K1b_GearsRollByR1Omega1Dt) {
     EXPECT_TRUE(near_rel(r.dU_r, expected, kTol)) << "rho " << rho << ": dU_r " << r.dU_r;
     EXPECT_LE(std::fabs(r.dU_s), kTol * r.mag_s) << "rho " << rho << ": dU_s " << r.dU_s;
   }
-  EXPECT_NEAR(kR1 * w1 * dt, 1e-4, 1e-18);  // VALIDATION.md's number
+  EXPECT_NEAR(kR1 * w1 * dt, 1e-4, 1e-18);  // docs/validation.md's number
 }
 
 TEST(Kinematics, K2_EqualSpinSlidesWithContactPointLevers) {
@@ -396,7 +396,7 @@ TEST(Kinematics, K4_OneIncrementRollsByRStarRelativeSpin) {
     EXPECT_TRUE(near_rel(r.dU_r, expected_r, kTol)) << "rho " << kRhos[i] << ": " << r.dU_r;
     const double a1 = kR1 - 0.5 * u_n, a2 = R2 - 0.5 * u_n;
     EXPECT_TRUE(near_rel(r.dU_s, (V_t + a1 * w1 + a2 * w2) * dt, kTol)) << "rho " << kRhos[i] << ": " << r.dU_s;
-    EXPECT_NEAR(expected_r, table[i], 5e-8 * table[i]) << "VALIDATION.md's number (8 digits), rho " << kRhos[i];
+    EXPECT_NEAR(expected_r, table[i], 5e-8 * table[i]) << "docs/validation.md's number (8 digits), rho " << kRhos[i];
   }
   const Integrated r = integrate(k4_motion(0.0, true, 0.0, dt));
   EXPECT_TRUE(near_rel(r.dU_r, kR1 * w1 * dt, kTol)) << r.dU_r;

@@ -1,6 +1,6 @@
 // The law registry (physics/LawRegistry): every row is a complete law (the concepts), keywords are unique,
 // declared defaults lie in their declared ranges, the critical step sees each law's a-priori rolling spring
-// as PHYSICS.md section 4 writes it, and the resolved configuration holds exactly the selected law's block.
+// as docs/physics.md section 4 writes it, and the resolved configuration holds exactly the selected law's block.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -79,8 +79,8 @@ TEST(LawRegistry, UnknownKeywordIsAConfigErrorNamingTheKey) {
   }
 }
 
-// PHYSICS.md section 4 for two equal discs, tangential law none: the rolling mode has
-// omega^2 = K/I_red, zeta = C/(2 sqrt(K I_red)), with K and C as PHYSICS.md section 3 gives them.
+// docs/physics.md section 4 for two equal discs, tangential law none: the rolling mode has
+// omega^2 = K/I_red, zeta = C/(2 sqrt(K I_red)), with K and C as docs/physics.md section 3 gives them.
 TEST(LawRegistry, RollingSpringGivesTheCriticalStepOfPhysicsSection4) {
   const double R = 0.01, m = 2650.0 * std::numbers::pi * R * R, I = 0.5 * m * R * R;
   ContactParams p;
@@ -105,7 +105,7 @@ TEST(LawRegistry, RollingSpringGivesTheCriticalStepOfPhysicsSection4) {
     if (!spring) continue;
     ++with_spring;
     const auto expected = formula.find(law.keyword);
-    ASSERT_NE(expected, formula.end()) << "no PHYSICS.md formula in this test for a law with a spring";
+    ASSERT_NE(expected, formula.end()) << "no docs/physics.md formula in this test for a law with a spring";
     const double K = expected->second.K, C = expected->second.C;
     EXPECT_NEAR(spring->K, K, 1e-12 * K);
     EXPECT_NEAR(spring->C, C, 1e-12 * std::max(C, 1e-300));
@@ -161,7 +161,7 @@ TEST(LawRegistry, ResolvedTextHoldsExactlyTheSelectedLawsBlock) {
 }
 
 // A dashpot alone above the cap at t = 0: KernelOps::initial gives the capped forces of the initial state
-// but leaves the springs as they were (a committing pass would reset them to -F/k, PHYSICS.md section 1).
+// but leaves the springs as they were (a committing pass would reset them to -F/k, docs/physics.md section 1).
 TEST(LawRegistry, InitialForcesCommitNoHistory) {
   ContactParams p;
   p.k_n = 1e5;

@@ -1,4 +1,4 @@
-// Restitution and damping ratio (VALIDATION.md section 4), and the inverse used for `linear.e`.
+// Restitution and damping ratio (docs/validation.md section 4), and the inverse used for `linear.e`.
 #include <gtest/gtest.h>
 
 #include <cmath>

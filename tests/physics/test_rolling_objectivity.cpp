@@ -1,4 +1,4 @@
-// Objectivity of the rolling laws, VALIDATION.md section 1:
+// Objectivity of the rolling laws, docs/validation.md section 1:
 //  K7: an isolated pair (rho = 2) kept in contact by equal and opposite central forces, in rigid spin
 //      Omega = 5 rad/s for 1 s: the total angular momentum is conserved (1e-10 relative) for every law but
 //      force_proportional, whose couples M_i = -mu_r F_n a_i sign(omega_i) brake the pair at
@@ -10,10 +10,10 @@
 // NormalLinear, TangentialCoulomb, the Rolling* moment functions), not with Simulation: the case needs two
 // external central forces that hold the pair together (the contact has no tension and Simulation has no
 // external forces besides gravity, which is uniform and cannot pull two discs towards each other), and it
-// lets the test record F_n, a1, a2 and the couples of every step. The loop is the integrator of DESIGN.md
+// lets the test record F_n, a1, a2 and the couples of every step. The loop is the integrator of docs/design.md
 // section 4: half kick, drift, forces from the new positions and the half-step velocities (which also
 // increment the springs), half kick; the forces at t = 0 are those of the initial state with a zero
-// increment (as Simulation does). Forces and torques follow PHYSICS.md section 1: F_t on disc 1 along t,
+// increment (as Simulation does). Forces and torques follow docs/physics.md section 1: F_t on disc 1 along t,
 // -F_n n on 1, torques a1 F_t + M1 on 1 and a2 F_t + M2 on 2.
 //
 // Why conservation is exact in this scheme: with f the force on 1 and -f on 2, sum x_i x f_i + tau_i =

@@ -1,4 +1,4 @@
-// Stability test F4 (VALIDATION.md section 5; PHYSICS.md section 4). One contact, linear normal, coulomb
+// Stability test F4 (docs/validation.md section 5; docs/physics.md section 4). One contact, linear normal, coulomb
 // tangential (mu large: it never slips) and jiang_plastic rolling (the cap F_n B/6 is far above the couple:
 // the contact is held closed at the overlap u0 = 1e-4 R1 by a constant central preload k_n u0, which adds
 // no stiffness at rest, and the motion is ~1e-4 u0), undamped:
@@ -33,7 +33,7 @@ namespace {
 
 using testing_rig::OneContactRig;
 
-constexpr double kR1 = 0.005;        // the D5 disc (VALIDATION.md section 0)
+constexpr double kR1 = 0.005;        // the D5 disc (docs/validation.md section 0)
 constexpr double kDensity = 2650.0;  // kg/m^3, thickness 1 m
 constexpr double kOverlap = 1e-4;    // rest overlap u0 / R1
 
@@ -96,7 +96,7 @@ class F4 : public ::testing::TestWithParam<F4Param> {
       r = 2.0 * kR1 * R2_ / (kR1 + R2_);
     }
     const double B = p_.delta * r;
-    K_m_ = p_.k_n * B * B / 12.0;  // J05 Eq. 24 via PHYSICS.md section 3
+    K_m_ = p_.k_n * B * B / 12.0;  // J05 Eq. 24 via docs/physics.md section 3
     const Eigen::MatrixXd K = p_.k_n * e * e.transpose() + p_.k_s * g * g.transpose() + K_m_ * h * h.transpose();
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(K, M, Eigen::EigenvaluesOnly);
     EXPECT_EQ(solver.info(), Eigen::Success);

@@ -1,4 +1,4 @@
-// Checkpoint and restart refusals (DESIGN.md section 7, FORMAT.md): a missing, truncated, corrupted or
+// Checkpoint and restart refusals (docs/design.md section 7, FORMAT.md): a missing, truncated, corrupted or
 // foreign file, a file of another format version, a checkpoint whose laws or history slots differ from the
 // configuration, and an output directory that cannot be written are refused by the Simulation constructor
 // (so before any step runs and before any output file is written) with an InputError or ConfigError that

@@ -1,4 +1,4 @@
-// Stiff and extreme cases (PHYSICS.md section 4; the issue on the critical time step): each either runs
+// Stiff and extreme cases (docs/physics.md section 4; the issue on the critical time step): each either runs
 // stably with the automatic step (finite energy, bounded overlap, small ledger residual, no energy gained)
 // or is refused or stopped with a message that says why. A run that goes unstable anyway stops with an
 // InstabilityError naming the step, the disc ids and the quantity that blew up, and keeps what it wrote.

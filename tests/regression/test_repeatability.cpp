@@ -1,4 +1,4 @@
-// The same run twice gives the same bits (DESIGN.md section 5).
+// The same run twice gives the same bits (docs/design.md section 5).
 #include <gtest/gtest.h>
 
 #include "app/Simulation.hpp"

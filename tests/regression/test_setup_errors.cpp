@@ -1,4 +1,4 @@
-// Refusals at set-up (DESIGN.md sections 8 and 10): a bad scene, time step or output directory throws a
+// Refusals at set-up (docs/design.md sections 8 and 10): a bad scene, time step or output directory throws a
 // ConfigError or InputError that names the key, value or file, before any file is written. The real
 // executable reports it once on stderr and exits non-zero; a tiny valid run writes every output file.
 #include <gtest/gtest.h>
@@ -251,7 +251,7 @@ TEST(SetupErrors, EmptyCsvSceneIsRefusedNamingTheFile) {
   write_file(file, "# no discs here\nid,x,y,radius\n\n");
   const std::string m = setup_error<InputError>(csv_scene(file));
   EXPECT_TRUE(names(m, "no discs"));
-  // DESIGN.md section 10: an input error names the key or file; for a CSV scene that is the file.
+  // docs/design.md section 10: an input error names the key or file; for a CSV scene that is the file.
   EXPECT_TRUE(names(m, file.string()));
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Test support: the standard objects of VALIDATION.md section 0, written once: disc D5, contact sets S and
+// Test support: the standard objects of docs/validation.md section 0, written once: disc D5, contact sets S and
 // J, and the equal-cap parameter map of the rolling laws (every law's cap 0.1 F_n R at a wall).
 #include <cmath>
 #include <numbers>
@@ -35,7 +35,7 @@ inline ContactParams params_of(const ContactSet& set) {
 inline ContactParams set_S() { return params_of(kSetS); }
 inline ContactParams set_J() { return params_of(kSetJ); }
 
-// The equal-cap parameter map (VALIDATION.md section 0).
+// The equal-cap parameter map (docs/validation.md section 0).
 namespace equal_cap {
 constexpr double jiang_delta = 0.3;
 constexpr double wang_mu_r = 0.1, wang_k_r = 3e4;

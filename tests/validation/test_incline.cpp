@@ -1,4 +1,4 @@
-// A disc on an inclined wall, VALIDATION.md section 3: disc D5 and contact set S of section 0, every
+// A disc on an inclined wall, docs/validation.md section 3: disc D5 and contact set S of section 0, every
 // rolling law in the equal-cap parameter map (wall cap M_max = 0.1 F_n R; force_proportional 0.1 F_n a).
 //
 // The incline is the flat bottom wall (a line at y = 0, normal +y) with gravity turned by beta:
@@ -7,7 +7,7 @@
 // disc at rest at the static overlap u_n0 = m g cos(beta)/k_n, so F_n = m g cos(beta) throughout
 // (the disc only moves along the wall, v_n = 0) and the lever is a = R - u_n0/2.
 //
-// The expected values are computed here from the formulas of VALIDATION.md section 3:
+// The expected values are computed here from the formulas of docs/validation.md section 3:
 //  - static hold (spring K in series with k_s): x = m g sin(beta) (1/k_s + a^2/K), |theta| = m g a sin(beta)/K;
 //  - critical angle: m g a sin(beta) = M_max(F_n = m g cos(beta)), solved for beta by bisection;
 //  - above it, rolling without slip: dv/dt = (m g a^2 sin(beta) - M_max a)/(I + m a^2);
@@ -38,7 +38,7 @@ namespace fs = std::filesystem;
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = kPi / 180.0;
-// Disc D5 and contact set S (VALIDATION.md section 0).
+// Disc D5 and contact set S (docs/validation.md section 0).
 constexpr double kR = test::d5::R, kRho = test::d5::density, kThick = test::d5::thickness, kG = test::d5::g;
 constexpr double kKn = test::kSetS.k_n, kKs = test::kSetS.k_s, kMu = test::kSetS.mu;
 const double kMass = kRho * kPi * kR * kR * kThick;
@@ -56,7 +56,7 @@ struct LawSetup {
   std::function<double(double F_n)> stiffness;
 };
 
-// Equal-cap map parameters (VALIDATION.md section 0).
+// Equal-cap map parameters (docs/validation.md section 0).
 constexpr double kJiangDelta = test::equal_cap::jiang_delta;
 constexpr double kWangMuR = test::equal_cap::wang_mu_r, kWangKr = test::equal_cap::wang_k_r;
 constexpr double kIoKr = test::equal_cap::io_K_r, kIoEta = test::equal_cap::io_eta;
@@ -109,7 +109,7 @@ LawSetup displacement_damping(bool damped) {
   }
   return s;
 }
-// f_lim = 0: the moment limiter off (VALIDATION.md section 2), unless f_lim is given.
+// f_lim = 0: the moment limiter off (docs/validation.md section 2), unless f_lim is given.
 LawSetup constant_torque(double f_lim = 0.0) {
   return {"constant_torque",
           {"--constant_torque.mu_r=" + num(kCtMuR), "--constant_torque.f_lim=" + num(f_lim)},
@@ -124,7 +124,7 @@ LawSetup force_proportional() {
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// Formulas of VALIDATION.md section 3.
+// Formulas of docs/validation.md section 3.
 double normal_force(double beta) { return kWeight * std::cos(beta); }
 double lever(double beta) { return kR - 0.5 * normal_force(beta) / kKn; }
 // Driving moment of gravity about the contact point, m g a sin(beta).
@@ -251,7 +251,7 @@ Trace run_for(const LawSetup& law, double beta, double dt, double T, double fit_
 
 // ---------------------------------------------------------------------------------------------------------
 TEST(Incline, CriticalAngleFormula) {
-  // The formula code checked once against VALIDATION.md's numbers.
+  // The formula code checked once against docs/validation.md's numbers.
   const double jiang_c = critical_angle(jiang("jiang_plastic", false)) / kDeg;
   const double fp_c = critical_angle(force_proportional()) / kDeg;
   EXPECT_NEAR(jiang_c, 5.71175, 1e-5);
@@ -259,7 +259,7 @@ TEST(Incline, CriticalAngleFormula) {
   for (const LawSetup& law : {wang(false), iwashita_oda(false), constant_torque(), displacement_damping(false),
                               jiang("jiang_brittle", false)})
     EXPECT_NEAR(critical_angle(law) / kDeg, jiang_c, 1e-9) << law.name;
-  // The lever and the static overlap of VALIDATION.md section 0 (beta = 0).
+  // The lever and the static overlap of docs/validation.md section 0 (beta = 0).
   EXPECT_NEAR(kWeight, 2.0417603, 1e-7);
   EXPECT_NEAR(lever(0.0), 4.9989791e-3, 1e-10);
   std::printf("critical angle: cap 0.1 F_n R %.7f deg, cap 0.1 F_n a %.7f deg\n", jiang_c, fp_c);
@@ -290,7 +290,7 @@ TEST(Incline, StaticHoldBelowCriticalAngle) {
   }
 }
 
-// The critical angle, bracketed by runs at beta_c -+ 0.015 degrees (VALIDATION.md tolerance 0.02 degrees),
+// The critical angle, bracketed by runs at beta_c -+ 0.015 degrees (docs/validation.md tolerance 0.02 degrees),
 // with beta_c from m g a sin(beta) = M_max(F_n = m g cos(beta)) for each law. Each run lasts 1.5 s (the
 // sudden load just below the cap makes the elastic-plastic laws yield a little before they stop, within
 // about 0.5 s); the acceleration is fitted over the last 0.5 s.
@@ -326,7 +326,7 @@ TEST(Incline, CriticalAngleBracket) {
 // Just below it (beta_c - 0.015 degrees, G/M0 = 0.9974) a sudden load breaks it too, with every damping tried
 // (linear.zeta up to 20, coulomb.zeta_t up to 5): the start-up transient takes the trial couple (spring +
 // dashpot, the disc's inertia on top of G) past M0 at some step, the spring-slider caps and resets theta_r to
-// theta_r0, and the next increment breaks the contact. That is the rule of PHYSICS.md section 3, not a defect:
+// theta_r0, and the next increment breaks the contact. That is the rule of docs/physics.md section 3, not a defect:
 // jiang_plastic under the same load yields too (it comes to rest with theta 10 to 60 times its static value,
 // depending on the damping) and then holds. So the hold is shown where the load leaves room for the transient
 // (5 degrees, G/M0 = 0.875, heavily damped: linear.zeta = 10, mu_m = 6.8e-3 N m s, which needs dt = 1e-5).

@@ -1,22 +1,22 @@
-// A disc rolling on a flat wall against each rolling law, VALIDATION.md sections 2 and 6.
+// A disc rolling on a flat wall against each rolling law, docs/validation.md sections 2 and 6.
 //
-// Set-up (VALIDATION.md sections 0 and 2): disc D5 (R = 0.005 m, rho = 2650 kg/m^3, thickness 1 m) on the
+// Set-up (docs/validation.md sections 0 and 2): disc D5 (R = 0.005 m, rho = 2650 kg/m^3, thickness 1 m) on the
 // bottom wall (a line at y = 0 with normal +y), contact set S (k_n = 1e6, k_s = 0.75e6 N/m, mu = 0.5,
 // undamped unless a case says so), gravity 9.81 m/s^2, dt = 1e-4 s, 2 s. The disc starts at the static
 // overlap u_n0 = mg/k_n with zero normal velocity (so F_n = mg throughout), v0 = 1 m/s along the contact's
 // t = (1, 0) and omega0 = -v0/a, a = R - u_n0/2 (rolling without slip). Every law uses the equal-cap
-// parameter map of VALIDATION.md section 0: wall cap M = 0.1 F_n R (force_proportional: 0.1 F_n a) and,
+// parameter map of docs/validation.md section 0: wall cap M = 0.1 F_n R (force_proportional: 0.1 F_n a) and,
 // where there is a spring, K = 0.75 N m/rad (displacement_damping: K = M/theta_rmax).
 //
 // Expected values, computed below from these inputs (checked once against the numbers printed in
-// VALIDATION.md section 2 by RollingWall.FormulaCodeMatchesReferenceNumbers):
+// docs/validation.md section 2 by RollingWall.FormulaCodeMatchesReferenceNumbers):
 //   deceleration  M a/(I + m a^2);   KE0 = (m v0^2 + I omega0^2)/2
 //   rigid-plastic stop            s      = a KE0/M
 //   elastic-plastic first stop    s1     = a (KE0/M + M/(2K))
 //   elastic-plastic rest          s_rest = s1 - a M/K
 //   undamped band after the stop  [s1 - 2aM/K, s1];  jiang_brittle breaks at theta_r0 = 2F_n/(k_n B).
 // s and s1 are the first-stop (largest) displacement: the largest x up to the first zero of vx.
-// Tolerances (VALIDATION.md section 2): rigid-plastic |s - s_exact| <= 1e-6 m; an elastic-plastic law
+// Tolerances (docs/validation.md section 2): rigid-plastic |s - s_exact| <= 1e-6 m; an elastic-plastic law
 // whose rolling spring starts unloaded may overshoot s1 by up to v0 dt/2 (its spring loads within the
 // first step, theta_r0/omega0 = 7e-6 s << dt, while the couple only acts from the second half-kick on).
 #include <gtest/gtest.h>
@@ -57,7 +57,7 @@ constexpr double kV0 = 1.0;
 
 using test::num;
 
-// The disc and its static contact with the wall (VALIDATION.md section 0).
+// The disc and its static contact with the wall (docs/validation.md section 0).
 struct DiscOnWall {
   double m, I, mg, u_n0, a;
   explicit DiscOnWall(double k_n = kKn) {
@@ -86,7 +86,7 @@ struct Law {
   std::string damping = "none";
 };
 
-// Equal-cap parameter map (VALIDATION.md section 0). `damped` adds a rolling dashpot to the spring laws.
+// Equal-cap parameter map (docs/validation.md section 0). `damped` adds a rolling dashpot to the spring laws.
 Law equal_cap(const std::string& name, bool damped = false) {
   const DiscOnWall d;
   const double F_n = d.mg;
@@ -120,7 +120,7 @@ Law equal_cap(const std::string& name, bool damped = false) {
   } else if (name == "constant_torque") {
     const double mu_r = 0.05;
     set("constant_torque.mu_r", mu_r);
-    set("constant_torque.f_lim", 0.0);  // the limiter off (VALIDATION.md section 2)
+    set("constant_torque.f_lim", 0.0);  // the limiter off (docs/validation.md section 2)
     law.M = mu_r * 2 * kR * F_n;        // R_eq = 2R at a wall
   } else if (name == "displacement_damping") {
     const double mu_r = 0.05, theta_rmax = 0.035;
@@ -271,7 +271,7 @@ void print_residual(const Trace& tr) {
   std::printf("    %-46s %.3e\n", "ledger residual, largest (relative)", tr.residual_max);
 }
 
-// E_total of VALIDATION.md section 6, from the ledger and the diagnostics row:
+// E_total of docs/validation.md section 6, from the ledger and the diagnostics row:
 //   E_total = KE + E_stored + D_slip + D_r_plastic + D_r_dashpot + E_r_break - W_g - W_w
 // (kinetic energy, energy held by the normal, tangential and rolling springs now, the dissipation booked
 // by mechanism, minus the work of gravity and of the walls). D_other (normal and tangential dashpots plus
@@ -282,7 +282,7 @@ double energy_total(const DiagnosticsRow& r) {
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// The formula code against the reference numbers printed in VALIDATION.md section 2 (checked once).
+// The formula code against the reference numbers printed in docs/validation.md section 2 (checked once).
 
 TEST(RollingWall, FormulaCodeMatchesReferenceNumbers) {
   const DiscOnWall d;
@@ -434,7 +434,7 @@ TEST(RollingWall, DisplacementDampingFirstStopAndUndampedBand) { check_elastic_p
 // Section 2, elastic-plastic laws with rolling damping: they settle at s_rest = s1 - aM/K (to v0 dt/2, as
 // the first stop), 0.1 s before the end at the latest (to 1e-8 m).
 //
-// With a rolling dashpot the capping rule (PHYSICS.md section 1) loads the spring at t = 0+: the dashpot
+// With a rolling dashpot the capping rule (docs/physics.md section 1) loads the spring at t = 0+: the dashpot
 // alone, mu |omega0|, exceeds the cap, so the couple is M from the start and the spring is reset to M/K
 // without any rotation or work. The spring is then no longer "unloaded", and the law behaves exactly as a
 // rigid-plastic one: first stop a KE0/M = s1 - aM/(2K), rest a KE0/M - aM/K (both checked to 1e-6 m, the
@@ -542,7 +542,7 @@ TEST(RollingWall, JiangBrittleBreaksAndNeverStops) {
 // = 7e-6 s), where the law books the slip of the whole step, M0 (|omega0| dt - M0/K_m), while the couple,
 // 0 at t = 0, acted only in that step's second half-kick (trapezoid work M0 |omega0| dt/2): the split books
 // M0 |omega0| dt/2 - M0^2/(2 K_m) more than the couple did (1e-5 J, 6e-5 of KE0; O(dt)). That is also the
-// size of max |E_total - E0|, inside the 2e-4 of VALIDATION.md.
+// size of max |E_total - E0|, inside the 2e-4 of docs/validation.md.
 
 TEST(RollingWall, JiangPlasticLedgerPlasticWorkAndEnergyBalance) {
   const DiscOnWall d;
