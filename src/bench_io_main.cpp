@@ -41,30 +41,14 @@ struct Options {
 
 Options parse(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    if (k == "--keep") {
-      o.keep = true;
-      continue;
-    }
-    if (i + 1 >= argc) throw rondel::ConfigError("rondel_bench_io: option '" + k + "' needs a value");
-    const std::string v = argv[++i];
-    if (k == "--discs")
-      o.discs = std::stol(v);
-    else if (k == "--steps")
-      o.steps = std::stol(v);
-    else if (k == "--warmup")
-      o.warmup = std::stol(v);
-    else if (k == "--repeat")
-      o.repeat = std::stol(v);
-    else if (k == "--every")
-      o.every = std::stol(v);
-    else if (k == "--output")
-      o.output = v;
-    else
-      throw rondel::ConfigError("rondel_bench_io: unknown option '" + k +
-                                "' (--discs, --steps, --warmup, --repeat, --every, --output, --keep)");
-  }
+  rondel::parse_bench_options("rondel_bench_io", argc, argv,
+                              {{"--discs", &o.discs},
+                               {"--steps", &o.steps},
+                               {"--warmup", &o.warmup},
+                               {"--repeat", &o.repeat},
+                               {"--every", &o.every},
+                               {"--output", &o.output},
+                               {"--keep", &o.keep}});
   if (o.discs < 16) throw rondel::ConfigError("rondel_bench_io: --discs must be at least 16");
   if (o.steps < 1 || o.repeat < 1 || o.every < 1 || o.warmup < 0)
     throw rondel::ConfigError("rondel_bench_io: --steps, --repeat and --every must be >= 1, --warmup >= 0");
@@ -86,6 +70,112 @@ struct Timing {
   double best() const { return runs.empty() ? 0.0 : *std::min_element(runs.begin(), runs.end()); }
 };
 
+// The lattice scene: N discs in a periodic box, slightly compressed and spinning, wang rolling resistance.
+rondel::Config lattice_config(const Options& o, long& nx, long& ny) {
+  nx = std::lround(std::sqrt(static_cast<double>(o.discs)));
+  ny = (o.discs + nx - 1) / nx;
+  const double R = 0.001, spacing = 2.0 * R * (1.0 - 0.0025);
+  char ini[4096];
+  std::snprintf(ini, sizeof ini,
+                "[run]\nsteps = 0\nprogress = false\noutput = %s\noverwrite = true\n[diagnostics]\nevery = 1000000\n"
+                "[domain]\nxlo = 0\nxhi = %.17g\nylo = 0\nyhi = %.17g\nperiodic_x = true\nperiodic_y = true\n"
+                "[linear]\nk_n = 1e7\ne = 0.5\n[coulomb]\nk_s = 7.5e6\nmu = 0.5\n"
+                "[contact]\nrolling = wang\n[wang]\nk_r = 2e6\nmu_r = 0.1\n"
+                "[scene]\ntype = lattice_square\nnx = %ld\nny = %ld\nradius = %.17g\nspacing = %.17g\n"
+                "x0 = %.17g\ny0 = %.17g\nomega = 20\nmax_initial_overlap = 0.01\n",
+                o.output.c_str(), nx * spacing, ny * spacing, nx, ny, R, spacing, 0.5 * spacing, 0.5 * spacing);
+  return rondel::parse_config_text(ini);
+}
+
+// Seconds per step (slowest rank) after the warm-up.
+double time_steps(rondel::Simulation& sim, const Options& o, const rondel::Communicator& comm) {
+  for (long s = 0; s < o.warmup; ++s) sim.step();
+  comm.barrier();
+  const auto t0 = std::chrono::steady_clock::now();
+  for (long s = 0; s < o.steps; ++s) sim.step();
+  return comm.max(seconds_since(t0)) / static_cast<double>(o.steps);
+}
+
+// Checkpoint writes (the same step each time: the file is replaced), without and with a sync(2).
+std::string time_writes(rondel::Simulation& sim, const Options& o, const rondel::Communicator& comm, Timing& write,
+                        Timing& write_sync) {
+  std::string path;
+  std::streambuf* out = std::cout.rdbuf(nullptr);  // the simulation logs each checkpoint
+  for (long r = 0; r < o.repeat; ++r) {
+    comm.barrier();
+    const auto t0 = std::chrono::steady_clock::now();
+    path = sim.write_checkpoint();
+    comm.barrier();
+    write.runs.push_back(comm.max(seconds_since(t0)));
+    if (comm.root()) ::sync();
+    comm.barrier();
+    write_sync.runs.push_back(comm.max(seconds_since(t0)));
+  }
+  std::cout.rdbuf(out);
+  return path;
+}
+
+// Baseline: the same number of bytes as one dataset of doubles, each rank writing its block collectively (no
+// reordering): what parallel HDF5 and MPI-IO alone cost here.
+Timing time_raw_write(double file_bytes, const Options& o, const rondel::Communicator& comm) {
+  Timing raw;
+  const auto total = static_cast<std::uint64_t>(file_bytes / 8.0);
+  const std::uint64_t begin = total * comm.rank() / comm.size(), end = total * (comm.rank() + 1) / comm.size();
+  const std::vector<double> block(end - begin, 1.0);
+  const std::string raw_path = (fs::path(o.output) / "raw.h5").string();
+  for (long r = 0; r < o.repeat; ++r) {
+    comm.barrier();
+    const auto t0 = std::chrono::steady_clock::now();
+    {
+      rondel::Hdf5File f(raw_path, rondel::Hdf5File::Mode::create, comm);
+      f.write("/raw", block, total, begin);
+    }
+    comm.barrier();
+    raw.runs.push_back(comm.max(seconds_since(t0)));
+  }
+  if (comm.root()) fs::remove(raw_path);
+  return raw;
+}
+
+// What the file holds, counted while reading it back.
+struct FileRows {
+  std::int64_t pairs = 0, walls = 0, with_history = 0;
+};
+
+// Reads: the file layer alone (header, discs, rows), then a whole restart (a Simulation from the checkpoint).
+FileRows time_reads(const std::string& path, std::int64_t step, const rondel::Config& config, const Options& o,
+                    const rondel::Communicator& comm, Timing& read, Timing& restart) {
+  FileRows rows;
+  for (long r = 0; r < o.repeat; ++r) {
+    comm.barrier();
+    auto t0 = std::chrono::steady_clock::now();
+    {
+      const rondel::StateHeader h = rondel::read_state_header(path, comm);
+      rondel::DiscStore discs;
+      rondel::read_state_discs(path, discs, comm);
+      const rondel::LawSelection laws{"linear", "coulomb", "wang"};
+      rondel::ContactTable pairs = rondel::make_contact_table(laws), walls = rondel::make_contact_table(laws);
+      rondel::read_state_rows(path, pairs, walls, comm);
+      comm.barrier();
+      read.runs.push_back(comm.max(seconds_since(t0)));
+      std::int64_t loaded = 0;
+      for (std::size_t k = 0; k < pairs.size(); ++k) loaded += pairs.has_state(k);
+      rows = {comm.sum(static_cast<std::int64_t>(pairs.size())), comm.sum(static_cast<std::int64_t>(walls.size())),
+              comm.sum(loaded)};
+      if (h.step != step) throw rondel::InputError("rondel_bench_io: the checkpoint read back has another step");
+    }
+    comm.barrier();
+    t0 = std::chrono::steady_clock::now();
+    {
+      rondel::Simulation again(config, comm, false, path);
+      comm.barrier();
+      restart.runs.push_back(comm.max(seconds_since(t0)));
+      if (again.step_count() != step) throw rondel::InputError("rondel_bench_io: the restart is at another step");
+    }
+  }
+  return rows;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -93,103 +183,22 @@ int main(int argc, char** argv) {
   rondel::Communicator comm;
   try {
     const Options o = parse(argc, argv);
-    const long nx = std::lround(std::sqrt(static_cast<double>(o.discs)));
-    const long ny = (o.discs + nx - 1) / nx;
-    const double R = 0.001, spacing = 2.0 * R * (1.0 - 0.0025);
-    char ini[4096];
-    std::snprintf(ini, sizeof ini,
-                  "[run]\nsteps = 0\nprogress = false\noutput = %s\noverwrite = true\n[diagnostics]\nevery = 1000000\n"
-                  "[domain]\nxlo = 0\nxhi = %.17g\nylo = 0\nyhi = %.17g\nperiodic_x = true\nperiodic_y = true\n"
-                  "[linear]\nk_n = 1e7\ne = 0.5\n[coulomb]\nk_s = 7.5e6\nmu = 0.5\n"
-                  "[contact]\nrolling = wang\n[wang]\nk_r = 2e6\nmu_r = 0.1\n"
-                  "[scene]\ntype = lattice_square\nnx = %ld\nny = %ld\nradius = %.17g\nspacing = %.17g\n"
-                  "x0 = %.17g\ny0 = %.17g\nomega = 20\nmax_initial_overlap = 0.01\n",
-                  o.output.c_str(), nx * spacing, ny * spacing, nx, ny, R, spacing, 0.5 * spacing, 0.5 * spacing);
-    const rondel::Config config = rondel::parse_config_text(ini);
+    long nx = 0, ny = 0;
+    const rondel::Config config = lattice_config(o, nx, ny);
     // The directory is removed at the end (unless --keep): never one that holds something already.
     if (comm.any(fs::exists(o.output) && !(fs::is_directory(o.output) && fs::is_empty(o.output))))
       throw rondel::ConfigError("--output " + o.output + " exists and is not empty; name a new directory");
 
     auto sim = std::make_unique<rondel::Simulation>(config, comm, true);
     const auto n = comm.sum(static_cast<std::int64_t>(sim->discs().n_owned()));
-    for (long s = 0; s < o.warmup; ++s) sim->step();
-    comm.barrier();
-    auto t0 = std::chrono::steady_clock::now();
-    for (long s = 0; s < o.steps; ++s) sim->step();
-    const double step_time = comm.max(seconds_since(t0)) / static_cast<double>(o.steps);
-
-    // Checkpoint writes (the same step each time: the file is replaced).
-    Timing write, write_sync;
-    std::string path;
-    std::streambuf* out = std::cout.rdbuf(nullptr);  // the simulation logs each checkpoint
-    for (long r = 0; r < o.repeat; ++r) {
-      comm.barrier();
-      t0 = std::chrono::steady_clock::now();
-      path = sim->write_checkpoint();
-      comm.barrier();
-      write.runs.push_back(comm.max(seconds_since(t0)));
-      if (comm.root()) ::sync();
-      comm.barrier();
-      write_sync.runs.push_back(comm.max(seconds_since(t0)));
-    }
-    std::cout.rdbuf(out);
-    const double bytes = comm.root() ? static_cast<double>(fs::file_size(path)) : 0.0;
-    const double file_bytes = comm.sum(bytes);
+    const double step_time = time_steps(*sim, o, comm);
+    Timing write, write_sync, read, restart;
+    const std::string path = time_writes(*sim, o, comm, write, write_sync);
+    const double file_bytes = comm.sum(comm.root() ? static_cast<double>(fs::file_size(path)) : 0.0);
     const std::int64_t step = sim->step_count();
     sim.reset();  // the restart below holds the only copy of the state
-
-    // Baseline: the same number of bytes as one dataset of doubles, each rank writing its block
-    // collectively (no reordering): what parallel HDF5 and MPI-IO alone cost here.
-    Timing raw;
-    {
-      const auto total = static_cast<std::uint64_t>(file_bytes / 8.0);
-      const std::uint64_t begin = total * comm.rank() / comm.size(), end = total * (comm.rank() + 1) / comm.size();
-      const std::vector<double> block(end - begin, 1.0);
-      const std::string raw_path = (fs::path(o.output) / "raw.h5").string();
-      for (long r = 0; r < o.repeat; ++r) {
-        comm.barrier();
-        t0 = std::chrono::steady_clock::now();
-        {
-          rondel::Hdf5File f(raw_path, rondel::Hdf5File::Mode::create, comm);
-          f.write("/raw", block, total, begin);
-        }
-        comm.barrier();
-        raw.runs.push_back(comm.max(seconds_since(t0)));
-      }
-      if (comm.root()) fs::remove(raw_path);
-    }
-
-    // Reads: the file layer alone, then a whole restart.
-    Timing read, restart;
-    std::int64_t pair_rows = 0, wall_rows = 0, with_history = 0;
-    for (long r = 0; r < o.repeat; ++r) {
-      comm.barrier();
-      t0 = std::chrono::steady_clock::now();
-      {
-        const rondel::StateHeader h = rondel::read_state_header(path, comm);
-        rondel::DiscStore discs;
-        rondel::read_state_discs(path, discs, comm);
-        const rondel::LawSelection laws{"linear", "coulomb", "wang"};
-        rondel::ContactTable pairs = rondel::make_contact_table(laws), walls = rondel::make_contact_table(laws);
-        rondel::read_state_rows(path, pairs, walls, comm);
-        comm.barrier();
-        read.runs.push_back(comm.max(seconds_since(t0)));
-        std::int64_t loaded = 0;
-        for (std::size_t k = 0; k < pairs.size(); ++k) loaded += pairs.has_state(k);
-        pair_rows = comm.sum(static_cast<std::int64_t>(pairs.size()));
-        wall_rows = comm.sum(static_cast<std::int64_t>(walls.size()));
-        with_history = comm.sum(loaded);
-        if (h.step != step) throw rondel::InputError("rondel_bench_io: the checkpoint read back has another step");
-      }
-      comm.barrier();
-      t0 = std::chrono::steady_clock::now();
-      {
-        rondel::Simulation again(config, comm, false, path);
-        comm.barrier();
-        restart.runs.push_back(comm.max(seconds_since(t0)));
-        if (again.step_count() != step) throw rondel::InputError("rondel_bench_io: the restart is at another step");
-      }
-    }
+    const Timing raw = time_raw_write(file_bytes, o, comm);
+    const FileRows rows = time_reads(path, step, config, o, comm, read, restart);
     const double rss = comm.sum(static_cast<double>(rondel::peak_rss_kib()) * 1024.0);
     if (comm.root()) {
       const double mb = file_bytes / 1e6;
@@ -207,12 +216,12 @@ int main(int argc, char** argv) {
           "  checkpoint every %ld steps: %.4g s of steps; write %.3f %%, write + sync %.3f %% overhead\n"
           "  peak RSS                   %.0f MB over all ranks (%.0f B per disc)\n",
           static_cast<long long>(n), nx, ny, comm.size(), static_cast<long long>(step),
-          static_cast<long long>(pair_rows), static_cast<long long>(with_history), static_cast<long long>(wall_rows),
-          mb, file_bytes / static_cast<double>(n), step_time, o.steps, o.warmup, write.median(), write.best(), o.repeat,
-          mb / write.median(), write_sync.median(), mb / write_sync.median(), raw.median(), mb / raw.median(),
-          read.median(), read.best(), mb / read.median(), restart.median(), restart.best(), o.every, interval,
-          100.0 * write.median() / interval, 100.0 * write_sync.median() / interval, rss / 1e6,
-          rss / static_cast<double>(n));
+          static_cast<long long>(rows.pairs), static_cast<long long>(rows.with_history),
+          static_cast<long long>(rows.walls), mb, file_bytes / static_cast<double>(n), step_time, o.steps, o.warmup,
+          write.median(), write.best(), o.repeat, mb / write.median(), write_sync.median(), mb / write_sync.median(),
+          raw.median(), mb / raw.median(), read.median(), read.best(), mb / read.median(), restart.median(),
+          restart.best(), o.every, interval, 100.0 * write.median() / interval, 100.0 * write_sync.median() / interval,
+          rss / 1e6, rss / static_cast<double>(n));
     }
     comm.barrier();
     if (!o.keep && comm.root()) {
@@ -221,7 +230,9 @@ int main(int argc, char** argv) {
     }
     return 0;
   } catch (const std::exception& e) {
-    if (comm.root()) std::cerr << "rondel_bench_io: " << e.what() << '\n';
+    const std::string message = e.what();  // errors of this command name it already, others get its name
+    if (comm.root())
+      std::cerr << (message.rfind("rondel_bench_io:", 0) == 0 ? "" : "rondel_bench_io: ") << message << '\n';
     return 1;
   }
 }

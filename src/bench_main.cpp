@@ -32,24 +32,12 @@ struct Options {
 
 Options parse(int argc, char** argv) {
   Options o;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string k = argv[i], v = argv[i + 1];
-    if (k == "--discs")
-      o.discs = std::stol(v);
-    else if (k == "--steps")
-      o.steps = std::stol(v);
-    else if (k == "--warmup")
-      o.warmup = std::stol(v);
-    else if (k == "--file")
-      o.file = v;
-    else if (k == "--rolling")
-      o.rolling = v;
-    else
-      throw rondel::ConfigError("rondel_bench: unknown option '" + k +
-                                "' (--discs, --steps, --warmup, --rolling, --file)");
-  }
-  if (argc % 2 == 0)
-    throw rondel::ConfigError("rondel_bench: option '" + std::string(argv[argc - 1]) + "' needs a value");
+  rondel::parse_bench_options("rondel_bench", argc, argv,
+                              {{"--discs", &o.discs},
+                               {"--steps", &o.steps},
+                               {"--warmup", &o.warmup},
+                               {"--rolling", &o.rolling},
+                               {"--file", &o.file}});
   if (o.discs != 10000 && o.discs != 40000 && o.discs != 160000)
     throw rondel::ConfigError("rondel_bench: --discs must be 10000, 40000 or 160000 (copies of the 10k packing)");
   return o;
