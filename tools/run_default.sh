@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# Sets up and builds Rondel (tools/setup.sh), then runs the default scene, inputs/deposition.ini, on two MPI
-# ranks and prints where the results are.
+# Sets up Rondel and builds the one program the run needs (tools/setup.sh rondel: not the test suite), then
+# runs the default scene, inputs/deposition.ini, on two MPI ranks and prints where the results are.
 #   bash tools/run_default.sh [OUTPUT_DIR]     (default rondel-output/deposition, replaced on a re-run)
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
-bash tools/setup.sh
+bash tools/setup.sh rondel
 
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 default_out=rondel-output/deposition

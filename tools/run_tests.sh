@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Sets up and builds Rondel (tools/setup.sh), then runs the test suite without the slow tests (label long).
-# The exit code is ctest's.
+# Sets up and builds Rondel with its test suite (tools/setup.sh: every target), then runs the test suite
+# without the slow tests (label long). The exit code is ctest's.
 #   bash tools/run_tests.sh
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Sets up Rondel on a Debian machine: installs the Debian packages that are missing (as root, with apt-get),
-# then configures and builds everything (Release) in build/. Safe to run again: it installs nothing that is
-# already there and rebuilds only what changed.
-#   bash tools/setup.sh
+# then configures (Release) and builds in build/: every target, or only the TARGETs given. Safe to run again:
+# it installs nothing that is already there and rebuilds only what changed.
+#   bash tools/setup.sh [--no-tests] [TARGET ...]
+#     TARGET      make targets to build (rondel, rondel_bench, rondel_serial_tests, ...); default: all
+#     --no-tests  configure with -DBUILD_TESTING=OFF: no test suite, GoogleTest and Eigen not needed
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -11,16 +13,32 @@ fail() {
   exit 1
 }
 
+testing=ON
+targets=()
+for arg in "$@"; do
+  case "$arg" in
+    --no-tests) testing=OFF ;;
+    -h | --help)
+      sed -n '2,7s/^# \{0,1\}//p' "${BASH_SOURCE[0]}"
+      exit 0
+      ;;
+    -*) fail "unknown option '$arg' (options: --no-tests, then make targets)" ;;
+    *) targets+=("$arg") ;;
+  esac
+done
+
 PACKAGES=(
   cmake g++ make
   libopenmpi-dev openmpi-bin
   libmetis-dev
   libhdf5-openmpi-dev hdf5-tools
-  libeigen3-dev
   libboost-program-options-dev
-  libgtest-dev
   python3-h5py python3-numpy python3-matplotlib
 )
+# Needed by the test suite only.
+if [ "$testing" = ON ]; then
+  PACKAGES+=(libeigen3-dev libgtest-dev)
+fi
 
 command -v dpkg >/dev/null 2>&1 ||
   fail "dpkg not found: this script supports Debian (and derivatives) only. Install by hand: ${PACKAGES[*]}"
@@ -46,10 +64,16 @@ else
 fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
-echo "tools/setup.sh: configuring (cmake -S . -B build -DCMAKE_BUILD_TYPE=Release)"
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release ||
+# BUILD_TESTING is given every time, so that a build/ configured without tests gets them back.
+echo "tools/setup.sh: configuring (cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=${testing})"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING="${testing}" ||
   fail "cmake configuration failed (see above); if build/ comes from another checkout, remove it: rm -rf build"
-echo "tools/setup.sh: building (make -C build -j${jobs})"
-make -C build -j"${jobs}" || fail "the build failed (see the compiler messages above)"
-[ -x build/rondel ] || fail "the build finished but build/rondel is missing"
-echo "tools/setup.sh: build complete: build/rondel, build/rondel_bench"
+echo "tools/setup.sh: building (make -C build -j${jobs} ${targets[*]:-all})"
+make -C build -j"${jobs}" "${targets[@]}" || fail "the build failed (see the compiler messages above)"
+if ((${#targets[@]} == 0)); then
+  [ -x build/rondel ] || fail "the build finished but build/rondel is missing"
+  echo "tools/setup.sh: build complete: build/rondel, build/rondel_bench, build/rondel_bench_io$(
+    [ "$testing" = ON ] && echo ' and the tests')"
+else
+  echo "tools/setup.sh: build complete: ${targets[*]}"
+fi
