@@ -55,13 +55,15 @@ def run_tool(tool, body, *args):
         return fail(tool, "interrupted", 130)
 
 
-def add_figure_options(ap, dpi=150):
-    """--format png|pdf|svg (default png) and --dpi (raster resolution; PDF and SVG keep vectors)."""
+def add_figure_options(ap, dpi=150, no_plot=True):
+    """--format png|pdf|svg (default png), --dpi (raster resolution; PDF and SVG keep vectors) and, with
+    NO_PLOT, --no-plot (CSV files only)."""
     g = ap.add_argument_group("figures")
     g.add_argument("--format", choices=FORMATS, default="png", help="figure file format (default png)")
     g.add_argument("--dpi", type=float, default=dpi,
                    help=f"resolution of raster figures and of images inside PDF/SVG (default {dpi:g})")
-    g.add_argument("--no-plot", action="store_true", help="write the CSV files only, no figures")
+    if no_plot:
+        g.add_argument("--no-plot", action="store_true", help="write the CSV files only, no figures")
     return g
 
 
