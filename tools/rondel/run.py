@@ -29,7 +29,7 @@ class Run:
         if not os.path.isdir(self.path):
             raise RondelFileError(self.path, "is not a directory (a run directory holds log.txt, "
                                   "diagnostics.csv, ...; open a single .h5 file with rondel.open_file)")
-        markers = ("config.ini", "log.txt", "diagnostics.csv", "summary.txt", "final.csv")
+        markers = ("config.ini", "log.txt", "diagnostics.csv", "measures.csv", "summary.txt", "final.csv")
         if not any(os.path.exists(self.file(m)) for m in markers) and not self.checkpoint_paths() \
                 and not self.snapshot_paths():
             raise RondelFileError(self.path, "is not a Rondel run directory (none of " + ", ".join(markers) +
