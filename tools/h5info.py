@@ -16,7 +16,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from rondel import (EXIT_FAILED, FORMAT_VERSION, CheckFailed, RondelFileError, checksum, decode,  # noqa: E402,F401
+from rondel import (EXIT_FAILED, FORMAT_VERSION, RondelFileError, checksum, decode,  # noqa: E402,F401
                     open_file)
 from rondel.cli import ArgumentParser, run_tool  # noqa: E402
 

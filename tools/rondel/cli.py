@@ -23,7 +23,8 @@ class ArgumentParser(argparse.ArgumentParser):
     def __init__(self, tool, **kw):
         epilog = kw.pop("epilog", None)
         kw.setdefault("formatter_class", argparse.RawDescriptionHelpFormatter)
-        super().__init__(prog=kw.pop("prog", tool), epilog=(epilog + "\n\n" if epilog else "") + EXIT_HELP, **kw)
+        super().__init__(prog=kw.pop("prog", tool), epilog=(epilog + "\n\n" if epilog else "")
+                         + EXIT_HELP.replace("TOOL", tool), **kw)
         self.tool = tool
 
     def error(self, message):
