@@ -79,9 +79,10 @@ class Run:
         return read_csv(self._need("final.csv", "written after the last step"))
 
     def summary(self):
-        """The run's summary as a dict: summary.json when present, else what summary.txt says (steps, discs,
-        wall_seconds, disc_steps_per_s, complete, text); time step figures from the log when the JSON is absent
-        (dt, dt_critical, critical_mode, critical_pair)."""
+        """The run's summary as a dict: the keys of summary.json when the run wrote one (rondel_version,
+        status, steps, discs, ranks, wall_seconds, dt, critical_dt, critical_mode, critical_pair, ...), else
+        what summary.txt and the log say; either way with steps, discs, wall_seconds, disc_steps_per_s,
+        complete (bool), dt, dt_critical, critical_mode, critical_pair where known, and source (the file)."""
         js = self.file("summary.json")
         if os.path.isfile(js):
             try:
@@ -89,28 +90,43 @@ class Run:
                     out = json.load(f)
             except (OSError, ValueError) as e:
                 raise RondelFileError(js, f"not readable JSON ({e})") from None
+            if not isinstance(out, dict):
+                raise RondelFileError(js, "is not a JSON object")
+            aliases = {"disc_steps_per_second": "disc_steps_per_s", "critical_dt": "dt_critical"}
+            for k, alias in aliases.items():
+                if k in out:
+                    out.setdefault(alias, out[k])
+            if "status" in out:
+                out.setdefault("complete", out["status"] == "complete")
             out.setdefault("source", js)
             return out
+        out = self._summary_txt()
+        if os.path.isfile(self.file("log.txt")):
+            try:
+                out.update(self._time_step_log())
+            except RondelFileError:
+                pass  # a log without the line (an older build): the summary stands without it
+        return out
+
+    def _summary_txt(self):
         with open(self._need("summary.txt", "written at the end of a run")) as f:
             text = f.read()
         m = SUMMARY_RE.search(text)
         if not m:
             raise RondelFileError(self.file("summary.txt"), "has no 'summary: N steps of N discs in T s wall' line")
-        out = {"steps": int(m.group(1)), "discs": int(m.group(2)), "wall_seconds": float(m.group(3)),
-               "disc_steps_per_s": float(m.group(4)), "complete": "status: complete" in text, "text": text,
-               "source": self.file("summary.txt")}
-        if os.path.isfile(self.file("log.txt")):
-            out.update(self.time_step())
-        return out
+        return {"steps": int(m.group(1)), "discs": int(m.group(2)), "wall_seconds": float(m.group(3)),
+                "disc_steps_per_s": float(m.group(4)), "complete": "status: complete" in text, "text": text,
+                "source": self.file("summary.txt")}
 
     def time_step(self):
-        """dt, dt_critical, critical_mode, critical_pair: from summary.json when it has them, else log.txt."""
-        js = self.file("summary.json")
-        if os.path.isfile(js):
+        """{dt, dt_critical, critical_mode, critical_pair}: from summary.json when it has them, else log.txt."""
+        if os.path.isfile(self.file("summary.json")):
             s = self.summary()
-            keys = ("dt", "dt_critical", "critical_mode", "critical_pair")
-            if all(k in s for k in keys[:3]):
-                return {k: s.get(k) for k in keys}
+            if all(k in s for k in ("dt", "dt_critical", "critical_mode")):
+                return {k: s.get(k, "") for k in ("dt", "dt_critical", "critical_mode", "critical_pair")}
+        return self._time_step_log()
+
+    def _time_step_log(self):
         m = TIME_STEP_RE.search(self.log())
         if not m:
             raise RondelFileError(self.file("log.txt"), "has no 'time step ... critical ... mode' line")
