@@ -186,13 +186,14 @@ def view_limits(state):
 
 # ------------------------------------------------------------------------------------------ drawing
 
-def new_figure(limits, width_in, extra_right=0.0, side_axes=False):
+def new_figure(limits, width_in, extra_right=0.0, side_axes=False, extra_bottom=0.0):
     """A figure WIDTH_IN inches wide, equal-aspect axes set to LIMITS; EXTRA_RIGHT inches for a colour bar
-    or legend (SIDE_AXES: returns also an empty axes of that width for a legend)."""
+    or legend (SIDE_AXES: returns also an empty axes of that width for a legend), EXTRA_BOTTOM inches for a
+    horizontal colour bar."""
     x0, x1, y0, y1 = limits
     aspect = (y1 - y0) / (x1 - x0)
     plot_w = width_in - extra_right - 0.9
-    height_in = float(np.clip(plot_w * aspect + 0.9, 2.5, 2.5 * width_in))
+    height_in = float(np.clip(plot_w * aspect + 0.9, 2.5 - extra_bottom, 2.5 * width_in)) + extra_bottom
     fig = plt.figure(figsize=(width_in, height_in), layout="constrained")
     if side_axes:
         ax, side = fig.subplots(1, 2, gridspec_kw=dict(width_ratios=[width_in - extra_right, extra_right]))
@@ -280,7 +281,11 @@ def picture_rotation(state, args):
         vmax = float(np.max(np.abs(values[free]))) if free.any() else 0.0
     if not np.isfinite(vmax) or vmax <= 0:
         vmax = 1.0
-    fig, ax = new_figure(view_limits(state), args.width, extra_right=1.2)
+    limits = view_limits(state)
+    # A wide view (a layer, a pile) gets its colour bar below, where its label has the figure's width; a
+    # vertical bar as tall as a flat view would cut the label off.
+    wide = (limits[3] - limits[2]) < 0.75 * (limits[1] - limits[0])
+    fig, ax = new_figure(limits, args.width, extra_right=0.0 if wide else 1.2, extra_bottom=1.0 if wide else 0.0)
     norm = Normalize(vmin=-vmax, vmax=vmax)
     coll = draw_discs(ax, state.position[free], state.radius[free], cmap="RdBu_r", norm=norm,
                       edgecolors="none")
@@ -291,7 +296,12 @@ def picture_rotation(state, args):
     unit = "rad" if field == "theta" else "rad/s"
     label = "accumulated rotation theta [rad] (counter-clockwise +)" if field == "theta" \
         else "angular velocity omega [rad/s] (counter-clockwise +)"
-    cb = fig.colorbar(coll, ax=ax, extend="both", shrink=0.9)
+    if wide:
+        cb = fig.colorbar(coll, ax=ax, extend="both", shrink=0.7, location="bottom", aspect=40)
+    else:
+        cb = fig.colorbar(coll, ax=ax, extend="both", shrink=0.9)
+        label = label.replace(" (counter-clockwise +)", "\n(counter-clockwise +)").replace(
+            "accumulated rotation ", "rotation ")
     cb.set_label(label)
     what = "accumulated rotation theta" if field == "theta" else "angular velocity omega"
     ax.set_title(title_of(state, args, what), fontsize=10)
