@@ -223,7 +223,9 @@ def test_rotation(tmp):
             check("rotation: a fixed disc is drawn grey", grey > 2000, grey)
             check("rotation: the free disc with theta = +vmax is dark red", red > 2000, red)
         else:
-            check("rotation: no grey disc when no disc is fixed", grey < 200, grey)
+            # a few hundred anti-aliased text pixels (the colour-bar label below a wide view) are grey too;
+            # a fixed disc gives more than 2000
+            check("rotation: no grey disc when no disc is fixed", grey < 600, grey)
             check("rotation: two dark red discs without fixed ones", red > 4000, red)
         check(f"rotation PNG (fixed={fixed}): 360 px wide", (png_size(prefix + ".png") or (0,))[0] == 360)
     # omega, and a snapshot without theta names the key.
