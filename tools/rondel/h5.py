@@ -205,9 +205,9 @@ class StateFile:
 
     def title(self):
         """'scene (laws), step N, t = T s' for figure titles."""
-        scene = self.config.scene_name() or self.kind
+        scene = self.config.scene_name() or os.path.basename(os.path.dirname(os.path.abspath(self.path)))
         laws = "/".join(self.laws[k] for k in ("normal", "tangential", "rolling") if self.laws[k])
-        return f"{scene} ({laws}), step {self.step}, t = {self.time:.4g} s"
+        return f"{scene}" + (f" ({laws})" if laws else "") + f", step {self.step}, t = {self.time:.4g} s"
 
     def __repr__(self):
         return f"<rondel {self.kind} '{self.path}': step {self.step}, {len(self)} discs>"
