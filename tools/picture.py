@@ -7,7 +7,9 @@
                              [--line-width W] [--vmax V] [--palette]
 
 Kinds (every kind draws the walls of /walls as black lines: kind 0 lines across the view, kind 1
-segments from p0 to p1; periodic box edges are drawn dashed):
+segments from p0 to p1; periodic box edges are drawn dashed). The view is the discs' extent with a
+margin (the domain along periodic axes): --view walls widens it to every wall segment, --view X0 X1 Y0 Y1
+sets it.
   rotation  discs as circles to scale, coloured by the accumulated rotation /discs/theta [rad]
             (--field omega: the angular velocity [rad/s]) on a diverging colour map centred at 0
             (limits +-V, V = --vmax or the 99th percentile of |value|); fixed discs (/discs/flags
@@ -162,15 +164,19 @@ def wall_points(p, wall, kind, p0, p1, normal):
     return np.where((np.asarray(kind)[wall] == 1)[:, None], foot_seg, foot_line)
 
 
-def view_limits(state):
-    """(xmin, xmax, ymin, ymax): the discs' extent (with a margin), the domain along periodic axes."""
+def view_limits(state, view="discs"):
+    """(xmin, xmax, ymin, ymax) of the picture. VIEW 'discs': the discs' extent with a margin (a pile under
+    a tall chute is drawn, not the empty chute); 'walls': also every wall segment; or (x0, x1, y0, y1) as
+    given. Along periodic axes the domain, unless VIEW gives the numbers."""
+    if not isinstance(view, str):
+        return tuple(float(v) for v in view)
     p, r = state.position, state.radius
     if len(r):
         lo = np.min(p - r[:, None], axis=0)
         hi = np.max(p + r[:, None], axis=0)
     else:
         lo, hi = np.zeros(2), np.ones(2)
-    if state.wall_kind is not None and len(state.wall_kind):
+    if view == "walls" and state.wall_kind is not None and len(state.wall_kind):
         seg = np.asarray(state.wall_kind) == 1
         if seg.any():
             pts = np.concatenate([state.wall_p0[seg], state.wall_p1[seg]])
@@ -281,7 +287,7 @@ def picture_rotation(state, args):
         vmax = float(np.max(np.abs(values[free]))) if free.any() else 0.0
     if not np.isfinite(vmax) or vmax <= 0:
         vmax = 1.0
-    limits = view_limits(state)
+    limits = view_limits(state, args.view)
     # A wide view (a layer, a pile) gets its colour bar below, where its label has the figure's width; a
     # vertical bar as tall as a flat view would cut the label off.
     wide = (limits[3] - limits[2]) < 0.75 * (limits[1] - limits[0])
@@ -331,7 +337,7 @@ def picture_forces(state, args):
     all_F = Fn if wFn is None else np.concatenate([Fn, wFn])
     mean_F = float(all_F.mean()) if len(all_F) else 1.0
 
-    limits = view_limits(state)
+    limits = view_limits(state, args.view)
     fig, ax = new_figure(limits, args.width, extra_right=0.0)
     draw_discs(ax, state.position, state.radius, facecolors="0.85", edgecolors="0.7", linewidths=0.2,
                zorder=1)
@@ -393,7 +399,7 @@ def picture_ranks(state, args):
     ranks, counts = rank_counts(rank)
     base = plt.get_cmap("tab10" if len(ranks) <= 10 else "tab20")
     colours = [base(i % base.N) for i in range(len(ranks))]
-    fig, ax, side = new_figure(view_limits(state), args.width, extra_right=1.7, side_axes=True)
+    fig, ax, side = new_figure(view_limits(state, args.view), args.width, extra_right=1.7, side_axes=True)
     cat = np.searchsorted(ranks, rank)
     coll = draw_discs(ax, state.position, state.radius, cmap=ListedColormap(colours),
                       norm=Normalize(vmin=-0.5, vmax=len(ranks) - 0.5), edgecolors="none")
@@ -438,10 +444,22 @@ def main(argv=None):
                     help="rotation: colour limits +-VMAX (default: 99th percentile of |value|)")
     ap.add_argument("--line-width", type=float, default=None,
                     help="forces: line width [pt] of a contact with the mean F_n (default: from disc size)")
+    ap.add_argument("--view", nargs="+", default=["discs"], metavar="discs|walls|X0 X1 Y0 Y1",
+                    help="the region drawn: the discs' extent with a margin (default), also every wall segment "
+                         "(walls), or the given bounds [m]")
     ap.add_argument("--palette", action="store_true",
                     help="PNG: write an 8-bit palette PNG (about 3x smaller; needs Pillow)")
     args = ap.parse_args(argv)
     check_figure_options(ap, args)
+    if args.view in (["discs"], ["walls"]):
+        args.view = args.view[0]
+    else:
+        try:
+            args.view = [float(v) for v in args.view]
+        except ValueError:
+            args.view = None
+        if args.view is None or len(args.view) != 4 or not (args.view[0] < args.view[1] and args.view[2] < args.view[3]):
+            ap.error("--view takes discs, walls, or four numbers X0 X1 Y0 Y1 with X0 < X1 and Y0 < Y1")
     if args.width <= 0:
         ap.error("--width must be > 0")
     return run_tool(TOOL, draw, args)
