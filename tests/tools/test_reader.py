@@ -157,6 +157,27 @@ def test_decimal_final(tmp):
     check("final.csv: nan read", np.isnan(t["theta"][1]))
 
 
+def test_summary_json(tmp, run):
+    """summary.json (written beside summary.txt by builds that have it) wins, with its keys normalised."""
+    d = os.path.join(tmp, "json_run")
+    os.makedirs(d)
+    for name in ("config.ini", "log.txt", "summary.txt"):
+        shutil.copy(run.file(name), d)
+    with open(os.path.join(d, "summary.json"), "w") as f:
+        f.write('{"status": "complete", "steps": 300, "discs": 50, "wall_seconds": 0.5, '
+                '"disc_steps_per_second": 3e4, "dt": 2e-5, "critical_dt": 1e-4, "critical_mode": "normal", '
+                '"critical_pair": "material 0 R=0.002 / material 0 R=0.002"}')
+    r = rondel.open_run(d)
+    s = r.summary()
+    check("summary.json: read, keys normalised", s["complete"] is True and s["disc_steps_per_s"] == 3e4
+          and s["dt_critical"] == 1e-4 and s["source"].endswith("summary.json"), s)
+    check("time step from summary.json", r.time_step() == {"dt": 2e-5, "dt_critical": 1e-4, "critical_mode": "normal",
+          "critical_pair": "material 0 R=0.002 / material 0 R=0.002"}, r.time_step())
+    with open(os.path.join(d, "summary.json"), "w") as f:
+        f.write("{not json")
+    raises("summary.json not JSON", r.summary, "summary.json", "JSON")
+
+
 def test_config():
     cfg = rondel.Config("[domain]\nxlo = 0\nxhi = 1\nperiodic_x = true\n[walls]\nbox = bottom top\n")
     check("config: domain", cfg.domain() == {"xlo": 0.0, "xhi": 1.0, "ylo": None, "yhi": None, "periodic_x": True,
@@ -178,6 +199,7 @@ def main():
         test_snapshots(run, c)
         test_errors(tmp, run, c)
         test_decimal_final(tmp)
+        test_summary_json(tmp, run)
         test_config()
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
