@@ -9,11 +9,11 @@ peak = the largest mobilised angle, residual = the mean mobilised angle over a w
 With several confining stresses the Mohr-Coulomb strength envelope t = s sin(phi) + c cos(phi)
 (s = (s1 + s3)/2, t = (s1 - s3)/2 at peak) is fitted and plotted.
 
-  python3 tools/biaxial.py RUN1/measures.csv [RUN2/measures.csv ...] --out PREFIX [--window 0.05]
+  python3 tools/biaxial.py RUN1/measures.csv [RUN2 ...] --out PREFIX [--window 0.05] [--format pdf] [--dpi 300]
 Writes PREFIX_curves.png, PREFIX_curves.csv, PREFIX_angles.csv and, with >= 2 confining stresses,
-PREFIX_envelope.png. Use --stress lovewe to take s1, s3 from the Love-Weber sxx, syy instead.
+PREFIX_envelope.png (.pdf, .svg with --format). Use --stress loveweber to take s1, s3 from the Love-Weber
+sxx, syy instead. A run directory may be given for its measures.csv. Files are read with tools/rondel.
 """
-import argparse
 import csv
 import math
 import os
@@ -21,16 +21,33 @@ import sys
 
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rondel import CheckFailed, RondelError, RondelFileError, open_run, read_csv, require  # noqa: E402
+from rondel.cli import ArgumentParser, add_figure_options, check_figure_options, pyplot, run_tool, save_figure  # noqa: E402,E501
+
+TOOL = "biaxial"
+COLUMNS = ("eps_axial", "eps_vol", "wall_sxx", "wall_syy", "sxx", "syy")
+
 
 def read_measures(path):
-    """Columns of a measures.csv as a dict of numpy arrays."""
-    with open(path) as f:
-        rows = list(csv.reader(f))
-    head = rows[0]
-    data = np.array([[float(v) for v in r] for r in rows[1:] if r], dtype=float)
-    if data.size == 0:
-        raise ValueError(f"{path}: no data rows")
-    return {h: data[:, i] for i, h in enumerate(head)}
+    """Columns of a biaxial measures.csv as a dict of float arrays (RondelFileError naming the file)."""
+    if os.path.isdir(path):
+        path = os.path.join(path, "measures.csv")
+    t = read_csv(path)
+    if len(t) == 0:
+        raise RondelFileError(path, "no data rows")
+    require(t, COLUMNS, "is this a biaxial run? walls.box with servo walls")
+    return {h: np.asarray(t[h], dtype=float) for h in t.columns}
+
+
+def scene_of(path):
+    """'scene (laws)' of the run directory of PATH, for titles ('' when it has no configuration)."""
+    d = path if os.path.isdir(path) else os.path.dirname(os.path.abspath(path))
+    try:
+        cfg = open_run(d).config
+        return f"{cfg.scene_name()} ({cfg.laws()})"
+    except RondelError:
+        return ""
 
 
 def mobilised_angle(s1, s3):
@@ -54,7 +71,7 @@ def friction_angles(eps_axial, s1, s3, window=0.05):
     phi = mobilised_angle(s1, s3)
     good = np.isfinite(phi)
     if not good.any():
-        raise ValueError("no rows with s1 + s3 > 0")
+        raise CheckFailed("no rows with s1 + s3 > 0: the sample carries no load")
     i_peak = int(np.nanargmax(np.where(good, phi, -np.inf)))
     eps_max = float(np.max(eps[good]))
     in_win = good & (eps >= eps_max - window)
@@ -88,23 +105,30 @@ def stresses(m, which):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("measures", nargs="+", help="measures.csv files (one per biaxial run)")
+    ap = ArgumentParser(TOOL, description=__doc__)
+    ap.add_argument("measures", nargs="+", help="measures.csv files or run directories (one per biaxial run)")
     ap.add_argument("--out", default="biaxial", help="output prefix (default: biaxial)")
     ap.add_argument("--labels", default=None, help="comma-separated labels (default: the run directory names)")
     ap.add_argument("--window", type=float, default=0.05,
                     help="residual window: the last WINDOW of axial strain (default 0.05 = 5 %%)")
     ap.add_argument("--stress", choices=["wall", "loveweber"], default="wall",
                     help="s1, s3 from the box walls (default) or the Love-Weber average")
-    ap.add_argument("--no-plot", action="store_true", help="CSV only")
     ap.add_argument("--no-envelope", action="store_true",
                     help="no strength envelope (the runs differ in more than the confining stress)")
+    add_figure_options(ap, dpi=150)
     a = ap.parse_args(argv)
-
-    labels = a.labels.split(",") if a.labels else [
-        os.path.basename(os.path.dirname(os.path.abspath(p))) or p for p in a.measures]
-    if len(labels) != len(a.measures):
+    check_figure_options(ap, a)
+    if not a.window > 0:
+        ap.error("--window must be > 0")
+    if a.labels and len(a.labels.split(",")) != len(a.measures):
         ap.error("--labels must name every file")
+    return run_tool(TOOL, analyse, a)
+
+
+def analyse(a):
+    labels = a.labels.split(",") if a.labels else [
+        os.path.basename(os.path.normpath(p) if os.path.isdir(p) else os.path.dirname(os.path.abspath(p))) or p
+        for p in a.measures]
     outdir = os.path.dirname(os.path.abspath(a.out))
     os.makedirs(outdir, exist_ok=True)
 
@@ -157,11 +181,11 @@ def main(argv=None):
 
     if a.no_plot:
         return 0
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 8), sharex=True)
+    plt = pyplot()
+    scenes = sorted({scene_of(p) for p in a.measures} - {""})
+    scene = scenes[0] if len(scenes) == 1 else f"{len(runs)} runs"
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 8), sharex=True, layout="constrained")
+    fig.suptitle(f"Biaxial test, {scene}: deviator stress and volumetric strain against axial strain", fontsize=10)
     for lab, m, s1, s3, r in runs:
         ax1.plot(100 * m["eps_axial"], (s1 - s3) / 1e3,
                  label=f"{lab}: peak {r['phi_peak']:.1f}°, res {r['phi_residual']:.1f}°")
@@ -172,12 +196,11 @@ def main(argv=None):
     ax2.set_xlabel("axial strain [%]")
     ax2.set_ylabel("volumetric strain [%] (compression +)")
     ax2.grid(alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(a.out + "_curves.png", dpi=120)
-    plt.close(fig)
+    written = [save_figure(fig, a.out + "_curves", a)]
 
     if env is not None:
-        fig, ax = plt.subplots(figsize=(6, 5))
+        fig, ax = plt.subplots(figsize=(6, 5), layout="constrained")
+        ax.set_title(f"Mohr-Coulomb strength envelope at peak, {scene}", fontsize=10)
         s = np.array([r["s_peak"] for *_, r in runs]) / 1e3
         t = np.array([0.5 * r["q_peak"] for *_, r in runs]) / 1e3
         ax.plot(s, t, "o")
@@ -188,9 +211,8 @@ def main(argv=None):
         ax.set_ylabel("t = (s1 - s3)/2 [kPa]")
         ax.legend()
         ax.grid(alpha=0.3)
-        fig.tight_layout()
-        fig.savefig(a.out + "_envelope.png", dpi=120)
-        plt.close(fig)
+        written.append(save_figure(fig, a.out + "_envelope", a))
+    print("wrote " + ", ".join(written))
     return 0
 
 

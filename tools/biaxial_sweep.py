@@ -7,12 +7,11 @@ values, Jiang models and confining stresses; collect peak and residual friction 
 
 delta = 0 runs with contact.rolling = none (no rolling resistance; the model is then irrelevant, run once).
 Writes OUT/prep_P/ (prepare runs), OUT/MODEL_dDELTA_pP_rRATE/ (shear runs), OUT/table.csv, OUT/table.md,
-OUT/phi_vs_delta.png, plus curves from tools/biaxial.py (OUT/curves_*). Existing finished runs (a
+OUT/phi_vs_delta.png (--format pdf|svg, --dpi), plus curves from tools/biaxial.py (OUT/curves_*). Existing finished runs (a
 summary.txt present) are reused, so the sweep can be extended. Run lengths: --prep-steps, --strain
 (target axial strain; steps = ln(1/(1-strain)) / (rate dt), the top wall moves at a constant true strain
-rate) or --steps.
+rate) or --steps. Exit status: 0 done, 1 bad input or usage, 2 a rondel run failed.
 """
-import argparse
 import concurrent.futures as cf
 import csv
 import math
@@ -25,6 +24,10 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import biaxial  # noqa: E402
+from rondel import CheckFailed, RondelError, UsageError, open_run  # noqa: E402
+from rondel.cli import ArgumentParser, add_figure_options, check_figure_options, pyplot, run_tool, save_figure  # noqa: E402,E501
+
+TOOL = "biaxial_sweep"
 
 DT = 3.36486e-6  # [s] the J05 set-up's step (0.2 x critical, tangential+rolling mode of the smallest discs)
 
@@ -38,25 +41,25 @@ def run(cmd, log):
 
 
 def wall_seconds(outdir):
+    """The run's wall time from its summary (summary.json or summary.txt); NaN when it has none."""
     try:
-        for line in open(os.path.join(outdir, "summary.txt")):
-            if " s wall" in line:
-                return float(line.split(" s wall")[0].split()[-1])
-    except (OSError, ValueError):
-        pass
-    return float("nan")
+        return float(open_run(outdir).summary()["wall_seconds"])
+    except (RondelError, KeyError, TypeError, ValueError):
+        return float("nan")
 
 
 def probe_dt(cmd, outdir):
     """The run's time step (it depends on the laws, e.g. delta): one step into OUTDIR.probe."""
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    out = subprocess.run(cmd + ["--run.steps=1", f"--run.output={outdir}.probe", "--run.overwrite=true",
-                                "--output.checkpoint_at_end=false"],
-                         capture_output=True, text=True, env=env, cwd=ROOT).stdout
-    for line in out.splitlines():
-        if line.startswith("time step "):
-            return float(line.split()[2])
-    return DT
+    p = subprocess.run(cmd + ["--run.steps=1", f"--run.output={outdir}.probe", "--run.overwrite=true",
+                              "--output.checkpoint_at_end=false"], capture_output=True, text=True, env=env, cwd=ROOT)
+    if p.returncode != 0:
+        tail = (p.stderr.strip() or p.stdout.strip()).splitlines()[-1:] or [""]
+        raise CheckFailed(f"the probe run for {outdir} exited with code {p.returncode}: {tail[0]}")
+    try:  # summary.json (dt) when the build writes it, else the log's 'time step' line
+        return float(open_run(f"{outdir}.probe").time_step()["dt"])
+    except RondelError:
+        return DT
 
 
 def done(outdir):
@@ -64,9 +67,10 @@ def done(outdir):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = ArgumentParser(TOOL, description=__doc__)
     ap.add_argument("--out", default="rondel-output-biaxial/sweep")
-    ap.add_argument("--rondel", default=os.path.join(ROOT, "build", "rondel"))
+    ap.add_argument("--rondel", default=os.path.join(ROOT, "build", "rondel"),
+                    help="the rondel executable (default: build/rondel of this checkout)")
     ap.add_argument("--prepare", default=os.path.join(ROOT, "inputs", "biaxial_prepare.ini"))
     ap.add_argument("--shear", default=os.path.join(ROOT, "inputs", "biaxial_jiang.ini"))
     ap.add_argument("--deltas", default="0,0.4,1.6")
@@ -81,21 +85,43 @@ def main(argv=None):
     ap.add_argument("--window", type=float, default=0.05, help="residual window (axial strain)")
     ap.add_argument("--jobs", type=int, default=2, help="runs in parallel")
     ap.add_argument("--extra", action="append", default=[], help="more --section.key=value for every run")
+    add_figure_options(ap, dpi=150)
     a = ap.parse_args(argv)
+    check_figure_options(ap, a)
+    if not os.access(a.rondel, os.X_OK):
+        ap.error(f"the rondel executable '{a.rondel}' does not exist or is not executable "
+                 "(build it: make -C build rondel, or pass --rondel)")
+    for ini in (a.prepare, a.shear):
+        if not os.path.isfile(ini):
+            ap.error(f"'{ini}': no such input file")
+    if a.jobs < 1:
+        ap.error("--jobs must be >= 1")
+    return run_tool(TOOL, sweep, a)
+
+
+def parse_cases(a):
+    """(model, delta, pressure, rate) of every run; UsageError on a malformed list."""
+    try:
+        cases = []
+        for p in [float(x) for x in a.pressures.split(",")]:
+            for d in [float(x) for x in a.deltas.split(",")]:
+                for m in (a.models.split(",") if d > 0 else ["none"]):
+                    cases.append((m, d, p, a.rate))
+        for c in filter(None, a.cases.split(";")):
+            m, d, p, r = c.split(":")
+            cases.append((m if float(d) > 0 else "none", float(d), float(p), float(r)))
+    except ValueError as e:
+        raise UsageError(f"--pressures, --deltas or --cases: {e} (numbers, comma-separated; cases MODEL:DELTA:P:RATE)")
+    return list(dict.fromkeys(cases))
+
+
+def sweep(a):
     os.makedirs(a.out, exist_ok=True)
 
     def shear_steps(rate, dt):
         return a.steps or int(math.ceil(math.log(1.0 / (1.0 - a.strain)) / (rate * dt)))
 
-    cases = []
-    for p in [float(x) for x in a.pressures.split(",")]:
-        for d in [float(x) for x in a.deltas.split(",")]:
-            for m in (a.models.split(",") if d > 0 else ["none"]):
-                cases.append((m, d, p, a.rate))
-    for c in filter(None, a.cases.split(";")):
-        m, d, p, r = c.split(":")
-        cases.append((m if float(d) > 0 else "none", float(d), float(p), float(r)))
-    cases = list(dict.fromkeys(cases))
+    cases = parse_cases(a)
 
     # Stage 1: one prepared sample per confining stress.
     preps = {}
@@ -111,10 +137,10 @@ def main(argv=None):
         for (cmd, log, d), (rc, t) in zip(jobs, ex.map(lambda j: run(j[0], j[1]), jobs)):
             print(f"prepare {d}: rc {rc}, {t:.1f} s", flush=True)
             if rc:
-                sys.exit(f"prepare failed: see {log}")
+                raise CheckFailed(f"the prepare run {d} exited with code {rc}: see {log}")
 
     # Stage 2: the shear runs.
-    runs, jobs = [], []
+    runs, jobs, failed = [], [], []
     for m, dlt, p, r in cases:
         name = f"{m}_d{dlt:g}_p{p/1e3:g}kPa_r{r:g}"
         d = os.path.join(a.out, name)
@@ -134,6 +160,7 @@ def main(argv=None):
         for (cmd, log, d), (rc, t) in zip(jobs, ex.map(lambda j: run(j[0], j[1]), jobs)):
             print(f"shear {d}: rc {rc}, {t:.1f} s", flush=True)
             if rc:
+                failed.append(d)
                 print(f"  FAILED: see {log}", flush=True)
 
     # Collect.
@@ -171,9 +198,10 @@ def main(argv=None):
 
     # Curves of all runs, and phi against delta.
     paths = [os.path.join(x["dir"], "measures.csv") for x in rows]
+    fig_opts = ["--format", a.format, "--dpi", str(a.dpi)] + (["--no-plot"] if a.no_plot else [])
     if paths:
         biaxial.main(paths + ["--out", os.path.join(a.out, "curves"), "--window", str(a.window),
-                              "--labels", ",".join(os.path.basename(x["dir"]) for x in rows), "--no-envelope"])
+                              "--labels", ",".join(os.path.basename(x["dir"]) for x in rows), "--no-envelope"] + fig_opts)
         # Strength envelope per (model, delta, rate) with several confining stresses.
         env = {}
         for x in rows:
@@ -181,11 +209,14 @@ def main(argv=None):
         for (m, dlt, r), xs in env.items():
             if len({x["p_kPa"] for x in xs}) >= 2:
                 biaxial.main([os.path.join(x["dir"], "measures.csv") for x in xs] +
-                             ["--out", os.path.join(a.out, f"envelope_{m}_d{dlt:g}_r{r:g}"), "--window", str(a.window)])
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(figsize=(6, 4.5))
+                             ["--out", os.path.join(a.out, f"envelope_{m}_d{dlt:g}_r{r:g}"), "--window", str(a.window)]
+                             + fig_opts)
+        if a.no_plot:
+            return finish(failed)
+        plt = pyplot()
+        fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
+        ax.set_title(f"Biaxial sweep: peak and residual friction angle against delta (rate {a.rate:g} 1/s)",
+                     fontsize=9)
         groups = {}
         for x in rows:
             if x["rate"] != a.rate:
@@ -201,8 +232,14 @@ def main(argv=None):
         ax.set_ylabel("friction angle [deg]")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
-        fig.tight_layout()
-        fig.savefig(os.path.join(a.out, "phi_vs_delta.png"), dpi=120)
+        print("wrote " + save_figure(fig, os.path.join(a.out, "phi_vs_delta"), a))
+    return finish(failed)
+
+
+def finish(failed):
+    """Exit status 2 when a shear run failed (the table holds the others)."""
+    if failed:
+        raise CheckFailed(f"{len(failed)} shear run(s) failed: " + ", ".join(failed))
     return 0
 
 

@@ -27,14 +27,13 @@ interpolant of (x, vx) at the two steps around it; the frequency of case e comes
 Usage (from the repository root; only numpy and matplotlib are needed; about 2 minutes on 2 cores):
   /usr/bin/python3 tools/error_vs_runtime.py [--rondel build/rondel] [--out study-output]
       [--levels 6 | --quick] [--cases a,a2,b,c,d,e] [--ranks 1] [--phases 5] [--keep-runs]
-Output in --out: <case>.csv per case, combined.csv, combined.md (also printed), error_vs_runtime.png.
-Exit status: 0 done, 2 bad executable, 3 a rondel run failed (e.g. more ranks than the build accepts).
+Output in --out: <case>.csv per case, combined.csv, combined.md (also printed), error_vs_runtime.png
+(--format pdf|svg, --dpi). The critical step comes from the run's summary.json when present, else log.txt.
+Exit status: 0 done, 1 bad executable or option, 2 a rondel run failed (e.g. more ranks than the build accepts).
 """
-import argparse
 import csv
 import math
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -42,10 +41,11 @@ import time
 
 import numpy as np
 
-import matplotlib
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rondel import CheckFailed, RondelError, open_run, read_csv  # noqa: E402
+from rondel.cli import ArgumentParser, add_figure_options, check_figure_options, pyplot, run_tool, save_figure  # noqa: E402,E501
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+TOOL = "error_vs_runtime"
 
 # ---------------------------------------------------------------------------------------------------------
 # Standard objects (docs/validation.md section 0)
@@ -177,8 +177,8 @@ def critical_step_tool(R, k_n, k_s, zeta_n=0.0, zeta_t=0.0, rolling_K=None, wall
 
 # ---------------------------------------------------------------------------------------------------------
 # Running rondel
-class RunError(RuntimeError):
-    pass
+class RunError(CheckFailed):
+    """A rondel run that failed (exit status 2)."""
 
 
 class Runner:
@@ -223,38 +223,34 @@ class Runner:
 
 
 def parse_log(path):
-    text = open(path).read()
-    m = re.search(r"time step ([0-9.eE+-]+) s = .*?critical ([0-9.eE+-]+) s, limited by the (\S+) mode", text)
-    if not m:
-        raise RunError(f"no 'time step' line in {path}")
-    return {"dt_log": float(m.group(1)), "dt_crit_log": float(m.group(2)), "crit_mode": m.group(3)}
+    """dt, critical dt and mode of a run: summary.json when the build writes it, else the log's 'time step' line."""
+    try:
+        ts = open_run(os.path.dirname(path)).time_step()
+    except RondelError as e:
+        raise RunError(str(e)) from None
+    return {"dt_log": float(ts["dt"]), "dt_crit_log": float(ts["dt_critical"]), "crit_mode": ts["critical_mode"]}
 
 
 def parse_summary(path):
-    text = open(path).read()
-    m = re.search(r"summary: (\d+) steps of (\d+) discs in ([0-9.eE+-]+) s wall, ([0-9.eE+-]+) disc-steps/s", text)
-    if not m:
-        raise RunError(f"unexpected summary in {path}: {text[:200]}")
-    return {"steps": int(m.group(1)), "discs": int(m.group(2)), "wall_summary": float(m.group(3)),
-            "disc_steps_per_s": float(m.group(4)), "complete": "status: complete" in text}
+    """Steps, discs, wall time, rate and completion of a run (summary.json or summary.txt)."""
+    try:
+        s = open_run(os.path.dirname(path)).summary()
+    except RondelError as e:
+        raise RunError(str(e)) from None
+    complete = s.get("complete", s.get("status") == "complete")
+    return {"steps": int(s["steps"]), "discs": int(s["discs"]), "wall_summary": float(s["wall_seconds"]),
+            "disc_steps_per_s": float(s["disc_steps_per_s"]), "complete": bool(complete)}
 
 
 def parse_final(path):
-    rows = {}
-    with open(path) as f:
-        header = f.readline().strip().split(",")
-        for line in f:
-            if not line.strip():
-                continue
-            vals = line.strip().split(",")
-            rec = {k: (int(v) if k == "gid" else float.fromhex(v)) for k, v in zip(header, vals)}
-            rows[rec["gid"]] = rec
-    return rows
+    """final.csv as {gid: {column: value}} (exact floats, hexadecimal or decimal)."""
+    t = read_csv(path)
+    return {int(g): t.row(k) for k, g in enumerate(t["gid"])}
 
 
 def parse_diagnostics(path):
-    data = np.genfromtxt(path, delimiter=",", names=True)
-    return data
+    """diagnostics.csv as named columns (rondel.Table)."""
+    return read_csv(path)
 
 
 def write_scene(path, rows):
@@ -749,8 +745,7 @@ def fmt(v, spec):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0],
-                                 formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
+    ap = ArgumentParser(TOOL, description=__doc__.split("\n")[0], epilog=__doc__)
     ap.add_argument("--rondel", default="build/rondel", help="the rondel executable (default build/rondel)")
     ap.add_argument("--out", default="study-output", help="output directory (default study-output/)")
     ap.add_argument("--levels", type=int, default=6, help="number of step sizes, k = 0..levels-1 (default 6)")
@@ -762,7 +757,9 @@ def main(argv=None):
                     help="auto: mpirun when --ranks > 1, else the executable directly")
     ap.add_argument("--phases", type=int, default=None, help="contact-onset phases per impact level (default 5)")
     ap.add_argument("--keep-runs", action="store_true", help="keep the run directories under OUT/runs")
+    add_figure_options(ap, dpi=150)
     args = ap.parse_args(argv)
+    check_figure_options(ap, args)
 
     levels = 3 if args.quick else args.levels
     phases = args.phases or (2 if args.quick else 5)
@@ -774,11 +771,14 @@ def main(argv=None):
             ap.error(f"unknown case '{c}' (choose among {', '.join(CASES)})")
     launcher = args.launcher if args.launcher != "auto" else ("mpirun" if args.ranks > 1 else "direct")
     os.makedirs(args.out, exist_ok=True)
-    try:
-        runner = Runner(args.rondel, args.ranks, args.out, launcher)
-    except RunError as e:
-        print(f"error_vs_runtime: {e}", file=sys.stderr)
-        return 2
+    if not os.access(os.path.abspath(args.rondel), os.X_OK):
+        ap.error(f"the rondel executable '{args.rondel}' does not exist or is not executable "
+                 "(build it: make -C build rondel, or pass --rondel)")
+    return run_tool(TOOL, study, args, keys, levels, phases, launcher)
+
+
+def study(args, keys, levels, phases, launcher):
+    runner = Runner(args.rondel, args.ranks, args.out, launcher)
 
     rank_label = f"{args.ranks} rank" + ("s" if args.ranks > 1 else "")
     results = {}
@@ -807,8 +807,7 @@ def main(argv=None):
                 fit_alt = fitted_order([r["dt"] for r in rows], [r["error_alt"] for r in rows])
             results[key] = {"case": case, "rows": rows, "fit": fit, "fit_alt": fit_alt, "dt_crit": dt_crit}
         except RunError as e:
-            print(f"error_vs_runtime: case {key}: {e}", file=sys.stderr)
-            return 3
+            raise RunError(f"case {key}: {e}") from None
     elapsed = time.perf_counter() - t_start
 
     # tables
@@ -859,11 +858,11 @@ def main(argv=None):
         f.write(text)
     print(text)
 
-    plot(results, os.path.join(args.out, "error_vs_runtime.png"), rank_label)
+    figure = None if args.no_plot else plot(results, os.path.join(args.out, "error_vs_runtime"), rank_label, args)
     if not args.keep_runs:
         shutil.rmtree(os.path.join(args.out, "runs"), ignore_errors=True)
-    print(f"error_vs_runtime: wrote {args.out}/combined.md, combined.csv, <case>.csv, error_vs_runtime.png",
-          file=sys.stderr)
+    print(f"error_vs_runtime: wrote {args.out}/combined.md, combined.csv, <case>.csv"
+          + (f", {figure}" if figure else ""), file=sys.stderr)
     return 0
 
 
@@ -872,7 +871,8 @@ def mdc(text):
     return str(text).replace("|", "\\|")
 
 
-def plot(results, path, rank_label):
+def plot(results, stem, rank_label, args):
+    plt = pyplot()
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(15, 6.5))
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     for i, (key, R) in enumerate(results.items()):
@@ -912,10 +912,10 @@ def plot(results, path, rank_label):
         ax.grid(True, which="both", alpha=0.25)
     handles, labels = ax2.get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=2, fontsize=7.5, frameon=False)
-    fig.suptitle("Rondel: error against run time, docs/validation.md section 7", fontsize=11)
+    fig.suptitle("Rondel validation cases with exact answers: error against run time and step size "
+                 f"({rank_label})", fontsize=11)
     fig.tight_layout(rect=(0, 0.16, 1, 1))
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    return save_figure(fig, stem, args)
 
 
 if __name__ == "__main__":

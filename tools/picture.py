@@ -2,15 +2,18 @@
 """Pictures of one Rondel state file (checkpoint or snapshot, FORMAT.md) as PNG (+ CSV).
 
     python3 tools/picture.py FILE_OR_RUN_DIR --kind rotation|forces|ranks --out PREFIX
-                             [--field theta|omega] [--dpi 120] [--title TEXT] [--width 8]
+                             [--field theta|omega] [--format png|pdf|svg] [--dpi 120]
+                             [--title TEXT] [--width 8]
                              [--line-width W] [--vmax V] [--palette]
 
 Kinds (every kind draws the walls of /walls as black lines: kind 0 lines across the view, kind 1
-segments from p0 to p1; periodic box edges are drawn dashed):
+segments from p0 to p1; periodic box edges are drawn dashed). The view is the discs' extent with a
+margin (the domain along periodic axes): --view walls widens it to every wall segment, --view X0 X1 Y0 Y1
+sets it.
   rotation  discs as circles to scale, coloured by the accumulated rotation /discs/theta [rad]
             (--field omega: the angular velocity [rad/s]) on a diverging colour map centred at 0
             (limits +-V, V = --vmax or the 99th percentile of |value|); fixed discs (/discs/flags
-            bit 0) grey. Writes PREFIX.png.
+            bit 0) grey. Writes PREFIX.png (.pdf, .svg: --format).
   forces    the contact-force network of a checkpoint: for each /contacts row with F_n > 0 a line
             between the two disc centres, width proportional to F_n / mean F_n, over faint discs.
             Periodic boundaries: the branch vector is the minimum image, the segment is drawn from
@@ -29,134 +32,69 @@ rotation and ranks fall back to the newest checkpoint when there is no snapshot)
 The figure is --width inches wide (height from the view's aspect), so the PNG is width*dpi pixels wide;
 --palette writes an 8-bit palette PNG (about 3x smaller, for documentation; needs Pillow).
 Vectorised: discs are one EllipseCollection (units='xy'), contacts one LineCollection, so 100k discs
-take a few seconds. Exit status 1 with a message naming the file on any error (missing file, not a
-Rondel file, dataset missing).
+take a few seconds. Exit status 1 with a one-line message naming the file on any error (missing file, not a
+Rondel file, dataset missing); files are read with tools/rondel (docs/python.md).
 
 Needs Debian's /usr/bin/python3 with python3-h5py, python3-numpy, python3-matplotlib (--palette:
 python3-pil). Test: tests/tools/test_picture_tool.py (ctest tools.picture).
 """
-import argparse
-import configparser
 import csv
-import glob
 import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rondel import Config, RondelError, open_any  # noqa: E402
+from rondel.cli import ArgumentParser, add_figure_options, check_figure_options, pyplot, run_tool, save_figure  # noqa: E402,E501
+
 try:
-    import h5py
     import numpy as np
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     from matplotlib.collections import EllipseCollection, LineCollection
     from matplotlib.colors import ListedColormap, Normalize
     from matplotlib.patches import Patch
 except ImportError as e:  # pragma: no cover - depends on the machine
-    sys.exit(f"picture: the Python module {e.name} is missing for {sys.executable}: run the tool with "
-             "Debian's /usr/bin/python3 after apt-get install python3-h5py python3-numpy python3-matplotlib")
-
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from h5info import text  # noqa: E402  (an HDF5 attribute as Python text or number)
+    print(f"picture: error: the Python module {e.name} is missing for {sys.executable}: run the tool with "
+          "Debian's /usr/bin/python3 after apt-get install python3-h5py python3-numpy python3-matplotlib",
+          file=sys.stderr)
+    sys.exit(1)
 
 KINDS = ("rotation", "forces", "ranks")
+TOOL = "picture"
 
 
-class PictureError(Exception):
-    """An error to report to the user as 'picture: MESSAGE' with exit status 1."""
+class PictureError(RondelError):
+    """An error to report to the user as 'picture: error: MESSAGE' with exit status 1."""
 
 
 # ----------------------------------------------------------------------------------------- reading
 
 
-def newest(directory, prefix):
-    """The newest PREFIX_<step>.h5 of DIRECTORY (names sort by zero-padded step), or None."""
-    files = sorted(glob.glob(os.path.join(directory, f"{prefix}_*.h5")))
-    return files[-1] if files else None
-
-
 def resolve(path, kind):
     """The state file to draw: PATH itself, or the newest suitable file of the run directory PATH."""
-    if not os.path.exists(path):
-        raise PictureError(f"'{path}': no such file or directory")
-    if not os.path.isdir(path):
-        return path
-    order = ("checkpoint",) if kind == "forces" else ("snapshot", "checkpoint")
-    for prefix in order:
-        found = newest(path, prefix)
-        if found:
-            return found
-    wanted = " or ".join(f"{p}_*.h5" for p in order)
-    raise PictureError(f"'{path}': the directory holds no {wanted}")
+    return open_any(path, ("checkpoint",) if kind == "forces" else ("snapshot", "checkpoint"))
 
 
 def parse_domain(config_text):
-    """[domain] of the stored configuration: dict xlo, xhi, ylo, yhi (float), periodic_x, periodic_y (bool).
-
-    Missing keys give None (bounds) and False (periodic)."""
-    cp = configparser.ConfigParser(interpolation=None, strict=False)
-    cp.optionxform = str
-    try:
-        cp.read_string(config_text or "")
-    except configparser.Error as e:
-        raise PictureError(f"the config attribute is not readable INI text: {e}")
-    sec = cp["domain"] if cp.has_section("domain") else {}
-    dom = {}
-    for k in ("xlo", "xhi", "ylo", "yhi"):
-        v = sec.get(k, "").strip() if sec else ""
-        dom[k] = float(v) if v else None
-    for k in ("periodic_x", "periodic_y"):
-        v = (sec.get(k, "") if sec else "").strip().lower()
-        dom[k] = v in ("1", "true", "yes", "on")
-    for axis in ("x", "y"):
-        if dom[f"periodic_{axis}"] and (dom[f"{axis}lo"] is None or dom[f"{axis}hi"] is None):
-            raise PictureError(f"periodic in {axis} but [domain] {axis}lo/{axis}hi are missing from config")
-    return dom
+    """[domain] of a configuration text: xlo, xhi, ylo, yhi (float or None), periodic_x, periodic_y (bool)."""
+    return Config(config_text, "<config>").domain()
 
 
 class State:
     """The datasets of one Rondel file that the pictures use (numpy arrays, None when absent)."""
 
-    def __init__(self, path):
-        self.path = path
-        try:
-            f = h5py.File(path, "r")
-        except OSError as e:
-            raise PictureError(f"'{path}': not a readable HDF5 file ({e})")
-        with f:
-            fmt = text(f.attrs.get("format", ""))
-            if fmt != "rondel":
-                raise PictureError(f"'{path}': not a Rondel file (root attribute format is "
-                                   f"{fmt!r}, expected 'rondel')")
-            if "complete" not in f.attrs:
-                raise PictureError(f"'{path}': the file is incomplete (no 'complete' attribute: it was cut short)")
-            self.kind = text(f.attrs.get("kind", "?"))
-            self.step = int(text(f.attrs.get("step", -1)))
-            self.time = float(text(f.attrs.get("time", float("nan"))))
-            self.domain = parse_domain(text(f.attrs.get("config", "")))
-
-            def get(name):
-                return f[name][()] if name in f and isinstance(f[name], h5py.Dataset) else None
-
-            self.position = get("discs/position")
-            self.radius = get("discs/radius")
-            self.gid = get("discs/gid")
-            self.theta = get("discs/theta")
-            self.omega = get("discs/omega")
-            self.rank = get("discs/rank")
-            self.flags = get("discs/flags")
-            self.contact_key = get("contacts/key")
-            self.contact_Fn = get("contacts/F_n")
-            self.wall_key = get("wall_contacts/key")
-            self.wall_Fn = get("wall_contacts/F_n")
-            self.wall_kind = get("walls/kind")
-            self.wall_p0 = get("walls/p0")
-            self.wall_p1 = get("walls/p1")
-            self.wall_normal = get("walls/normal")
-        for name in ("position", "radius"):
-            if getattr(self, name) is None:
-                self.missing(f"/discs/{name}", name)
-        self.position = np.asarray(self.position, dtype=float).reshape(-1, 2)
-        self.radius = np.asarray(self.radius, dtype=float)
+    def __init__(self, f):
+        self.file = f
+        self.path, self.kind, self.step, self.time = f.path, f.kind, f.step, f.time
+        self.domain = f.config.domain()
+        d, c, wc, w = f.discs, f.contacts or {}, f.wall_contacts or {}, f.walls
+        self.position = np.asarray(f.disc("position"), dtype=float).reshape(-1, 2)
+        self.radius = np.asarray(f.disc("radius"), dtype=float)
+        self.gid, self.theta, self.omega = d.get("gid"), d.get("theta"), d.get("omega")
+        self.rank, self.flags = d.get("rank"), d.get("flags")
+        self.contact_key, self.contact_Fn = c.get("key"), c.get("F_n")
+        self.wall_key, self.wall_Fn = wc.get("key"), wc.get("F_n")
+        self.wall_kind, self.wall_p0, self.wall_p1 = w.get("kind"), w.get("p0"), w.get("p1")
+        self.wall_normal = w.get("normal")
 
     def missing(self, dataset, field=None, extra=""):
         """Raise the error for a missing dataset, naming the key that writes it."""
@@ -171,22 +109,13 @@ class State:
 
     def fixed(self):
         """Boolean mask of fixed discs (flags bit 0); all False without /discs/flags."""
-        if self.flags is None:
-            return np.zeros(len(self.radius), dtype=bool)
-        return (np.asarray(self.flags).astype(np.int64) & 1) != 0
+        return self.file.fixed()
 
     def rows_of(self, gids):
         """Row of each gid in /discs (rows are in ascending gid)."""
         if self.gid is None:
             self.missing("/discs/gid", "gid", " (needed to place contacts)")
-        gid = np.asarray(self.gid)
-        gids = np.asarray(gids, dtype=gid.dtype)
-        rows = np.searchsorted(gid, gids)
-        rows = np.clip(rows, 0, len(gid) - 1)
-        bad = gid[rows] != gids
-        if bad.any():
-            raise PictureError(f"'{self.path}': contact gid {int(gids[bad][0])} is not in /discs/gid")
-        return rows
+        return self.file.rows_of(gids)
 
 
 # ------------------------------------------------------------------------------------------ geometry
@@ -235,15 +164,19 @@ def wall_points(p, wall, kind, p0, p1, normal):
     return np.where((np.asarray(kind)[wall] == 1)[:, None], foot_seg, foot_line)
 
 
-def view_limits(state):
-    """(xmin, xmax, ymin, ymax): the discs' extent (with a margin), the domain along periodic axes."""
+def view_limits(state, view="discs"):
+    """(xmin, xmax, ymin, ymax) of the picture. VIEW 'discs': the discs' extent with a margin (a pile under
+    a tall chute is drawn, not the empty chute); 'walls': also every wall segment; or (x0, x1, y0, y1) as
+    given. Along periodic axes the domain, unless VIEW gives the numbers."""
+    if not isinstance(view, str):
+        return tuple(float(v) for v in view)
     p, r = state.position, state.radius
     if len(r):
         lo = np.min(p - r[:, None], axis=0)
         hi = np.max(p + r[:, None], axis=0)
     else:
         lo, hi = np.zeros(2), np.ones(2)
-    if state.wall_kind is not None and len(state.wall_kind):
+    if view == "walls" and state.wall_kind is not None and len(state.wall_kind):
         seg = np.asarray(state.wall_kind) == 1
         if seg.any():
             pts = np.concatenate([state.wall_p0[seg], state.wall_p1[seg]])
@@ -259,13 +192,14 @@ def view_limits(state):
 
 # ------------------------------------------------------------------------------------------ drawing
 
-def new_figure(limits, width_in, extra_right=0.0, side_axes=False):
+def new_figure(limits, width_in, extra_right=0.0, side_axes=False, extra_bottom=0.0):
     """A figure WIDTH_IN inches wide, equal-aspect axes set to LIMITS; EXTRA_RIGHT inches for a colour bar
-    or legend (SIDE_AXES: returns also an empty axes of that width for a legend)."""
+    or legend (SIDE_AXES: returns also an empty axes of that width for a legend), EXTRA_BOTTOM inches for a
+    horizontal colour bar."""
     x0, x1, y0, y1 = limits
     aspect = (y1 - y0) / (x1 - x0)
     plot_w = width_in - extra_right - 0.9
-    height_in = float(np.clip(plot_w * aspect + 0.9, 2.5, 2.5 * width_in))
+    height_in = float(np.clip(plot_w * aspect + 0.9, 2.5 - extra_bottom, 2.5 * width_in)) + extra_bottom
     fig = plt.figure(figsize=(width_in, height_in), layout="constrained")
     if side_axes:
         ax, side = fig.subplots(1, 2, gridspec_kw=dict(width_ratios=[width_in - extra_right, extra_right]))
@@ -311,30 +245,30 @@ def draw_walls(ax, state):
 
 
 def title_of(state, args, what):
+    """What is shown, of which scene and laws, when: 'rotation theta: pile (linear/coulomb/none), step ...'."""
     if args.title:
         return args.title
-    return f"{what}: {os.path.basename(state.path)} ({state.kind}, step {state.step}, t = {state.time:.4g} s)"
+    return f"{what}: {state.file.title()}"
 
 
 def save(fig, prefix, args):
-    """Write PREFIX.png; with --palette as an 8-bit palette PNG (about 3x smaller, needs Pillow)."""
-    png = prefix + ".png"
-    os.makedirs(os.path.dirname(os.path.abspath(png)), exist_ok=True)
-    fig.savefig(png, dpi=args.dpi)
-    plt.close(fig)
-    if args.palette:
+    """Write PREFIX.<format>; with --palette (PNG only) as an 8-bit palette PNG (about 3x smaller, needs Pillow).
+
+    The figure uses constrained layout, which keeps labels and the colour bar inside it, so it is written
+    at its full size (--width x --dpi pixels wide) rather than cropped."""
+    out = save_figure(fig, prefix, args, tight=False)
+    if args.palette and args.format == "png":
         try:
-            from PIL import Image
+            from PIL import Image, features
         except ImportError:
             raise PictureError("--palette needs Pillow (Debian: python3-pil)")
-        with Image.open(png) as im:
+        with Image.open(out) as im:
             rgb = im.convert("RGB")
         # libimagequant keeps colour-map gradients smooth; Pillow without it: fast octree.
-        from PIL import features
         Q = getattr(Image, "Quantize", Image)
         method = Q.LIBIMAGEQUANT if features.check_feature("libimagequant") else Q.FASTOCTREE
-        rgb.quantize(256, method=method).save(png, optimize=True)
-    return png
+        rgb.quantize(256, method=method).save(out, optimize=True)
+    return out
 
 
 def picture_rotation(state, args):
@@ -353,7 +287,11 @@ def picture_rotation(state, args):
         vmax = float(np.max(np.abs(values[free]))) if free.any() else 0.0
     if not np.isfinite(vmax) or vmax <= 0:
         vmax = 1.0
-    fig, ax = new_figure(view_limits(state), args.width, extra_right=1.2)
+    limits = view_limits(state, args.view)
+    # A wide view (a layer, a pile) gets its colour bar below, where its label has the figure's width; a
+    # vertical bar as tall as a flat view would cut the label off.
+    wide = (limits[3] - limits[2]) < 0.75 * (limits[1] - limits[0])
+    fig, ax = new_figure(limits, args.width, extra_right=0.0 if wide else 1.2, extra_bottom=1.0 if wide else 0.0)
     norm = Normalize(vmin=-vmax, vmax=vmax)
     coll = draw_discs(ax, state.position[free], state.radius[free], cmap="RdBu_r", norm=norm,
                       edgecolors="none")
@@ -364,9 +302,14 @@ def picture_rotation(state, args):
     unit = "rad" if field == "theta" else "rad/s"
     label = "accumulated rotation theta [rad] (counter-clockwise +)" if field == "theta" \
         else "angular velocity omega [rad/s] (counter-clockwise +)"
-    cb = fig.colorbar(coll, ax=ax, extend="both", shrink=0.9)
+    if wide:
+        cb = fig.colorbar(coll, ax=ax, extend="both", shrink=0.7, location="bottom", aspect=40)
+    else:
+        cb = fig.colorbar(coll, ax=ax, extend="both", shrink=0.9)
+        label = label.replace(" (counter-clockwise +)", "\n(counter-clockwise +)").replace(
+            "accumulated rotation ", "rotation ")
     cb.set_label(label)
-    what = "rotation" if field == "theta" else "angular velocity"
+    what = "accumulated rotation theta" if field == "theta" else "angular velocity omega"
     ax.set_title(title_of(state, args, what), fontsize=10)
     note = f"colour limits +-{vmax:.3g} {unit}"
     if fixed.any():
@@ -394,7 +337,7 @@ def picture_forces(state, args):
     all_F = Fn if wFn is None else np.concatenate([Fn, wFn])
     mean_F = float(all_F.mean()) if len(all_F) else 1.0
 
-    limits = view_limits(state)
+    limits = view_limits(state, args.view)
     fig, ax = new_figure(limits, args.width, extra_right=0.0)
     draw_discs(ax, state.position, state.radius, facecolors="0.85", edgecolors="0.7", linewidths=0.2,
                zorder=1)
@@ -421,7 +364,7 @@ def picture_forces(state, args):
         ax.add_collection(LineCollection(np.stack([p, q], axis=1), linewidths=base * wFn / mean_F,
                                          colors="navy", capstyle="round", zorder=3))
     draw_walls(ax, state)
-    ax.set_title(title_of(state, args, "contact forces"), fontsize=10)
+    ax.set_title(title_of(state, args, "normal contact forces F_n"), fontsize=10)
     n_w = 0 if wFn is None else len(wFn)
     ax.text(0.01, 0.99, f"{len(Fn)} loaded disc contacts (red), {n_w} wall contacts (blue); "
             f"width = {base:.2g} pt x F_n / mean F_n, mean F_n = {mean_F:.3g} N",
@@ -456,7 +399,7 @@ def picture_ranks(state, args):
     ranks, counts = rank_counts(rank)
     base = plt.get_cmap("tab10" if len(ranks) <= 10 else "tab20")
     colours = [base(i % base.N) for i in range(len(ranks))]
-    fig, ax, side = new_figure(view_limits(state), args.width, extra_right=1.7, side_axes=True)
+    fig, ax, side = new_figure(view_limits(state, args.view), args.width, extra_right=1.7, side_axes=True)
     cat = np.searchsorted(ranks, rank)
     coll = draw_discs(ax, state.position, state.radius, cmap=ListedColormap(colours),
                       norm=Normalize(vmin=-0.5, vmax=len(ranks) - 0.5), edgecolors="none")
@@ -466,7 +409,7 @@ def picture_ranks(state, args):
                for i, (r, c) in enumerate(zip(ranks, counts))]
     side.legend(handles=handles, loc="upper left", fontsize=8,
               title=f"{len(ranks)} ranks", title_fontsize=8, frameon=False)
-    ax.set_title(title_of(state, args, "owner rank"), fontsize=10)
+    ax.set_title(title_of(state, args, "owner rank of each disc"), fontsize=10)
     out = [save(fig, args.out, args)]
     with open(args.out + ".csv", "w", newline="") as f:
         w = csv.writer(f)
@@ -479,35 +422,47 @@ def picture_ranks(state, args):
 
 # --------------------------------------------------------------------------------------------- main
 
+def draw(args):
+    state = State(resolve(args.file, args.kind))
+    written = {"rotation": picture_rotation, "forces": picture_forces, "ranks": picture_ranks}[args.kind](state, args)
+    print(f"picture: {state.path} ({state.kind}, step {state.step}, {len(state.radius)} discs) -> "
+          + ", ".join(written))
+
+
 def main(argv=None):
-    ap = argparse.ArgumentParser(description="Pictures of a Rondel checkpoint or snapshot (PNG + CSV).",
-                                 epilog="See the module docstring (head of tools/picture.py) for details.")
+    ap = ArgumentParser(TOOL, description="Pictures of a Rondel checkpoint or snapshot (figure + CSV).",
+                        epilog="See the module docstring (head of tools/picture.py) for details.")
     ap.add_argument("file", help="a snapshot_*.h5 / checkpoint_*.h5, or a run directory (newest file)")
     ap.add_argument("--kind", required=True, choices=KINDS)
-    ap.add_argument("--out", required=True, help="output prefix: writes PREFIX.png (and PREFIX.csv)")
+    ap.add_argument("--out", required=True, help="output prefix: writes PREFIX.<format> (and PREFIX.csv)")
     ap.add_argument("--field", default="theta", choices=("theta", "omega"),
                     help="rotation: colour by theta (accumulated rotation, default) or omega")
-    ap.add_argument("--dpi", type=float, default=120.0, help="PNG resolution (default 120)")
+    add_figure_options(ap, dpi=120, no_plot=False)
     ap.add_argument("--width", type=float, default=8.0, help="figure width in inches (default 8)")
-    ap.add_argument("--title", default=None, help="figure title (default: kind, file, step, time)")
+    ap.add_argument("--title", default=None, help="figure title (default: quantity, scene, laws, step, time)")
     ap.add_argument("--vmax", type=float, default=None,
                     help="rotation: colour limits +-VMAX (default: 99th percentile of |value|)")
     ap.add_argument("--line-width", type=float, default=None,
                     help="forces: line width [pt] of a contact with the mean F_n (default: from disc size)")
+    ap.add_argument("--view", nargs="+", default=["discs"], metavar="discs|walls|X0 X1 Y0 Y1",
+                    help="the region drawn: the discs' extent with a margin (default), also every wall segment "
+                         "(walls), or the given bounds [m]")
     ap.add_argument("--palette", action="store_true",
-                    help="write an 8-bit palette PNG (about 3x smaller; needs Pillow)")
+                    help="PNG: write an 8-bit palette PNG (about 3x smaller; needs Pillow)")
     args = ap.parse_args(argv)
-    try:
-        path = resolve(args.file, args.kind)
-        state = State(path)
-        draw = {"rotation": picture_rotation, "forces": picture_forces, "ranks": picture_ranks}[args.kind]
-        written = draw(state, args)
-    except PictureError as e:
-        print(f"picture: {e}", file=sys.stderr)
-        return 1
-    print(f"picture: {path} ({state.kind}, step {state.step}, {len(state.radius)} discs) -> "
-          + ", ".join(written))
-    return 0
+    check_figure_options(ap, args)
+    if args.view in (["discs"], ["walls"]):
+        args.view = args.view[0]
+    else:
+        try:
+            args.view = [float(v) for v in args.view]
+        except ValueError:
+            args.view = None
+        if args.view is None or len(args.view) != 4 or not (args.view[0] < args.view[1] and args.view[2] < args.view[3]):
+            ap.error("--view takes discs, walls, or four numbers X0 X1 Y0 Y1 with X0 < X1 and Y0 < Y1")
+    if args.width <= 0:
+        ap.error("--width must be > 0")
+    return run_tool(TOOL, draw, args)
 
 
 if __name__ == "__main__":

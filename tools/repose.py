@@ -23,13 +23,12 @@ Method:
      height above the floor lies in [lo H, hi H] (--window, default 0.2 0.8: leaves out the toe and the
      rounded apex). Angle = atan(|slope|); residual = RMS of the vertical distances to the line.
 
-Writes PREFIX.png (discs, surface points, fitted lines), PREFIX.csv (surface profile, one row per bin),
-PREFIX_angles.csv (left, right, mean) and prints the angles. PREFIX defaults to RUN_DIR/repose.
-Exit status: 0 done, 2 a missing or unreadable input, 3 no heap could be measured.
+Writes PREFIX.png (discs, surface points, fitted lines; --format pdf|svg, --dpi; cropped to the heap),
+PREFIX.csv (surface profile, one row per bin), PREFIX_angles.csv (left, right, mean) and prints the
+angles. PREFIX defaults to RUN_DIR/repose. Files are read with tools/rondel (docs/python.md).
+Exit status: 0 done, 1 a missing or unreadable input or a bad option, 2 no heap could be measured.
 """
-import argparse
 import csv
-import glob
 import math
 import os
 import re
@@ -37,93 +36,78 @@ import sys
 
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rondel import CheckFailed, RondelFileError, open_file, open_run, read_csv, require  # noqa: E402
+from rondel.cli import ArgumentParser, add_figure_options, check_figure_options, pyplot, run_tool, save_figure  # noqa: E402,E501
 
-class InputError(Exception):
-    """A missing or unreadable input file (exit status 2)."""
+TOOL = "repose"
+InputError = RondelFileError  # a missing or unreadable input file (exit status 1)
 
 
-class MeasureError(Exception):
-    """The discs do not form a measurable heap (exit status 3)."""
+class MeasureError(CheckFailed):
+    """The discs do not form a measurable heap (exit status 2)."""
 
 
 # ---------------------------------------------------------------------------------------------- input
 
-def _step_of(path):
-    m = re.search(r"_(\d+)\.h5$", os.path.basename(path))
-    return int(m.group(1)) if m else -1
-
-
 def newest_h5(run_dir):
     """The checkpoint or snapshot with the largest step in RUN_DIR (a checkpoint wins a tie), or None."""
-    files = glob.glob(os.path.join(run_dir, "checkpoint_*.h5")) + glob.glob(os.path.join(run_dir, "snapshot_*.h5"))
+    run = open_run(run_dir)
+    files = [(p, 1) for p in run.checkpoint_paths()] + [(p, 0) for p in run.snapshot_paths()]
     if not files:
         return None
-    return max(files, key=lambda p: (_step_of(p), os.path.basename(p).startswith("checkpoint")))
+    from rondel import step_of_name
+    return max(files, key=lambda pk: (step_of_name(pk[0]), pk[1]))[0]
 
 
 def read_h5(path):
-    """(gid or None, positions (n, 2), radii (n)) from a Rondel .h5 file."""
-    try:
-        import h5py
-    except ImportError as e:  # pragma: no cover
-        raise InputError("h5py is needed to read .h5 files (Debian: apt-get install python3-h5py)") from e
-    try:
-        with h5py.File(path, "r") as f:
-            if "discs" not in f or "radius" not in f["discs"]:
-                raise InputError(f"{path}: no /discs/radius dataset (a snapshot needs 'radius' in "
-                                 "output.snapshot_fields)")
-            radius = np.asarray(f["discs/radius"][()], dtype=float)
-            pos = np.asarray(f["discs/position"][()], dtype=float) if "position" in f["discs"] else None
-            gid = np.asarray(f["discs/gid"][()], dtype=np.int64) if "gid" in f["discs"] else None
-    except OSError as e:
-        raise InputError(f"{path}: cannot read as HDF5 ({e})") from e
-    return gid, pos, radius
+    """(gid or None, positions (n, 2) or None, radii (n)) and the file's title from a Rondel .h5 file."""
+    f = open_file(path)
+    radius = np.asarray(f.disc("radius"), dtype=float)
+    pos = np.asarray(f.discs["position"], dtype=float).reshape(-1, 2) if "position" in f.discs else None
+    gid = np.asarray(f.discs["gid"], dtype=np.int64) if "gid" in f.discs else None
+    return gid, pos, radius, f.title().split(", step")[0]
 
 
 def read_final_csv(path):
-    """(gid, positions (n, 2)) from a final.csv (hexadecimal floats)."""
-    with open(path) as f:
-        rows = list(csv.reader(f))
-    if not rows or rows[0][:3] != ["gid", "x", "y"]:
-        raise InputError(f"{path}: expected a header 'gid,x,y,...'")
-    gid, pos = [], []
-    for r in rows[1:]:
-        if not r:
-            continue
-        gid.append(int(r[0]))
-        pos.append((float.fromhex(r[1]), float.fromhex(r[2])))
-    if not gid:
-        raise InputError(f"{path}: no disc rows")
-    return np.array(gid, dtype=np.int64), np.array(pos, dtype=float)
+    """(gid, positions (n, 2)) from a final.csv (hexadecimal or decimal floats; extra columns ignored)."""
+    t = read_csv(path)
+    require(t, ("gid", "x", "y"), "a Rondel final.csv")
+    if len(t) == 0:
+        raise InputError(path, "no disc rows")
+    return t["gid"].astype(np.int64), np.column_stack([t["x"], t["y"]]).astype(float)
 
 
 def load(path):
-    """Positions (n, 2), radii (n) and a description of the sources, from a run directory or a .h5 file."""
+    """Positions (n, 2), radii (n), a description of the sources and a scene title, from a run directory or
+    a .h5 file (or a final.csv: its directory)."""
     if not os.path.exists(path):
-        raise InputError(f"no such run directory or file: {path}")
+        raise InputError(path, "no such run directory or file")
     if os.path.isfile(path) and os.path.basename(path) == "final.csv":
         path = os.path.dirname(path) or "."
     if os.path.isfile(path):
-        gid, pos, radius = read_h5(path)
+        gid, pos, radius, scene = read_h5(path)
         if pos is None:
-            raise InputError(f"{path}: no /discs/position dataset")
-        return pos, radius, path
+            raise InputError(path, "no /discs/position dataset")
+        return pos, radius, path, scene
     final = os.path.join(path, "final.csv")
     h5 = newest_h5(path)
     if h5 is None:
-        raise InputError(f"{path}: no checkpoint_*.h5 or snapshot_*.h5 (the radii are read from one; "
+        raise InputError(path, "no checkpoint_*.h5 or snapshot_*.h5 (the radii are read from one; "
                          "output.checkpoint_at_end = true writes one at the end)")
-    gid_h5, pos_h5, radius = read_h5(h5)
+    gid_h5, pos_h5, radius, scene = read_h5(h5)
     if not os.path.isfile(final):
         if pos_h5 is None:
-            raise InputError(f"{path}: no final.csv, and {h5} has no /discs/position")
-        return pos_h5, radius, h5
+            raise InputError(path, f"no final.csv, and {h5} has no /discs/position")
+        return pos_h5, radius, h5, scene
     gid, pos = read_final_csv(final)
+    if "radius" in read_csv(final):
+        radius = np.asarray(read_csv(final)["radius"], dtype=float)
     if len(gid) != len(radius):
-        raise InputError(f"{final} has {len(gid)} discs but {h5} has {len(radius)}")
+        raise InputError(final, f"has {len(gid)} discs but {h5} has {len(radius)}")
     if gid_h5 is not None and not np.array_equal(gid, gid_h5):
-        raise InputError(f"{final} and {h5} list different gids")
-    return pos, radius, f"{final} + radii from {os.path.basename(h5)}"
+        raise InputError(final, f"lists other gids than {h5}")
+    return pos, radius, f"{final} + radii from {os.path.basename(h5)}", scene
 
 
 # -------------------------------------------------------------------------------------------- measure
@@ -280,10 +264,8 @@ def write_angles(path, r, source):
                     repr(r["height"]), r["window"][0], r["window"][1], repr(r["bin"]), source])
 
 
-def plot(path, pos, radius, r, title):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+def plot(stem, pos, radius, r, title, a):
+    plt = pyplot()
     from matplotlib.collections import EllipseCollection
 
     p = r["profile"]
@@ -317,51 +299,27 @@ def plot(path, pos, radius, r, title):
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
-    ax.set_title(f"{title}: angle of repose {r['mean']:.1f} deg (mean of left and right), "
+    ax.set_title(f"Angle of repose, {title}: {r['mean']:.1f} deg (mean of left and right flank), "
                  f"window {r['window'][0]:g}-{r['window'][1]:g} H, H = {r['height'] * 1e3:.1f} mm", fontsize=9)
     ax.legend(loc="upper right", fontsize=7, framealpha=0.9)
-    fig.tight_layout()
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
+    return save_figure(fig, stem, a)  # cropped to the heap: bbox_inches='tight' drops the empty band
 
 
-def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("run", help="run directory (final.csv + a checkpoint or snapshot) or a .h5 file")
-    ap.add_argument("--out", default=None, help="output prefix (default: RUN_DIR/repose, or FILE without .h5)")
-    ap.add_argument("--bin", type=float, default=None, help="x-bin width [m] (default: the mean diameter)")
-    ap.add_argument("--window", type=float, nargs=2, default=(0.2, 0.8), metavar=("LO", "HI"),
-                    help="fit window, fractions of the heap height above the floor (default 0.2 0.8)")
-    ap.add_argument("--floor", type=float, default=None, help="floor height [m] (default: lowest disc bottom)")
-    ap.add_argument("--min-height", type=float, default=None,
-                    help="drop bins whose surface is lower above the floor [m] (default: 1.05 x the largest "
-                         "diameter)")
-    ap.add_argument("--touch", type=float, default=0.05,
-                    help="contact tolerance for the resting test, x mean radius (default 0.05)")
-    ap.add_argument("--gap", type=int, default=1, help="empty bins bridged inside the heap (default 1)")
-    ap.add_argument("--title", default=None, help="figure title (default: the run name)")
-    ap.add_argument("--no-plot", action="store_true", help="CSV only")
-    a = ap.parse_args(argv)
-
-    try:
-        pos, radius, source = load(a.run)
-    except InputError as e:
-        print(f"repose.py: error: {e}", file=sys.stderr)
-        return 2
+def analyse(a):
+    pos, radius, source, scene = load(a.run)
     if a.out is None:
         a.out = os.path.join(a.run, "repose") if os.path.isdir(a.run) else re.sub(r"\.h5$", "", a.run) + "_repose"
     try:
         r = measure(pos, radius, a.bin, tuple(a.window), a.floor, a.min_height, a.touch, a.gap)
     except MeasureError as e:
-        print(f"repose.py: error: {a.run}: {e}", file=sys.stderr)
-        return 3
+        raise MeasureError(f"{a.run}: {e}") from None
     outdir = os.path.dirname(os.path.abspath(a.out))
     os.makedirs(outdir, exist_ok=True)
     write_profile(a.out + ".csv", r)
     write_angles(a.out + "_angles.csv", r, source)
+    figure = None
     if not a.no_plot:
-        title = a.title or os.path.basename(os.path.normpath(a.run))
-        plot(a.out + ".png", pos, radius, r, title)
+        figure = plot(a.out, pos, radius, r, a.title or scene or os.path.basename(os.path.normpath(a.run)), a)
 
     print(f"source: {source}")
     print(f"discs: {r['discs']} ({r['discs_resting']} resting on the floor, {r['discs_heap']} in the heap's bins); "
@@ -377,8 +335,29 @@ def main(argv=None):
     if r["height"] < 20.0 * float(radius.mean()):
         print(f"warning: the heap is only {r['height'] / (2.0 * float(radius.mean())):.1f} mean diameters high: "
               "the angles are rough", file=sys.stderr)
-    print(f"wrote {a.out}.csv, {a.out}_angles.csv" + ("" if a.no_plot else f", {a.out}.png"))
+    print(f"wrote {a.out}.csv, {a.out}_angles.csv" + (f", {figure}" if figure else ""))
     return 0
+
+
+def main(argv=None):
+    ap = ArgumentParser(TOOL, description=__doc__)
+    ap.add_argument("run", help="run directory (final.csv + a checkpoint or snapshot) or a .h5 file")
+    ap.add_argument("--out", default=None, help="output prefix (default: RUN_DIR/repose, or FILE without .h5)")
+    ap.add_argument("--bin", type=float, default=None, help="x-bin width [m] (default: the mean diameter)")
+    ap.add_argument("--window", type=float, nargs=2, default=(0.2, 0.8), metavar=("LO", "HI"),
+                    help="fit window, fractions of the heap height above the floor (default 0.2 0.8)")
+    ap.add_argument("--floor", type=float, default=None, help="floor height [m] (default: lowest disc bottom)")
+    ap.add_argument("--min-height", type=float, default=None,
+                    help="drop bins whose surface is lower above the floor [m] (default: 1.05 x the largest "
+                         "diameter)")
+    ap.add_argument("--touch", type=float, default=0.05,
+                    help="contact tolerance for the resting test, x mean radius (default 0.05)")
+    ap.add_argument("--gap", type=int, default=1, help="empty bins bridged inside the heap (default 1)")
+    ap.add_argument("--title", default=None, help="what the run is, in the title (default: scene and laws)")
+    add_figure_options(ap, dpi=150)
+    a = ap.parse_args(argv)
+    check_figure_options(ap, a)
+    return run_tool(TOOL, analyse, a)
 
 
 if __name__ == "__main__":

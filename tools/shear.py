@@ -38,12 +38,11 @@
   python3 tools/shear.py RUN_DIR --out PREFIX [--window GMIN] [--bins N] [--last K | --from-time T]
   python3 tools/shear.py RUN_DIR/measures.csv snapshot_*.h5 --out PREFIX ...   (explicit files)
 Without snapshots only part 1 runs (a message says so); without measures.csv in RUN_DIR the tool exits 1.
-Needs numpy, h5py (for part 2) and matplotlib (PNGs; --no-plot for CSVs only): Debian's /usr/bin/python3.
+Figures: --format png|pdf|svg (PREFIX_series.<format>, PREFIX_profiles.<format>), --dpi; --no-plot for CSVs only.
+Files are read with tools/rondel (docs/python.md). Exit status: 0 done, 1 bad input or usage (one line on stderr).
+Needs numpy, h5py (for part 2) and matplotlib: Debian's /usr/bin/python3.
 """
-import argparse
-import configparser
 import csv
-import glob
 import math
 import os
 import sys
@@ -51,14 +50,15 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from h5info import text  # noqa: E402  (an HDF5 attribute as Python text or number)
+from rondel import FLAG_GLUED, RondelError, open_file, open_run, read_csv  # noqa: E402
+from rondel.cli import ArgumentParser, add_figure_options, check_figure_options, pyplot, run_tool, save_figure  # noqa: E402,E501
 
-FORMAT_VERSION = 1
-FLAG_ATTACHED = 2
+TOOL = "shear"
+FLAG_ATTACHED = FLAG_GLUED
 
 
-class ToolError(Exception):
-    """A problem with the input, reported as 'shear: ...' with exit code 1."""
+class ToolError(RondelError):
+    """A problem with the input, reported as 'shear: error: ...' with exit code 1."""
 
 
 # ----------------------------------------------------------------------------------------------------------
@@ -69,20 +69,10 @@ def read_measures(path):
     """Columns of a measures.csv as a dict of numpy arrays (empty fields read as NaN)."""
     if not os.path.isfile(path):
         raise ToolError(f"'{path}': no such file (a Rondel run directory holds measures.csv)")
-    with open(path) as f:
-        rows = [r for r in csv.reader(f) if r]
-    if not rows:
-        raise ToolError(f"'{path}': empty file")
-    head = [h.strip() for h in rows[0]]
-    try:
-        data = np.array([[float(v) if v.strip() else math.nan for v in r] for r in rows[1:]], dtype=float)
-    except ValueError as e:
-        raise ToolError(f"'{path}': not a numeric CSV table ({e})")
-    if data.size == 0:
+    m = read_csv(path)
+    if len(m) == 0:
         raise ToolError(f"'{path}': no data rows")
-    if data.ndim != 2 or data.shape[1] != len(head):
-        raise ToolError(f"'{path}': rows do not have the {len(head)} columns of the header")
-    return {h: data[:, i] for i, h in enumerate(head)}
+    return {h: np.asarray(m[h], dtype=float) for h in m.columns}
 
 
 REQUIRED = ("time", "height", "wall_syy", "wall_tau", "shear_disp")
@@ -143,19 +133,12 @@ def steady_state(gamma, mu, gmin=None):
 
 
 
-def parse_config(txt):
-    cp = configparser.ConfigParser(interpolation=None, inline_comment_prefixes=None)
-    cp.optionxform = str
-    cp.read_string(txt)
-    return cp
-
-
 def wall_rows(cp):
     """(bottom row, top row) of /walls for the configuration, or (None, None) when unknown."""
     def count(key):
-        val = cp.get("walls", key, fallback="")
+        val = cp.get("walls", key, "")
         return sum(1 for rec in val.split(";") if rec.split())
-    box = cp.get("walls", "box", fallback="").split()
+    box = cp.get("walls", "box", "").split()
     base = count("lines") + count("segments")
     bottom = base + box.index("bottom") if "bottom" in box else None
     top = base + box.index("top") if "top" in box else None
@@ -178,45 +161,29 @@ def find_walls(path, cp, normals):
 
 def read_snapshot(path, all_discs=False):
     """The data of one snapshot (or checkpoint) needed for the profiles."""
-    import h5py
-    try:
-        f = h5py.File(path, "r")
-    except (OSError, IOError) as e:
-        raise ToolError(f"'{path}': not a readable HDF5 file ({e})")
-    with f:
-        if text(f.attrs.get("format", b"")) != "rondel":
-            raise ToolError(f"'{path}': not a Rondel file (no format = rondel attribute)")
-        ver = int(text(f.attrs.get("format_version", -1)))
-        if ver != FORMAT_VERSION:
-            raise ToolError(f"'{path}' has format version {ver}; this tool reads version {FORMAT_VERSION}")
-        need = ["position", "velocity", "omega", "radius"]
-        missing = [k for k in need if f"discs/{k}" not in f]
-        if missing:
-            raise ToolError(f"'{path}': no /discs/{', /discs/'.join(missing)}: list them in output.snapshot_fields "
-                            "(position velocity omega radius flags)")
-        for k in ("p0", "normal", "velocity"):
-            if f"walls/{k}" not in f:
-                raise ToolError(f"'{path}': no /walls/{k}")
-        cp = None
-        if "config" in f.attrs:
-            try:
-                cp = parse_config(text(f.attrs["config"]))
-            except configparser.Error as e:
-                raise ToolError(f"'{path}': unreadable config attribute ({e})")
-        s = {
-            "path": path,
-            "step": int(text(f.attrs.get("step", 0))),
-            "time": float(text(f.attrs.get("time", math.nan))),
-            "pos": np.asarray(f["discs/position"][()], dtype=float).reshape(-1, 2),
-            "vel": np.asarray(f["discs/velocity"][()], dtype=float).reshape(-1, 2),
-            "omega": np.asarray(f["discs/omega"][()], dtype=float).reshape(-1),
-            "radius": np.asarray(f["discs/radius"][()], dtype=float).reshape(-1),
-            "flags": np.asarray(f["discs/flags"][()]).reshape(-1).astype(np.int64) if "discs/flags" in f else None,
-        }
-        p0 = np.asarray(f["walls/p0"][()], dtype=float).reshape(-1, 2)
-        normal = np.asarray(f["walls/normal"][()], dtype=float).reshape(-1, 2)
-        wvel = np.asarray(f["walls/velocity"][()], dtype=float).reshape(-1, 2)
-    if cp is None or not cp.has_section("domain"):
+    f = open_file(path)
+    need = ["position", "velocity", "omega", "radius"]
+    missing = [k for k in need if k not in f.discs]
+    if missing:
+        raise ToolError(f"'{path}': no /discs/{', /discs/'.join(missing)}: list them in output.snapshot_fields "
+                        "(position velocity omega radius flags)")
+    for k in ("p0", "normal", "velocity"):
+        if k not in f.walls:
+            raise ToolError(f"'{path}': no /walls/{k}")
+    cp = f.config
+    s = {
+        "path": path, "step": f.step, "time": f.time,
+        "pos": np.asarray(f.discs["position"], dtype=float).reshape(-1, 2),
+        "vel": np.asarray(f.discs["velocity"], dtype=float).reshape(-1, 2),
+        "omega": np.asarray(f.discs["omega"], dtype=float).reshape(-1),
+        "radius": np.asarray(f.discs["radius"], dtype=float).reshape(-1),
+        "flags": f.discs["flags"].reshape(-1).astype(np.int64) if "flags" in f.discs else None,
+        "title": f.title(),
+    }
+    p0 = np.asarray(f.walls["p0"], dtype=float).reshape(-1, 2)
+    normal = np.asarray(f.walls["normal"], dtype=float).reshape(-1, 2)
+    wvel = np.asarray(f.walls["velocity"], dtype=float).reshape(-1, 2)
+    if "domain" not in cp or cp.getfloat("domain", "xhi") is None or cp.getfloat("domain", "xlo") is None:
         raise ToolError(f"'{path}': no config attribute with a [domain] section (needed for the box width)")
     b, t = find_walls(path, cp, normal)
     s["y_bottom"], s["y_top"] = float(p0[b, 1]), float(p0[t, 1])
@@ -225,7 +192,7 @@ def read_snapshot(path, all_discs=False):
     if not s["H"] > 0:
         raise ToolError(f"'{path}': the top wall (y = {s['y_top']}) is not above the bottom wall (y = {s['y_bottom']})")
     s["Lx"] = cp.getfloat("domain", "xhi") - cp.getfloat("domain", "xlo")
-    s["periodic_x"] = cp.get("domain", "periodic_x", fallback="false").strip().lower() in ("true", "1", "yes", "on")
+    s["periodic_x"] = cp.getbool("domain", "periodic_x")
     keep = np.ones(len(s["radius"]), dtype=bool)
     if s["flags"] is not None and not all_discs:
         keep = (s["flags"] & FLAG_ATTACHED) == 0
@@ -234,13 +201,9 @@ def read_snapshot(path, all_discs=False):
 
 
 def snapshot_header(path):
-    """(step, time) of a snapshot without reading its datasets."""
-    import h5py
-    try:
-        with h5py.File(path, "r") as f:
-            return int(text(f.attrs.get("step", 0))), float(text(f.attrs.get("time", math.nan)))
-    except (OSError, IOError) as e:
-        raise ToolError(f"'{path}': not a readable HDF5 file ({e})")
+    """(step, time) of a snapshot."""
+    f = open_file(path)
+    return f.step, f.time
 
 
 def shear_band(yc, v):
@@ -353,7 +316,7 @@ def gather_inputs(paths):
             if measures is not None:
                 raise ToolError("give one run at a time (one directory or one measures.csv)")
             measures = mp
-            snaps += sorted(glob.glob(os.path.join(p, "snapshot_*.h5")))
+            snaps += open_run(p).snapshot_paths()
         elif p.endswith(".h5"):
             if not os.path.isfile(p):
                 raise ToolError(f"'{p}': no such file")
@@ -446,11 +409,20 @@ def write_summary(prefix, sr, st, pr, rule):
     return row
 
 
-def plot_series(prefix, sr, st):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 7), sharex=True)
+def scene_of(measures_path):
+    """'scene (laws)' of the run directory holding MEASURES_PATH, for titles ('' when it has no config)."""
+    try:
+        cfg = open_run(os.path.dirname(os.path.abspath(measures_path))).config
+        return f"{cfg.scene_name()} ({cfg.laws()})"
+    except RondelError:
+        return ""
+
+
+def plot_series(prefix, sr, st, a, scene=""):
+    plt = pyplot()
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 7), sharex=True, layout="constrained")
+    fig.suptitle("Plane shear: stress ratio and dilation against shear strain" + (f", {scene}" if scene else ""),
+                 fontsize=10)
     ax1.plot(sr["gamma"], sr["mu"], lw=1, label="mu = tau / sigma_n")
     if st:
         ax1.axvspan(st["window_from"], st["window_to"], color="0.9", zorder=0)
@@ -470,16 +442,12 @@ def plot_series(prefix, sr, st):
         h1, l1 = ax2.get_legend_handles_labels()
         h2, l2 = ax3.get_legend_handles_labels()
         ax2.legend(h1 + h2, l1 + l2, fontsize=8, loc="lower right")
-    fig.tight_layout()
-    fig.savefig(prefix + "_series.png", dpi=120)
-    plt.close(fig)
+    return save_figure(fig, prefix + "_series", a)
 
 
-def plot_profiles(prefix, pr):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, axs = plt.subplots(1, 3, figsize=(11, 5), sharey=True)
+def plot_profiles(prefix, pr, a, scene=""):
+    plt = pyplot()
+    fig, axs = plt.subplots(1, 3, figsize=(11, 5), sharey=True, layout="constrained")
     y = pr["y"]
     yd = pr["y_discs"]
     axs[0].plot(pr["vx"], yd, "o-", ms=3, label="discs")
@@ -505,13 +473,12 @@ def plot_profiles(prefix, pr):
     for ax in axs:
         ax.set_ylim(0, 1)
         ax.grid(alpha=0.3)
-    title = f"{pr['snapshots']} snapshot(s), {pr['nbins']} bins of {pr['H_mean'] / pr['nbins'] / pr['d_mean']:.2g} d"
+    title = "Plane shear profiles across the gap" + (f", {scene}" if scene else "")
+    title += f": {pr['snapshots']} snapshot(s), {pr['nbins']} bins of {pr['H_mean'] / pr['nbins'] / pr['d_mean']:.2g} d"
     if b:
         title += f"; shear band (rate >= max/2): {b['width'] * pr['H_mean'] / pr['d_mean']:.1f} d"
     fig.suptitle(title, fontsize=10)
-    fig.tight_layout()
-    fig.savefig(prefix + "_profiles.png", dpi=120)
-    plt.close(fig)
+    return save_figure(fig, prefix + "_profiles", a)
 
 
 def run(a):
@@ -521,6 +488,7 @@ def run(a):
 
     sr = st = None
     window_time = None
+    scene = scene_of(measures) if measures is not None else ""
     if measures is not None:
         sr = series(read_measures(measures))
         st = steady_state(sr["gamma"], sr["mu"], a.window)
@@ -544,6 +512,8 @@ def run(a):
         if not chosen:
             raise ToolError(f"no snapshot matches {rule} (of {len(snap_paths)})")
         snaps = [read_snapshot(p, a.all_discs) for p in chosen]
+        if not scene:
+            scene = snaps[0]["title"].split(", step")[0]
         if not all(s["periodic_x"] for s in snaps):
             print("shear: warning: the domain is not periodic in x: bin areas use the domain width xhi - xlo",
                   file=sys.stderr)
@@ -562,20 +532,18 @@ def run(a):
 
     write_summary(prefix, sr, st, pr, rule)
     if not a.no_plot:
-        try:
-            import matplotlib  # noqa: F401
-        except ImportError:
-            print("shear: matplotlib is missing: PNGs skipped (CSV written)", file=sys.stderr)
-            return 0
+        written = []
         if sr is not None:
-            plot_series(prefix, sr, st)
+            written.append(plot_series(prefix, sr, st, a, scene))
         if pr is not None:
-            plot_profiles(prefix, pr)
+            written.append(plot_profiles(prefix, pr, a, scene))
+        if written:
+            print("wrote " + ", ".join(written))
     return 0
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = ArgumentParser(TOOL, description=__doc__)
     ap.add_argument("inputs", nargs="+", help="a run directory (measures.csv, snapshot_*.h5), or a measures.csv "
                     "and/or snapshot files")
     ap.add_argument("--out", default="shear", help="output prefix (default: shear)")
@@ -589,23 +557,16 @@ def main(argv=None):
     ap.add_argument("--velocity", type=float, default=None, metavar="V",
                     help="shear velocity [m/s] (default: top minus bottom wall x velocity of each snapshot)")
     ap.add_argument("--all-discs", action="store_true", help="profiles of every disc, wall-attached ones too")
-    ap.add_argument("--no-plot", action="store_true", help="CSV only")
+    add_figure_options(ap, dpi=120)
     a = ap.parse_args(argv)
+    check_figure_options(ap, a)
     if a.bins is not None and a.bins < 1:
         ap.error("--bins must be >= 1")
     if a.last is not None and a.last < 1:
         ap.error("--last must be >= 1")
     if a.velocity is not None and a.velocity == 0:
         ap.error("--velocity must be non-zero")
-    try:
-        return run(a)
-    except ToolError as e:
-        print(f"shear: {e}", file=sys.stderr)
-        return 1
-    except ImportError as e:
-        print(f"shear: the Python module {e.name} is missing for {sys.executable}: run the tool with Debian's "
-              "/usr/bin/python3 (apt-get install python3-h5py python3-numpy python3-matplotlib)", file=sys.stderr)
-        return 1
+    return run_tool(TOOL, run, a)
 
 
 if __name__ == "__main__":

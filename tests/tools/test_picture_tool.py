@@ -20,7 +20,7 @@ TOOLS = os.path.join(HERE, "..", "..", "tools")
 TOOL = os.path.join(TOOLS, "picture.py")
 sys.path.insert(0, TOOLS)
 import picture  # noqa: E402
-from h5info import checksum  # noqa: E402
+from rondel import checksum  # noqa: E402
 
 results = []
 
@@ -162,7 +162,7 @@ def test_forces(tmp):
     snap = os.path.join(tmp, "snapshot_0000000010.h5")
     write_state(snap, kind="snapshot", discs={"position": np.array(pos), "radius": np.full(6, 0.03)})
     rc, out = run_tool(snap, "--kind", "forces", "--out", os.path.join(tmp, "x"))
-    check("forces on a snapshot: non-zero exit naming /contacts", rc != 0 and "/contacts" in out, (rc, out))
+    check("forces on a snapshot: exit 1 naming /contacts", rc == 1 and 'Traceback' not in out and "/contacts" in out, (rc, out))
 
 
 def test_ranks(tmp):
@@ -192,7 +192,7 @@ def test_ranks(tmp):
     write_state(norank, kind="snapshot", step=30, discs={"position": pos, "radius": np.full(10, 0.04)})
     rc, out = run_tool(os.path.dirname(norank), "--kind", "ranks", "--out", os.path.join(tmp, "nr"))
     check("ranks without /discs/rank: non-zero exit naming output.snapshot_fields",
-          rc != 0 and "output.snapshot_fields" in out and "/discs/rank" in out, (rc, out))
+          rc == 1 and "output.snapshot_fields" in out and "/discs/rank" in out, (rc, out))
     check("ranks without /discs/rank: no PNG written", not os.path.exists(os.path.join(tmp, "nr.png")))
 
 
@@ -223,7 +223,9 @@ def test_rotation(tmp):
             check("rotation: a fixed disc is drawn grey", grey > 2000, grey)
             check("rotation: the free disc with theta = +vmax is dark red", red > 2000, red)
         else:
-            check("rotation: no grey disc when no disc is fixed", grey < 200, grey)
+            # a few hundred anti-aliased text pixels (the colour-bar label below a wide view) are grey too;
+            # a fixed disc gives more than 2000
+            check("rotation: no grey disc when no disc is fixed", grey < 600, grey)
             check("rotation: two dark red discs without fixed ones", red > 4000, red)
         check(f"rotation PNG (fixed={fixed}): 360 px wide", (png_size(prefix + ".png") or (0,))[0] == 360)
     # omega, and a snapshot without theta names the key.
@@ -234,22 +236,22 @@ def test_rotation(tmp):
     write_state(snap, kind="snapshot", discs={"position": np.array(pos), "radius": np.full(2, 0.1)})
     rc, out = run_tool(snap, "--kind", "rotation", "--out", os.path.join(tmp, "nt"))
     check("rotation without theta: non-zero exit naming output.snapshot_fields",
-          rc != 0 and "/discs/theta" in out and "output.snapshot_fields" in out, (rc, out))
+          rc == 1 and "/discs/theta" in out and "output.snapshot_fields" in out, (rc, out))
 
 
 def test_errors_and_directory(tmp):
     rc, out = run_tool(os.path.join(tmp, "nope.h5"), "--kind", "rotation", "--out", os.path.join(tmp, "n"))
-    check("missing file: non-zero exit, message", rc != 0 and "no such file" in out, (rc, out))
+    check("missing file: exit 1, message", rc == 1 and 'Traceback' not in out and "no such file" in out, (rc, out))
     other = os.path.join(tmp, "other.h5")
     write_state(other, fmt="something", discs=discs_of([[0.5, 0.5]], 0.1))
     rc, out = run_tool(other, "--kind", "rotation", "--out", os.path.join(tmp, "o"))
-    check("format != rondel: non-zero exit, 'not a Rondel file'", rc != 0 and "not a Rondel file" in out,
+    check("format != rondel: exit 1, 'not a Rondel checkpoint'", rc == 1 and "not a Rondel checkpoint" in out,
           (rc, out))
     text = os.path.join(tmp, "text.h5")
     with open(text, "w") as f:
         f.write("not hdf5\n")
     rc, out = run_tool(text, "--kind", "rotation", "--out", os.path.join(tmp, "t"))
-    check("not HDF5: non-zero exit, message", rc != 0 and "not a readable HDF5 file" in out, (rc, out))
+    check("not HDF5: exit 1, message", rc == 1 and "not an HDF5 file" in out, (rc, out))
     # A run directory: newest snapshot for rotation, newest checkpoint for forces.
     run = os.path.join(tmp, "run")
     os.makedirs(run)
@@ -266,7 +268,7 @@ def test_errors_and_directory(tmp):
     empty = os.path.join(tmp, "empty")
     os.makedirs(empty)
     rc, out = run_tool(empty, "--kind", "forces", "--out", os.path.join(tmp, "e"))
-    check("empty directory: non-zero exit naming checkpoint_*.h5", rc != 0 and "checkpoint_*.h5" in out,
+    check("empty directory: exit 1 naming checkpoint_*.h5", rc == 1 and 'Traceback' not in out and "checkpoint_*.h5" in out,
           (rc, out))
 
 

@@ -1,0 +1,21 @@
+"""A tiny run of the current build for the tool tests: 50 discs of a hexagonal lattice resting on the floor of
+inputs/deposition.ini (gravity, box walls bottom left right), 300 steps, snapshots every 100 steps and
+checkpoints every 150, diagnostics every 50. Loaded disc-disc and wall contacts from the first step."""
+import os
+import subprocess
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+STEPS = 300
+OVERRIDES = ["--run.steps=300", "--scene.type=lattice_hex", "--scene.nx=10", "--scene.ny=5", "--scene.spacing=0.004",
+             "--scene.radius=0.002", "--scene.x0=0.01", "--scene.y0=0.002", "--output.snapshot_every=100",
+             "--output.checkpoint_every=150", "--diagnostics.every=50", "--run.overwrite=true"]
+
+
+def make_run(rondel, out):
+    """Run RONDEL into OUT; returns OUT. Raises RuntimeError with rondel's output when it fails."""
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    cmd = [rondel, os.path.join(ROOT, "inputs", "deposition.ini"), f"--run.output={out}"] + OVERRIDES
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=ROOT)
+    if p.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)} exited with {p.returncode}:\n{p.stdout}\n{p.stderr}")
+    return out
