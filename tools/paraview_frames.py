@@ -22,6 +22,8 @@ import sys
 import xml.etree.ElementTree as ET
 
 PROG = "paraview_frames.py"
+UNITS = {"velocity": "m/s", "omega": "rad/s", "radius": "m", "theta": "rad", "force": "N", "torque": "N m",
+         "mass": "kg", "inertia": "kg m^2"}  # FORMAT.md, /discs
 
 
 def fail(message):
@@ -156,11 +158,10 @@ def main(argv):
         pv.ColorBy(d, ("POINTS", a.field, "Magnitude") if vector else ("POINTS", a.field))
         lut = pv.GetColorTransferFunction(a.field)
         bar = pv.GetScalarBar(lut, view)
-        bar.Title = a.field + (" magnitude" if vector else "")
+        bar.Title = a.field + (" magnitude" if vector else "") + (" [%s]" % UNITS[a.field] if a.field in UNITS else "")
         bar.ComponentTitle = ""
         bar.TitleColor = bar.LabelColor = [0.0, 0.0, 0.0]
         bar.WindowLocation = "Any Location"  # right of the discs: place_camera leaves room for it
-        bar.Position = [0.86, 0.1]
         bar.ScalarBarLength = 0.8
         bar.AutomaticLabelFormat = 0
         bar.LabelFormat = bar.RangeLabelFormat = "%-#.3g"
@@ -171,7 +172,9 @@ def main(argv):
     t.WindowLocation = "Upper Left Corner"
     t.FontSize = 14
 
-    place_camera(view, a, discs, walls, steps)
+    right = place_camera(view, a, discs, walls, steps)
+    if a.field != "solid":
+        bar.Position = [min(right + 0.04, 0.85), 0.1]
     for step, time, _ in steps:
         view.ViewTime = time
         label.Text = "step %d, t = %.6g s" % (step, time)
@@ -188,7 +191,8 @@ def main(argv):
 
 
 def place_camera(view, a, discs, walls, steps):
-    """A fixed 2D camera for the whole series: --bounds, or the first and last frames' discs and walls."""
+    """A fixed 2D camera for the whole series: --bounds, or the first and last frames' discs and walls.
+    Returns where the data ends on the right, as a fraction of the frame's width (the colour bar goes there)."""
     if a.bounds:
         xlo, xhi, ylo, yhi = a.bounds
     else:
@@ -202,14 +206,18 @@ def place_camera(view, a, discs, walls, steps):
         xlo, xhi, ylo, yhi = box  # disc centres and wall ends: add the largest radius and a margin
         pad = discs.PointData["radius"].GetRange()[1] + 0.02 * max(xhi - xlo, yhi - ylo)
         xlo, xhi, ylo, yhi = xlo - pad, xhi + pad, ylo - pad, yhi + pad
+    data_right = xhi
     if a.field != "solid":
-        xhi += 0.2 * (xhi - xlo)  # room for the colour bar
+        xhi += 0.25 * (xhi - xlo)  # room for the colour bar
     cx, cy = 0.5 * (xlo + xhi), 0.5 * (ylo + yhi)
     view.CameraPosition = [cx, cy, 1.0]
     view.CameraFocalPoint = [cx, cy, 0.0]
     view.CameraViewUp = [0.0, 1.0, 0.0]
     # Parallel scale: half the world height shown; the narrower of the two fits decides.
-    view.CameraParallelScale = max(0.5 * (yhi - ylo), 0.5 * (xhi - xlo) * a.height / a.width)
+    scale = max(0.5 * (yhi - ylo), 0.5 * (xhi - xlo) * a.height / a.width)
+    view.CameraParallelScale = scale
+    half_width = scale * a.width / a.height
+    return 0.5 + (data_right - cx) / (2.0 * half_width)  # the data's right edge, as a fraction of the width
 
 
 if __name__ == "__main__":

@@ -86,7 +86,14 @@ def run(cmd, **kw):
 
 
 def pvpython(args):
-    return run(["xvfb-run", "-a", "pvpython"] + args)
+    # xvfb-run -a picks a free display number racily: another xvfb-run starting at the same moment can take
+    # it, and ParaView then aborts creating its window. Such a start is retried; nothing else is.
+    for attempt in range(3):
+        rc, out = run(["xvfb-run", "-a", "pvpython"] + args)
+        if not any(s in out for s in ("CreateAWindow", "Xvfb failed", "cannot open display", "bad X server")):
+            break
+        print("note: the X server of xvfb-run was not usable (attempt %d), retrying" % (attempt + 1))
+    return rc, out
 
 
 def red_pixels(png):
