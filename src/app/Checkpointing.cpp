@@ -77,7 +77,7 @@ void Checkpointing::remove_old_files() const {
     const std::string n = e.path().filename().string();
     const bool ours =
         ((n.rfind("checkpoint_", 0) == 0 || n.rfind("snapshot_", 0) == 0) && e.path().extension() == ".h5") ||
-        n.rfind(".checkpoint_", 0) == 0 || n == "snapshots.xdmf";
+        n.rfind(".checkpoint_", 0) == 0 || n == "snapshots.xdmf" || n == ".snapshots.xdmf.part";
     if (ours) fs::remove(e.path());
   }
 }
