@@ -1,9 +1,12 @@
 #include "app/Checkpointing.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <sstream>
 
 #include "core/Errors.hpp"
 
@@ -25,8 +28,8 @@ std::vector<fs::path> h5_files(const fs::path& dir, const char* prefix) {
 }  // namespace
 
 Checkpointing::Checkpointing(std::string directory, int keep, std::vector<std::string> snapshot_fields,
-                             const Communicator& comm)
-    : dir_(std::move(directory)), keep_(keep), fields_(std::move(snapshot_fields)), comm_(comm) {}
+                             const Domain& domain, const Communicator& comm)
+    : dir_(std::move(directory)), keep_(keep), fields_(std::move(snapshot_fields)), domain_(domain), comm_(comm) {}
 
 std::string Checkpointing::file_name(const char* prefix, std::int64_t step) {
   char buf[64];
@@ -58,8 +61,10 @@ void Checkpointing::adopt_snapshots(std::int64_t step) {
     try {
       const StateHeader h = read_state_header(p.string(), comm_);
       if (h.step > step) continue;
+      // The file's own datasets and walls: it may come from a run with other output.snapshot_fields.
       snapshots_.push_back(
-          {p.filename().string(), h.step, static_cast<std::int64_t>(state_file_discs(p.string(), comm_)), h.time});
+          {p.filename().string(), h.step, static_cast<std::int64_t>(state_file_discs(p.string(), comm_)), h.time,
+           state_file_disc_datasets(p.string(), comm_), wall_outline(read_state_walls(p.string(), comm_), domain_)});
     } catch (const InputError&) {
       // not a complete snapshot: left out of the series
     }
@@ -72,7 +77,7 @@ void Checkpointing::remove_old_files() const {
     const std::string n = e.path().filename().string();
     const bool ours =
         ((n.rfind("checkpoint_", 0) == 0 || n.rfind("snapshot_", 0) == 0) && e.path().extension() == ".h5") ||
-        n.rfind(".checkpoint_", 0) == 0 || n == "snapshots.xdmf";
+        n.rfind(".checkpoint_", 0) == 0 || n == "snapshots.xdmf" || n == ".snapshots.xdmf.part";
     if (ours) fs::remove(e.path());
   }
 }
@@ -82,41 +87,143 @@ std::string Checkpointing::write_snapshot(const StateHeader& header, DiscStore& 
   const std::string name = file_name("snapshot", header.step);
   const ContactTable none;
   write_state_file((fs::path(dir_) / name).string(), header, discs, none, none, walls, comm_, fields_, 0.0);
-  snapshots_.push_back({name, header.step, n_discs, header.time});
+  std::vector<std::string> written = fields_;
+  written.emplace_back("index");
+  snapshots_.push_back({name, header.step, n_discs, header.time, written, wall_outline(walls, domain_)});
   if (comm_.root()) write_xdmf();
   return (fs::path(dir_) / name).string();
 }
 
+namespace {
+
+// The part [lo, hi] of the line p + t d inside the domain box; empty (lo > hi) when it misses the box.
+void clip_to_box(Vec2 p, Vec2 d, const Domain& box, double& lo, double& hi) {
+  const double p_[2] = {p.x, p.y}, d_[2] = {d.x, d.y}, a[2] = {box.xlo, box.ylo}, b[2] = {box.xhi, box.yhi};
+  for (int k = 0; k < 2; ++k) {
+    if (d_[k] == 0.0) {
+      if (p_[k] < a[k] || p_[k] > b[k]) lo = 1.0, hi = 0.0;
+      continue;
+    }
+    const double t1 = (a[k] - p_[k]) / d_[k], t2 = (b[k] - p_[k]) / d_[k];
+    lo = std::max(lo, std::min(t1, t2));
+    hi = std::min(hi, std::max(t1, t2));
+  }
+}
+
+// The XDMF description of one data item of a snapshot file.
+std::string hdf_item(const std::string& file, const std::string& set, const std::string& dims, const char* type,
+                     int precision) {
+  return "<DataItem Dimensions=\"" + dims + "\" NumberType=\"" + type + "\" Precision=\"" + std::to_string(precision) +
+         "\" Format=\"HDF\">" + file + ":" + set + "</DataItem>";
+}
+
+// How each /discs dataset appears as an XDMF node attribute.
+struct XdmfField {
+  const char* name;
+  const char* number;
+  int precision;
+  bool vector;
+};
+constexpr XdmfField kXdmfFields[] = {
+    {"radius", "Float", 8, false}, {"velocity", "Float", 8, true}, {"omega", "Float", 8, false},
+    {"theta", "Float", 8, false},  {"force", "Float", 8, true},    {"torque", "Float", 8, false},
+    {"mass", "Float", 8, false},   {"inertia", "Float", 8, false}, {"flags", "UInt", 4, false},
+    {"gid", "Int", 8, false},      {"material", "Int", 4, false},  {"rank", "Int", 4, false}};
+
+void xdmf_discs(std::ostream& x, const std::string& file, std::int64_t discs, const std::vector<std::string>& has) {
+  const std::string n = std::to_string(discs);
+  const bool indexed = std::find(has.begin(), has.end(), "index") != has.end();
+  x << "     <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\" NodesPerElement=\"1\">"
+    << (indexed ? hdf_item(file, "/discs/index", n, "Int", 8) : "") << "</Topology>\n"
+    << "     <Geometry GeometryType=\"XY\">" << hdf_item(file, "/discs/position", n + " 2", "Float", 8)
+    << "</Geometry>\n";
+  for (const XdmfField& f : kXdmfFields)
+    if (std::find(has.begin(), has.end(), f.name) != has.end())
+      x << "     <Attribute Name=\"" << f.name << "\" AttributeType=\"" << (f.vector ? "Vector" : "Scalar")
+        << "\" Center=\"Node\">"
+        << hdf_item(file, std::string("/discs/") + f.name, f.vector ? n + " 2" : n, f.number, f.precision)
+        << "</Attribute>\n";
+}
+
+void xdmf_walls(std::ostream& x, const std::string& file, const std::vector<Vec2>& outline) {
+  const std::size_t n = outline.size() / 2;
+  const std::string cells = std::to_string(n), dims = std::to_string(2 * n);
+  x << "     <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << cells << "\" NodesPerElement=\"2\">"
+    << "<DataItem Dimensions=\"" << dims << "\" NumberType=\"Int\" Format=\"XML\">";
+  for (std::size_t k = 0; k < 2 * n; ++k) x << (k ? " " : "") << k;
+  x << "</DataItem></Topology>\n     <Geometry GeometryType=\"XY\"><DataItem Dimensions=\"" << dims
+    << " 2\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">";
+  for (std::size_t k = 0; k < outline.size(); ++k) x << (k ? " " : "") << outline[k].x << ' ' << outline[k].y;
+  x << "</DataItem></Geometry>\n";
+  x << "     <Attribute Name=\"kind\" AttributeType=\"Scalar\" Center=\"Cell\">"
+    << hdf_item(file, "/walls/kind", cells, "Int", 4) << "</Attribute>\n"
+    << "     <Attribute Name=\"normal_force\" AttributeType=\"Scalar\" Center=\"Cell\">"
+    << hdf_item(file, "/walls/normal_force", cells, "Float", 8) << "</Attribute>\n"
+    << "     <Attribute Name=\"contacts\" AttributeType=\"Scalar\" Center=\"Cell\">"
+    << hdf_item(file, "/walls/contacts", cells, "Int", 8) << "</Attribute>\n";
+  for (const char* v : {"force", "velocity"})
+    x << "     <Attribute Name=\"" << v << "\" AttributeType=\"Vector\" Center=\"Cell\">"
+      << hdf_item(file, std::string("/walls/") + v, cells + " 2", "Float", 8) << "</Attribute>\n";
+}
+
+}  // namespace
+
+std::vector<Vec2> Checkpointing::wall_outline(const WallSet& walls, const Domain& domain) {
+  std::vector<Vec2> out;
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const Wall& w : walls) {
+    if (w.kind == Wall::Kind::segment) {
+      out.push_back(w.p0), out.push_back(w.p1);
+      continue;
+    }
+    const Vec2 d{-w.normal.y, w.normal.x};
+    double lo = -inf, hi = inf;
+    clip_to_box(w.p0, d, domain, lo, hi);
+    if (lo > hi) {  // outside the domain: a piece as long as the box's diagonal, nearest its centre
+      const double half = 0.5 * std::hypot(domain.length_x(), domain.length_y());
+      const Vec2 c{0.5 * (domain.xlo + domain.xhi), 0.5 * (domain.ylo + domain.yhi)};
+      lo = dot(c - w.p0, d) - half, hi = lo + 2.0 * half;
+    }
+    // The discs' side of every other line: (p0 + t d - q) . m >= 0.
+    double a = lo, b = hi;
+    for (const Wall& o : walls) {
+      const double slope = dot(d, o.normal), offset = dot(w.p0 - o.p0, o.normal);
+      if (&o == &w || o.kind != Wall::Kind::line || std::abs(slope) < 1e-12) continue;
+      if (slope > 0.0)
+        a = std::max(a, -offset / slope);
+      else
+        b = std::min(b, -offset / slope);
+    }
+    if (a < b) lo = a, hi = b;  // else the other lines leave nothing: the box's piece is drawn
+    out.push_back(w.p0 + lo * d), out.push_back(w.p0 + hi * d);
+  }
+  return out;
+}
+
 void Checkpointing::write_xdmf() const {
-  std::ofstream x(fs::path(dir_) / "snapshots.xdmf");
+  // One temporal collection of spatial ones (discs, walls): the Xdmf3 readers take two temporal collections
+  // side by side for one data set of every step at once.
+  std::ostringstream x;
+  x.precision(17);  // times and wall ends round-trip
   x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
-    << "  <Grid Name=\"discs\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  auto has = [this](const char* f) { return std::find(fields_.begin(), fields_.end(), f) != fields_.end(); };
+    << "  <Grid Name=\"snapshots\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
   for (const Snapshot& s : snapshots_) {
-    const std::string n = std::to_string(s.discs);
-    auto item = [&](const std::string& set, const std::string& dims, const char* type, int precision) {
-      return "<DataItem Dimensions=\"" + dims + "\" NumberType=\"" + type + "\" Precision=\"" +
-             std::to_string(precision) + "\" Format=\"HDF\">" + s.file + ":/discs/" + set + "</DataItem>";
-    };
-    x << "   <Grid Name=\"step " << s.step << "\" GridType=\"Uniform\">\n"
-      << "    <Time Value=\"" << s.time << "\"/>\n"
-      << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\" NodesPerElement=\"1\"/>\n"
-      << "    <Geometry GeometryType=\"XY\">" << item("position", n + " 2", "Float", 8) << "</Geometry>\n";
-    for (const char* f : {"radius", "omega", "theta", "mass"})
-      if (has(f))
-        x << "    <Attribute Name=\"" << f << "\" AttributeType=\"Scalar\" Center=\"Node\">" << item(f, n, "Float", 8)
-          << "</Attribute>\n";
-    for (const char* f : {"velocity", "force"})
-      if (has(f))
-        x << "    <Attribute Name=\"" << f << "\" AttributeType=\"Vector\" Center=\"Node\">"
-          << item(f, n + " 2", "Float", 8) << "</Attribute>\n";
-    for (const char* f : {"rank", "gid"})
-      if (has(f))
-        x << "    <Attribute Name=\"" << f << "\" AttributeType=\"Scalar\" Center=\"Node\">"
-          << item(f, n, "Int", std::string(f) == "gid" ? 8 : 4) << "</Attribute>\n";
+    x << "   <Grid Name=\"step " << s.step << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
+      << "    <Time Value=\"" << s.time << "\"/>\n    <Grid Name=\"discs\" GridType=\"Uniform\">\n";
+    xdmf_discs(x, s.file, s.discs, s.fields);
+    x << "    </Grid>\n";
+    if (!s.walls.empty()) {  // an empty grid would not load
+      x << "    <Grid Name=\"walls\" GridType=\"Uniform\">\n";
+      xdmf_walls(x, s.file, s.walls);
+      x << "    </Grid>\n";
+    }
     x << "   </Grid>\n";
   }
   x << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  // Written whole under a temporary name and renamed: a reader never sees half a series.
+  const fs::path path = fs::path(dir_) / "snapshots.xdmf", part = fs::path(dir_) / ".snapshots.xdmf.part";
+  std::ofstream(part) << x.str();
+  fs::rename(part, path);
 }
 
 std::string Checkpointing::newest_checkpoint(const std::string& directory, const Communicator& comm,

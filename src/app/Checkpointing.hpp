@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "core/Domain.hpp"
 #include "parallel/Communicator.hpp"
 #include "parallel/StateFile.hpp"
 
@@ -11,10 +12,13 @@ namespace rondel {
 // Checkpoint and snapshot files of an output directory (docs/design.md section 7, FORMAT.md):
 //  - checkpoint_<step>.h5, written under a temporary name (.checkpoint_<step>.h5.part) and renamed when
 //    complete, so a killed writer never leaves a file that looks usable; the newest `keep` are kept;
-//  - snapshot_<step>.h5 with the selected fields, and snapshots.xdmf listing them for ParaView.
+//  - snapshot_<step>.h5 with the selected fields, and snapshots.xdmf listing them for ParaView: per snapshot a
+//    grid of discs (one vertex cell per disc) and a grid of walls (one line cell per wall, drawn within
+//    `domain`, docs/paraview.md).
 class Checkpointing {
  public:
-  Checkpointing(std::string directory, int keep, std::vector<std::string> snapshot_fields, const Communicator& comm);
+  Checkpointing(std::string directory, int keep, std::vector<std::string> snapshot_fields, const Domain& domain,
+                const Communicator& comm);
 
   // Collective. Returns the path written.
   std::string write_checkpoint(const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
@@ -26,6 +30,9 @@ class Checkpointing {
   static std::string newest_checkpoint(const std::string& directory, const Communicator& comm,
                                        std::vector<std::string>* skipped = nullptr);
   static std::string file_name(const char* prefix, std::int64_t step);
+  // The drawn part of each wall, two points per wall: a segment as it is; an infinite line clipped to the
+  // domain box and to the discs' side of the other lines (so the walls of a box meet at its corners).
+  static std::vector<Vec2> wall_outline(const WallSet& walls, const Domain& domain);
   // A resumed run keeps the snapshots already in the directory up to `step` in its XDMF series (collective).
   void adopt_snapshots(std::int64_t step);
   // A replaced run (run.overwrite) leaves no checkpoint or snapshot that could be taken for the new one's.
@@ -37,11 +44,14 @@ class Checkpointing {
   std::string dir_;
   int keep_;
   std::vector<std::string> fields_;
+  Domain domain_;
   const Communicator& comm_;
   struct Snapshot {
     std::string file;
     std::int64_t step, discs;
     double time;
+    std::vector<std::string> fields;  // the /discs datasets the file holds
+    std::vector<Vec2> walls;          // wall_outline() at that step
   };
   std::vector<Snapshot> snapshots_;
 };

@@ -26,8 +26,8 @@ void RunFiles::prepare(bool resuming, std::int64_t step) {
                       "' already exists and is not empty; choose another directory or set run.overwrite = true");
   if (comm_.any(!writable))
     throw ConfigError("run.output = '" + config_.output + "' cannot be written (permissions, or a file of that name)");
-  checkpoints_ =
-      std::make_unique<Checkpointing>(config_.output, config_.checkpoint_keep, config_.snapshot_fields, comm_);
+  checkpoints_ = std::make_unique<Checkpointing>(config_.output, config_.checkpoint_keep, config_.snapshot_fields,
+                                                 config_.domain, comm_);
   if (resuming)
     checkpoints_->adopt_snapshots(step);
   else

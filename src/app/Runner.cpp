@@ -116,6 +116,7 @@ RunSummary Runner::run() {
   try {
     phases_.restart();
     if (first == 0) record();
+    if (first == 0 && files_.has_directory() && config.snapshot_every > 0) sim_.write_snapshot();  // the initial state
     phases_.lap(PhaseTimes::output);
     sum_.stop_signal = loop(progress, first);
     if (files_.has_directory() && config.checkpoint_at_end && sum_.stop_signal == 0 &&

@@ -44,7 +44,7 @@ void add_run_sections(po::options_description& all) {
   po::options_description out("[output] snapshots and checkpoints (HDF5, FORMAT.md)");
   out.add_options()
       ("output.snapshot_every", def<std::int64_t>(0), "[steps] snapshot interval; 0 = none")
-      ("output.snapshot_fields", def("position velocity omega radius rank"),
+      ("output.snapshot_fields", def("position velocity omega radius flags rank"),
        "[-] snapshot datasets: any of gid material radius mass inertia position velocity theta omega force torque flags rank")
       ("output.checkpoint_every", def<std::int64_t>(0), "[steps] checkpoint interval; 0 = none (see checkpoint_minutes)")
       ("output.checkpoint_minutes", def(0.0), "[min] checkpoint also after this much wall time; 0 = off")

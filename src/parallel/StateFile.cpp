@@ -53,6 +53,13 @@ void write_discs(Hdf5File& f, DiscStore& discs, const Communicator& comm, const 
   // The owner rank is run metadata: in snapshots on request (for pictures), never in checkpoints.
   if (!fields.empty() && std::find(fields.begin(), fields.end(), "rank") != fields.end())
     f.write("/discs/rank", rank, block.total, block.offset);
+  // A snapshot's row numbers, the connectivity of its XDMF vertex cells (without cells ParaView shows
+  // nothing on Apply).
+  if (!fields.empty()) {
+    std::vector<std::int64_t> index(block.count);
+    for (std::uint64_t k = 0; k < block.count; ++k) index[k] = static_cast<std::int64_t>(block.offset + k);
+    f.write("/discs/index", index, block.total, block.offset);
+  }
 }
 
 // Rows this rank books (disc 1 owned), with state, in ascending key order over all ranks.
@@ -163,6 +170,18 @@ StateHeader read_state_header(const std::string& path, const Communicator& comm)
 
 std::uint64_t state_file_discs(const std::string& path, const Communicator& comm) {
   return Hdf5File(path, Hdf5File::Mode::read, comm).rows("/discs/position");
+}
+
+std::vector<std::string> state_file_disc_datasets(const std::string& path, const Communicator& comm) {
+  Hdf5File f(path, Hdf5File::Mode::read, comm);
+  std::vector<std::string> found;
+  DiscStore fields;
+  fields.for_each_field([&](const char* name, unsigned uses, auto&) {
+    if ((uses & kCheckpoint) && f.exists(std::string("/discs/") + name)) found.emplace_back(name);
+  });
+  for (const char* extra : {"rank", "index"})
+    if (f.exists(std::string("/discs/") + extra)) found.emplace_back(extra);
+  return found;
 }
 
 void read_state_discs(const std::string& path, DiscStore& discs, const Communicator& comm) {

@@ -29,7 +29,7 @@ struct StateHeader {
 };
 
 // Collective. `fields` selects the disc datasets of a snapshot (empty: every checkpointed field plus the
-// contacts). Each disc also gets the rank that owns it ("rank").
+// contacts); a snapshot also gets the owner rank when "rank" is listed, and its row numbers ("index").
 void write_state_file(const std::string& path, const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
                       const ContactTable& wall_rows, const WallSet& walls, const Communicator& comm,
                       const std::vector<std::string>& fields, double wall_seconds);
@@ -39,6 +39,8 @@ void write_state_file(const std::string& path, const StateHeader& header, DiscSt
 StateHeader read_state_header(const std::string& path, const Communicator& comm);
 // Number of discs the file holds.
 std::uint64_t state_file_discs(const std::string& path, const Communicator& comm);
+// The datasets of /discs the file holds (a snapshot has those of its output.snapshot_fields, and "index").
+std::vector<std::string> state_file_disc_datasets(const std::string& path, const Communicator& comm);
 void read_state_discs(const std::string& path, DiscStore& discs, const Communicator& comm);
 void read_state_rows(const std::string& path, ContactTable& pairs, ContactTable& wall_rows, const Communicator& comm);
 WallSet read_state_walls(const std::string& path, const Communicator& comm);

@@ -1,0 +1,174 @@
+#!/usr/bin/python3
+"""ParaView out of the box (docs/paraview.md): a tiny run with snapshots made by the built rondel loads in
+pvpython (one point and one vertex cell per disc, one line cell per wall, at every step, step 0 included),
+and tools/paraview_frames.py renders a frame whose disc pixels cover the discs' true area.
+
+    test_paraview.py RONDEL_BINARY
+
+Exit 0 pass, 1 fail, 77 skipped (no pvpython or xvfb-run: ctest SKIP_RETURN_CODE).
+"""
+
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCRIPT = os.path.join(HERE, "..", "..", "tools", "paraview_frames.py")
+SKIP = 77
+
+# 4 x 3 discs of radius 5 mm, 12.5 mm apart (never touching), at rest without gravity in a closed box.
+INI = """[run]
+steps = 20
+dt = 1e-5
+progress = false
+[diagnostics]
+every = 10
+[output]
+snapshot_every = 10
+[domain]
+xlo = 0
+xhi = 0.1
+ylo = 0
+yhi = 0.08
+[material]
+density = 2650
+[linear]
+k_n = 1e6
+[coulomb]
+k_s = 0.75e6
+mu = 0.5
+[walls]
+box = bottom left right top
+[scene]
+type = lattice_square
+nx = 4
+ny = 3
+radius = 0.005
+spacing = 0.0125
+x0 = 0.02
+y0 = 0.02
+"""
+DISCS, WALLS, RADIUS = 12, 4, 0.005
+
+# Run by pvpython: counts per step with the readers ParaView offers for .xdmf.
+LOAD = r"""
+import sys
+from paraview.simple import Xdmf3ReaderS, XDMFReader, ExtractCellsByType, servermanager
+path = sys.argv[1]
+for name, reader in (("Xdmf3ReaderS", Xdmf3ReaderS(FileName=path)), ("XDMFReader", XDMFReader(FileNames=[path]))):
+    times = list(reader.TimestepValues)
+    for t in times:
+        for kind in ("Polyvertex", "Polyline"):
+            e = ExtractCellsByType(Input=reader, CellTypes=[kind])
+            e.UpdatePipeline(t)
+            d = servermanager.Fetch(e)
+            print(name, len(times), t, kind, d.GetNumberOfPoints(), d.GetNumberOfCells())
+sys.stdout.flush()
+import os
+os._exit(0)
+"""
+
+failures = []
+
+
+def check(what, ok, detail=""):
+    print(("ok   " if ok else "FAIL ") + what + ("" if ok else ": " + str(detail)))
+    if not ok:
+        failures.append(what)
+
+
+def run(cmd, **kw):
+    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
+                       timeout=300, **kw)
+    return p.returncode, p.stdout
+
+
+def pvpython(args):
+    # xvfb-run -a picks a free display number racily: another xvfb-run starting at the same moment can take
+    # it, and ParaView then aborts creating its window. Such a start is retried; nothing else is.
+    for attempt in range(3):
+        rc, out = run(["xvfb-run", "-a", "pvpython"] + args)
+        if not any(s in out for s in ("CreateAWindow", "Xvfb failed", "cannot open display", "bad X server")):
+            break
+        print("note: the X server of xvfb-run was not usable (attempt %d), retrying" % (attempt + 1))
+    return rc, out
+
+
+def red_pixels(png):
+    import matplotlib.image
+    img = matplotlib.image.imread(png)  # floats in [0, 1], RGB or RGBA
+    r, g, b = img[..., 0], img[..., 1], img[..., 2]
+    return int(((r > 0.6) & (g < 0.4) & (b < 0.4)).sum()), img.shape
+
+
+def main():
+    if len(sys.argv) != 2:
+        print("usage: test_paraview.py RONDEL_BINARY")
+        return 1
+    missing = [t for t in ("pvpython", "xvfb-run") if shutil.which(t) is None]
+    if missing:
+        print("SKIP: %s not installed (Debian: paraview python3-paraview xvfb); the ParaView test needs them"
+              % " and ".join(missing))
+        return SKIP
+    rondel = os.path.abspath(sys.argv[1])
+    tmp = tempfile.mkdtemp(prefix="rondel-paraview-")
+    try:
+        ini, out = os.path.join(tmp, "tiny.ini"), os.path.join(tmp, "run")
+        with open(ini, "w") as f:
+            f.write(INI)
+        env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+        rc, log = run([rondel, ini, "--run.output=" + out], env=env)
+        check("rondel writes the tiny run", rc == 0, log[-2000:])
+        if rc != 0:
+            return 1
+        for step in (0, 10, 20):
+            name = "snapshot_%010d.h5" % step
+            check("snapshot of step %d (step 0: the initial state)" % step, os.path.isfile(os.path.join(out, name)))
+        xdmf = os.path.join(out, "snapshots.xdmf")
+        text = open(xdmf).read()
+        check("snapshots.xdmf lists the flags", 'Name="flags"' in text)
+        check("snapshots.xdmf gives the vertex cells their connectivity", "/discs/index" in text)
+
+        loader = os.path.join(tmp, "load.py")
+        with open(loader, "w") as f:
+            f.write(LOAD)
+        rc, got = pvpython([loader, xdmf])
+        rows = [l.split() for l in got.splitlines() if l.startswith(("Xdmf3ReaderS ", "XDMFReader "))]
+        check("pvpython loads the series", rc == 0 and len(rows) == 2 * 3 * 2, got[-3000:])
+        for r in rows:
+            reader, steps, t, kind, points, cells = r[0], int(r[1]), r[2], r[3], int(r[4]), int(r[5])
+            want = (DISCS, DISCS) if kind == "Polyvertex" else (2 * WALLS, WALLS)
+            check("%s at t = %s: %s points and cells %s (want %s), 3 steps" % (reader, t, kind, (points, cells),
+                                                                             want), steps == 3 and
+                  (points, cells) == want)
+
+        # One frame, discs pure red: their pixel count is their area in pixels (not blank, true radius).
+        frames = os.path.join(tmp, "frames")
+        w, h, bounds = 500, 400, ("0", "0.1", "0", "0.08")  # 5000 pixels per metre both ways
+        rc, got = pvpython([SCRIPT, out, "--field", "solid", "--step", "20", "--size", "%dx%d" % (w, h),
+                            "--out", frames, "--bounds"] + list(bounds))
+        png = os.path.join(frames, "frame_0000000020.png")
+        check("paraview_frames.py renders step 20", rc == 0 and os.path.isfile(png), got[-3000:])
+        if os.path.isfile(png):
+            n, shape = red_pixels(png)
+            want = DISCS * 3.141592653589793 * (RADIUS * 5000.0) ** 2
+            check("frame is %dx%d" % (w, h), shape[0] == h and shape[1] == w, shape)
+            check("disc pixels %d within 5 %% of the discs' area %.0f px" % (n, want), abs(n - want) < 0.05 * want)
+        rc, got = pvpython([SCRIPT, out, "--step", "20", "--out", frames, "--size", "300x200"])
+        check("coloured by velocity (the default) renders", rc == 0, got[-2000:])
+
+        # Bad input: exit 1 with a message naming what is wrong.
+        for args, words in (([out, "--field", "nosuch"], "--field nosuch"), ([tmp + "/none"], "no such file"),
+                            ([out, "--size", "big"], "--size"), ([out, "--step", "7"], "--step 7")):
+            rc, got = pvpython([SCRIPT] + args + ["--out", frames])
+            check("bad input %s: exit 1 naming it" % " ".join(args[1:] or args), rc == 1 and words in got, (rc, got))
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    print("%d failure(s)" % len(failures))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
