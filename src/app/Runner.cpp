@@ -31,9 +31,9 @@ void Runner::log_start(std::int64_t n_discs) {
              " rank(s); laws: normal " + config.normal_law + ", tangential " + config.tangential_law + ", rolling " +
              config.rolling_law);
   if (Boundaries::any_rough(sim_.walls())) log_rough_walls();
-  files_.log("time step " + fmt(sim_.dt(), 4) + " s = " + fmt(sim_.dt() / critical.dt, 3) + " x critical " +
-             fmt(critical.dt, 4) + " s, limited by the " + critical.mode + " mode (" + critical.pair + ")");
-  files_.log("neighbour skin " + fmt(sim_.skin(), 4) + " m; output in " +
+  files_.log("time step " + fmt(sim_.dt()) + " s = " + fmt(sim_.dt() / critical.dt, 4) + " x critical " +
+             fmt(critical.dt) + " s, limited by the " + critical.mode + " mode (" + critical.pair + ")");
+  files_.log("neighbour skin " + fmt(sim_.skin()) + " m; output in " +
              (files_.has_directory() ? config.output + " (resolved configuration in config.ini and log.txt)"
                                      : std::string("(none)")) +
              (sim_.step_count() > 0 ? "; resumed at step " + std::to_string(sim_.step_count()) : ""));
