@@ -153,6 +153,16 @@ TEST(Terminal, DefaultSceneInAPseudoTerminalIsShort) {
   EXPECT_TRUE(names(o.out, "\rstep 400/400 (100%)")) << o.out;
 }
 
+TEST(Terminal, ThermoEveryZeroPrintsNoThermoLines) {
+  TempDir dir;
+  const fs::path out = dir / "run";
+  const Outcome o = run(dir, "RONDEL '" + (kSource / "inputs/deposition.ini").string() +
+                                 "' --output.thermo_every=0 --run.steps=40 --run.output=" + out.string() + " | cat");
+  ASSERT_EQ(o.exit_code, 0) << o.err << o.out;
+  EXPECT_FALSE(names(o.out, "steps/s\n")) << o.out;
+  EXPECT_TRUE(names(o.out, "summary: 40 steps"));
+}
+
 TEST(Terminal, VersionPrintsVersionAndCommit) {
   TempDir dir;
   const Outcome o = run(dir, "RONDEL --version");
