@@ -124,12 +124,12 @@ void Reports::check_stability(const DiagnosticsRow& row) const {
 std::string Reports::state_text() const {
   struct Record {
     std::int64_t gid;
-    double x, y, vx, vy, theta, omega;
+    double x, y, vx, vy, theta, omega, radius;
   };
   ByteBuffer mine;
   for (std::size_t i = 0; i < discs_.n_owned(); ++i)
     mine.put(Record{discs_.gid[i], discs_.position[i].x, discs_.position[i].y, discs_.velocity[i].x,
-                    discs_.velocity[i].y, discs_.theta[i], discs_.omega[i]});
+                    discs_.velocity[i].y, discs_.theta[i], discs_.omega[i], discs_.radius[i]});
   const auto all = comm_.gather(mine);
   if (!comm_.root()) return "";
   std::vector<Record> records;
@@ -138,11 +138,19 @@ std::string Reports::state_text() const {
     while (!r.done()) records.push_back(r.get<Record>());
   }
   std::sort(records.begin(), records.end(), [](const Record& a, const Record& b) { return a.gid < b.gid; });
-  std::string out = "gid,x,y,vx,vy,theta,omega\n";
+  // The radius is the last column: the first seven stay as they were (scripts and comparisons that read them).
+  // %.17g reads back to the same double, as %a does.
+  std::string out = "gid,x,y,vx,vy,theta,omega,radius\n";
+  const bool decimal = sim_.config().final_format == "decimal";
   char buf[512];
   for (const Record& d : records) {
-    std::snprintf(buf, sizeof buf, "%lld,%a,%a,%a,%a,%a,%a\n", static_cast<long long>(d.gid), d.x, d.y, d.vx, d.vy,
-                  d.theta, d.omega);
+    const auto gid = static_cast<long long>(d.gid);
+    if (decimal)
+      std::snprintf(buf, sizeof buf, "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", gid, d.x, d.y, d.vx, d.vy,
+                    d.theta, d.omega, d.radius);
+    else
+      std::snprintf(buf, sizeof buf, "%lld,%a,%a,%a,%a,%a,%a,%a\n", gid, d.x, d.y, d.vx, d.vy, d.theta, d.omega,
+                    d.radius);
     out += buf;
   }
   return out;

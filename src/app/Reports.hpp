@@ -28,7 +28,8 @@ class Reports {
   DiagnosticsRow diagnostics(const ContactSummary& stored, double& scale) const;
   // Throws InstabilityError when the kinetic energy is not finite or the ledger residual is too large.
   void check_stability(const DiagnosticsRow& row) const;
-  // Every disc as "gid,x,y,vx,vy,theta,omega" in hexadecimal floats, ascending gid, on rank 0.
+  // Every disc as "gid,x,y,vx,vy,theta,omega,radius", ascending gid, on rank 0: hexadecimal floats, or
+  // decimal ones with output.final_format = decimal.
   std::string state_text() const;
 
  private:

@@ -1,6 +1,7 @@
 // The output directory of a run and its files (docs/design.md section 7, FORMAT.md).
 #include "app/RunFiles.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 
@@ -35,7 +36,7 @@ void RunFiles::prepare(bool resuming, std::int64_t step) {
   comm_.barrier();
   if (!comm_.root()) return;
   std::error_code ec;
-  for (const char* stale : {"final.csv", "summary.txt"}) fs::remove(dir / stale, ec);
+  for (const char* stale : {"final.csv", "summary.txt", "summary.json"}) fs::remove(dir / stale, ec);
   std::ofstream(dir / "config.ini") << "# resolved configuration of this run (every key, defaults included)\n"
                                     << config_.resolved_text;
   log_.open(dir / "log.txt", resuming ? std::ios::app : std::ios::trunc);
@@ -47,8 +48,15 @@ void RunFiles::prepare(bool resuming, std::int64_t step) {
 
 void RunFiles::log(const std::string& line) {
   if (!comm_.root()) return;
-  if (write_files_) std::cout << line << '\n';
-  if (log_.is_open()) log_ << line << '\n' << std::flush;
+  if (write_files_) {
+    if (progress_) progress_->clear();
+    std::cout << line << '\n' << std::flush;
+  }
+  log_file_only(line);
+}
+
+void RunFiles::log_file_only(const std::string& line) {
+  if (comm_.root() && log_.is_open()) log_ << line << '\n' << std::flush;
 }
 
 void RunFiles::write_diagnostics(const DiagnosticsRow& row) {
@@ -70,13 +78,23 @@ void RunFiles::write_snapshot(const StateHeader& header, DiscStore& discs, const
   checkpoints_->write_snapshot(header, discs, walls, n_discs);
 }
 
-void RunFiles::write_results(const std::string& final_state, const std::string& summary, bool stopped) const {
+void RunFiles::write_results(const std::string& final_state, const std::string& summary, const std::string& json,
+                             bool stopped) const {
   if (!comm_.root()) return;
-  std::ofstream(fs::path(config_.output) / "final.csv") << final_state;
-  std::ofstream(fs::path(config_.output) / "summary.txt")
-      << summary
-      << (stopped ? "\nstatus: stopped by a signal; resume with --resume " + config_.output + "\n"
-                  : std::string("\nstatus: complete\n"));
+  const fs::path dir(config_.output);
+  std::ofstream(dir / "final.csv") << final_state;
+  std::ofstream(dir / "summary.txt") << summary
+                                     << (stopped ? "\nstatus: stopped by a signal; resume with --resume " +
+                                                       config_.output + "\n"
+                                                 : std::string("\nstatus: complete\n"));
+  // The directory's files once summary.json is there too (checkpoints and snapshots included).
+  std::vector<std::string> names{"summary.json"};
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.is_regular_file() && e.path().filename() != "summary.json") names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  std::string files;
+  for (const auto& n : names) files += (files.empty() ? "\"" : ", \"") + n + "\"";
+  std::ofstream(dir / "summary.json") << json << ",\n  \"output_files\": [" << files << "]\n}\n";
 }
 
 }  // namespace rondel

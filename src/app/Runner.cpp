@@ -1,5 +1,7 @@
 #include "app/Runner.hpp"
 
+#include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "app/Format.hpp"
@@ -8,6 +10,7 @@
 #include "app/Simulation.hpp"
 #include "core/Errors.hpp"
 #include "core/StopSignal.hpp"
+#include "rondel/Version.hpp"
 
 namespace rondel {
 
@@ -23,16 +26,19 @@ void Runner::log_start(std::int64_t n_discs) {
   const Config& config = sim_.config();
   const Communicator& comm = sim_.comm();
   const CriticalStep& critical = sim_.critical();
-  files_.log("Rondel: " + std::to_string(n_discs) + " discs, " + std::to_string(sim_.walls().size()) + " walls, " +
-             std::to_string(comm.size()) + " rank(s); laws: normal " + config.normal_law + ", tangential " +
-             config.tangential_law + ", rolling " + config.rolling_law);
+  files_.log(std::string("Rondel ") + kRondelVersion + " (commit " + kRondelCommit + "): " + std::to_string(n_discs) +
+             " discs, " + std::to_string(sim_.walls().size()) + " walls, " + std::to_string(comm.size()) +
+             " rank(s); laws: normal " + config.normal_law + ", tangential " + config.tangential_law + ", rolling " +
+             config.rolling_law);
   if (Boundaries::any_rough(sim_.walls())) log_rough_walls();
   files_.log("time step " + fmt(sim_.dt()) + " s = " + fmt(sim_.dt() / critical.dt, 4) + " x critical " +
              fmt(critical.dt) + " s, limited by the " + critical.mode + " mode (" + critical.pair + ")");
   files_.log("neighbour skin " + fmt(sim_.skin()) + " m; output in " +
-             (files_.has_directory() ? config.output : "(none)") +
+             (files_.has_directory() ? config.output + " (resolved configuration in config.ini and log.txt)"
+                                     : std::string("(none)")) +
              (sim_.step_count() > 0 ? "; resumed at step " + std::to_string(sim_.step_count()) : ""));
-  files_.log("resolved configuration:\n" + config.resolved_text);
+  // The resolved configuration is long (every key): log.txt and config.ini keep it, the terminal does not.
+  files_.log_file_only("resolved configuration:\n" + config.resolved_text);
 }
 
 void Runner::log_rough_walls() {
@@ -53,10 +59,32 @@ void Runner::log_rough_walls() {
 void Runner::record() {
   const DiagnosticsRow row = sim_.diagnostics();
   files_.write_diagnostics(row);
+  const std::int64_t every = sim_.config().thermo_every;
+  if (every > 0 && (row.step % every == 0 || row.step == sim_.config().steps)) thermo(row);
   Reports(sim_).check_stability(row);
   if (!files_.has_directory()) return;
   const MeasuresRow m = sim_.measures(sim_.last_contacts());
   files_.write_measures(m);
+}
+
+void Runner::thermo(const DiagnosticsRow& row) {
+  // From the diagnostics row of this step: no reduction of its own. The rate is over the steps since the
+  // previous thermo line.
+  const auto now = std::chrono::steady_clock::now();
+  const double seconds = std::chrono::duration<double>(now - thermo_clock_).count();
+  const double rate = thermo_step_ >= 0 && seconds > 0.0 ? (row.step - thermo_step_) / seconds : 0.0;
+  char line[256];
+  if (thermo_step_ < 0) {
+    std::snprintf(line, sizeof line, "%10s %12s %12s %9s %9s %10s", "step", "time[s]", "KE[J]", "contacts", "residual",
+                  "steps/s");
+    files_.log(line);
+  }
+  std::snprintf(line, sizeof line, "%10lld %12.5g %12.5g %9lld %9.2e %10.3g", static_cast<long long>(row.step),
+                row.time, row.ke_trans + row.ke_rot, static_cast<long long>(row.contacts + row.wall_contacts),
+                row.residual, rate);
+  files_.log(line);
+  thermo_step_ = row.step;
+  thermo_clock_ = now;
 }
 
 void Runner::checkpoint() {
@@ -110,8 +138,9 @@ RunSummary Runner::run() {
   const Config& config = sim_.config();
   const std::int64_t first = sim_.step_count(), remaining = std::max<std::int64_t>(0, config.steps - first);
   ProgressLine progress(remaining, n_discs, files_.has_directory() && config.progress && sim_.comm().root());
+  files_.set_progress(&progress);
   StopSignal::install();
-  start_ = last_checkpoint_ = std::chrono::steady_clock::now();
+  start_ = last_checkpoint_ = thermo_clock_ = std::chrono::steady_clock::now();
   const PhaseTimes at_start = phases_;
   try {
     phases_.restart();
@@ -124,11 +153,13 @@ RunSummary Runner::run() {
       checkpoint();
     phases_.lap(PhaseTimes::output);
   } catch (const InstabilityError& e) {
-    progress.finish();
+    progress.finish(sim_.step_count() - first);
+    files_.set_progress(nullptr);
     files_.log(std::string("FAILED: ") + e.what());
     throw;
   }
-  progress.finish();
+  progress.finish(sim_.step_count() - first);
+  files_.set_progress(nullptr);
   finish(first, n_discs, at_start);
   return sum_;
 }
@@ -157,9 +188,46 @@ void Runner::finish(std::int64_t first, std::int64_t n_discs, const PhaseTimes& 
   if (!files_.has_directory()) return;
   const std::string final_state = sim_.state_text();
   const std::string output = sim_.config().output;
-  files_.write_results(final_state, s.str() + "\n" + phases, sum.stop_signal != 0);
-  files_.log("results in " + output + "/ (config.ini, log.txt, diagnostics.csv, measures.csv, final.csv, summary.txt" +
+  files_.write_results(final_state, s.str() + "\n" + phases, summary_json(at_start), sum.stop_signal != 0);
+  files_.log("results in " + output +
+             "/ (config.ini, log.txt, diagnostics.csv, measures.csv, final.csv, summary.txt, summary.json" +
              (sum.last_checkpoint.empty() ? std::string(")") : ", checkpoint_*.h5)"));
+}
+
+std::string Runner::summary_json(const PhaseTimes& at_start) const {
+  // Numbers with 17 significant digits (they read back to the same doubles); strings escaped. The caller
+  // adds the list of output files and the closing brace.
+  const auto num = [](double v) { return std::isfinite(v) ? fmt(v, 17) : std::string("null"); };
+  const auto str = [](const std::string& v) {
+    std::string out = "\"";
+    for (const char c : v) {
+      if (c == '"' || c == '\\')
+        (out += '\\') += c;
+      else if (static_cast<unsigned char>(c) < 0x20)
+        out += ' ';
+      else
+        out += c;
+    }
+    return out + '"';
+  };
+  const RunSummary& m = sum_;
+  std::ostringstream j;
+  j << "{\n  \"status\": " << str(m.stop_signal != 0 ? "stopped" : "complete")
+    << ",\n  \"stop_signal\": " << (m.stop_signal != 0 ? str(StopSignal::name(m.stop_signal)) : "null")
+    << ",\n  \"rondel_version\": " << str(kRondelVersion) << ",\n  \"rondel_commit\": " << str(kRondelCommit)
+    << ",\n  \"steps\": " << m.steps << ",\n  \"final_step\": " << sim_.step_count() << ",\n  \"discs\": " << m.discs
+    << ",\n  \"ranks\": " << sim_.comm().size() << ",\n  \"wall_seconds\": " << num(m.wall_seconds)
+    << ",\n  \"disc_steps_per_second\": " << num(m.disc_steps_per_second) << ",\n  \"dt\": " << num(m.dt)
+    << ",\n  \"critical_dt\": " << num(m.critical.dt) << ",\n  \"critical_mode\": " << str(m.critical.mode)
+    << ",\n  \"critical_pair\": " << str(m.critical.pair) << ",\n  \"ledger_residual\": " << num(m.ledger_residual)
+    << ",\n  \"neighbour_builds\": " << m.neighbour_builds << ",\n  \"phase_seconds_rank0\": {";
+  for (int p = 0; p < PhaseTimes::count; ++p) {
+    const auto phase = static_cast<PhaseTimes::Phase>(p);
+    j << (p ? ", " : "") << str(PhaseTimes::name(phase)) << ": "
+      << num(phases_.seconds(phase) - at_start.seconds(phase));
+  }
+  j << "},\n  \"last_checkpoint\": " << (m.last_checkpoint.empty() ? "null" : str(m.last_checkpoint));
+  return j.str();
 }
 
 }  // namespace rondel

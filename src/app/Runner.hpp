@@ -11,6 +11,7 @@ namespace rondel {
 class Simulation;
 class RunFiles;
 class ProgressLine;
+struct DiagnosticsRow;
 
 struct RunSummary {
   int stop_signal = 0;          // the signal that stopped the run early (0: it ran to the end)
@@ -27,7 +28,8 @@ struct RunSummary {
 
 // The run of a Simulation to run.steps: the opening log lines, the time loop with the schedules of
 // diagnostics, measures, snapshots and checkpoints, the signals (every rank agrees on the step of a stop),
-// the progress line, and the summary with its phase times (log.txt, summary.txt, final.csv).
+// the progress and thermo lines, and the summary with its phase times (log.txt, summary.txt, summary.json,
+// final.csv).
 class Runner {
  public:
   explicit Runner(Simulation& sim);
@@ -36,6 +38,10 @@ class Runner {
  private:
   void log_start(std::int64_t n_discs);
   void log_rough_walls();
+  // The thermo line of a diagnostics row (and its column header before the first one).
+  void thermo(const DiagnosticsRow& row);
+  // summary.json without the list of output files and the closing brace (RunFiles adds them).
+  std::string summary_json(const PhaseTimes& at_start) const;
   // Diagnostics and measures of the present step, and the stability check.
   void record();
   void checkpoint();
@@ -49,7 +55,8 @@ class Runner {
   RunFiles& files_;
   PhaseTimes& phases_;
   RunSummary sum_;
-  std::chrono::steady_clock::time_point start_, last_checkpoint_;
+  std::chrono::steady_clock::time_point start_, last_checkpoint_, thermo_clock_;
+  std::int64_t thermo_step_ = -1;  // the step of the last thermo line (-1: none yet)
   std::int64_t checkpointed_ = -1;
 };
 

@@ -51,7 +51,9 @@ struct Config {
   double checkpoint_minutes = 0.0;
   int checkpoint_keep = 2;
   bool checkpoint_at_end = true;
-  std::string resume_dir;  // --resume DIR (command line only)
+  std::int64_t thermo_every = 5000;  // thermo line interval in steps (at diagnostics steps); 0 = off
+  std::string final_format = "hex";  // final.csv floats: hex or decimal
+  std::string resume_dir;            // --resume DIR (command line only)
   // [diagnostics]
   std::int64_t diag_every = 100;
   // [domain], [gravity], [material]

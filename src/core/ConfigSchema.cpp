@@ -49,7 +49,12 @@ void add_run_sections(po::options_description& all) {
       ("output.checkpoint_every", def<std::int64_t>(0), "[steps] checkpoint interval; 0 = none (see checkpoint_minutes)")
       ("output.checkpoint_minutes", def(0.0), "[min] checkpoint also after this much wall time; 0 = off")
       ("output.checkpoint_keep", def(2), "[-] newest checkpoints kept, >= 1")
-      ("output.checkpoint_at_end", def(true), "[-] write a checkpoint after the last step");
+      ("output.checkpoint_at_end", def(true), "[-] write a checkpoint after the last step")
+      ("output.thermo_every", def<std::int64_t>(5000),
+       "[steps] thermo line (step, time, KE, contacts, ledger residual, rate) on the terminal and in log.txt, at "
+       "the diagnostics steps that are multiples of it and at the last step; 0 = off")
+      ("output.final_format", def("hex"),
+       "[-] floats of final.csv: hex (C99 %a, bit-exact) or decimal (%.17g, reads back to the same bits)");
   po::options_description diag("[diagnostics]");
   diag.add_options()("diagnostics.every", def<std::int64_t>(100), "[steps] interval of diagnostics.csv rows");
   // clang-format on

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 namespace rondel {
@@ -59,32 +60,62 @@ void DiagnosticsWriter::write(const DiagnosticsRow& row) {
   }
 }
 
-ProgressLine::ProgressLine(std::int64_t total_steps, std::int64_t n_discs, bool enabled)
+ProgressLine::ProgressLine(std::int64_t total_steps, std::int64_t n_discs, bool enabled, double plain_seconds)
     : total_(total_steps),
       discs_(n_discs),
-      enabled_(enabled),
-      tty_(isatty(STDOUT_FILENO) != 0),
-      start_(std::chrono::steady_clock::now()) {}
+      enabled_(enabled && total_steps > 0),
+      tty_(stdout_is_terminal()),
+      plain_seconds_(plain_seconds),
+      start_(std::chrono::steady_clock::now()),
+      last_draw_(start_) {}
+
+bool ProgressLine::stdout_is_terminal() {
+  // Set by mpirun (Open MPI) and by MPICH's launcher; not by an MPI singleton (PMIX_RANK is, so it is no sign).
+  for (const char* launcher : {"OMPI_COMM_WORLD_SIZE", "PMI_RANK", "PMI_SIZE"})
+    if (std::getenv(launcher) != nullptr) return false;
+  return isatty(STDOUT_FILENO) != 0;
+}
 
 void ProgressLine::update(std::int64_t step) {
-  if (!enabled_ || total_ <= 0) return;
-  if (!tty_ && step < next_plain_) return;
+  if (!enabled_) return;
   const auto now = std::chrono::steady_clock::now();
-  // On a terminal the line is redrawn at most four times a second (mpirun forwards output through a pty).
-  if (tty_ && step != total_ && now - last_draw_ < std::chrono::milliseconds(250)) return;
+  const double since = std::chrono::duration<double>(now - last_draw_).count();
+  if (tty_ ? since < 0.25 : since < plain_seconds_) return;
+  draw(step, now);
+}
+
+void ProgressLine::draw(std::int64_t step, std::chrono::steady_clock::time_point now) {
   last_draw_ = now;
+  last_step_ = step;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   const double rate = elapsed > 0 ? step / elapsed : 0.0;
   const double eta = rate > 0 ? (total_ - step) / rate : 0.0;
-  std::printf("%sstep %lld/%lld (%3.0f%%)  %.3g steps/s  %.3g disc-steps/s  ETA %.0f s%s", tty_ ? "\r" : "",
-              static_cast<long long>(step), static_cast<long long>(total_), 100.0 * step / total_, rate, rate * discs_,
-              eta, tty_ ? "   " : "\n");
+  char line[200];
+  std::snprintf(line, sizeof line, "step %lld/%lld (%3.0f%%)  %.3g steps/s  %.3g disc-steps/s  ETA %.0f s",
+                static_cast<long long>(step), static_cast<long long>(total_), 100.0 * step / total_, rate,
+                rate * discs_, eta);
+  if (tty_) {
+    std::printf("\r%s\033[K", line);  // \033[K erases what a longer earlier line left
+    drawn_ = true;
+  } else {
+    std::printf("%s\n", line);
+  }
   std::fflush(stdout);
-  next_plain_ = step + std::max<std::int64_t>(1, total_ / 10);
 }
 
-void ProgressLine::finish() {
-  if (enabled_ && tty_) std::printf("\n");
+void ProgressLine::clear() {
+  if (!drawn_) return;
+  std::printf("\r\033[K");
+  std::fflush(stdout);
+  drawn_ = false;
+}
+
+void ProgressLine::finish(std::int64_t step) {
+  if (!enabled_) return;
+  if (last_step_ != step) draw(step, std::chrono::steady_clock::now());
+  if (tty_ && drawn_) std::printf("\n");
+  drawn_ = false;
+  std::fflush(stdout);
 }
 
 }  // namespace rondel

@@ -39,18 +39,29 @@ class DiagnosticsWriter {
   std::chrono::steady_clock::time_point last_flush_;
 };
 
-// A progress line with rate and ETA: rewritten in place on a terminal, a plain line every tenth of the run
-// otherwise.
+// A progress line with rate and ETA. On a terminal it is redrawn in place (at most four times a second);
+// elsewhere (a pipe, a file, or under an MPI launcher) it is a plain line every `plain_seconds` and one at
+// the end, never a carriage return.
 class ProgressLine {
  public:
-  ProgressLine(std::int64_t total_steps, std::int64_t n_discs, bool enabled);
+  ProgressLine(std::int64_t total_steps, std::int64_t n_discs, bool enabled, double plain_seconds = 10.0);
   void update(std::int64_t step);
-  void finish();
+  // Before another line is printed: a drawn line is erased (terminal) so the new one starts clean.
+  void clear();
+  // The last line, at `step` (the steps done), then a newline on a terminal.
+  void finish(std::int64_t step);
+  // Whether stdout is a terminal the line may redraw on. Under mpirun (Open MPI) every rank's stdout is a
+  // pseudo-terminal whatever mpirun's own output is, so a launched process never counts as one.
+  static bool stdout_is_terminal();
 
  private:
+  void draw(std::int64_t step, std::chrono::steady_clock::time_point now);
+
   std::int64_t total_, discs_;
   bool enabled_, tty_;
-  std::int64_t next_plain_ = 0;
+  double plain_seconds_;
+  bool drawn_ = false;           // a line is on the terminal, not yet ended by a newline
+  std::int64_t last_step_ = -1;  // the step of the last line printed
   std::chrono::steady_clock::time_point start_, last_draw_;
 };
 

@@ -9,6 +9,7 @@
 #include "parallel/CanonicalOrder.hpp"
 #include "parallel/Hdf5File.hpp"
 #include "parallel/RecordPacking.hpp"
+#include "rondel/Version.hpp"
 
 namespace rondel {
 
@@ -137,6 +138,8 @@ void write_state_file(const std::string& path, const StateHeader& h, DiscStore& 
   f.create_group("/run_metadata");
   f.write_attribute("/run_metadata", "ranks", static_cast<std::int64_t>(comm.size()));
   f.write_attribute("/run_metadata", "wall_seconds", wall_seconds);
+  f.write_attribute("/run_metadata", "rondel_version", std::string(kRondelVersion));
+  f.write_attribute("/run_metadata", "rondel_commit", std::string(kRondelCommit));
   f.write_attribute("/", "complete", std::int64_t{1});  // last: a file without it was cut short
 }
 

@@ -397,7 +397,7 @@ TEST(Executable, TinyValidRunWritesEveryOutputFile) {
 
   const auto final_rows = lines_of(read_file(out / "final.csv"));
   ASSERT_EQ(final_rows.size(), 1u + 6u) << "a header and the six discs";
-  EXPECT_EQ(final_rows[0], "gid,x,y,vx,vy,theta,omega");
+  EXPECT_EQ(final_rows[0], "gid,x,y,vx,vy,theta,omega,radius");
   EXPECT_TRUE(names(read_file(out / "summary.txt"), "status: complete"));
   EXPECT_TRUE(o.err.empty()) << o.err;
 }
