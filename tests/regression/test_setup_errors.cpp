@@ -21,16 +21,18 @@
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"
 #include "support/Assertions.hpp"
+#include "support/Command.hpp"
 #include "support/TempDir.hpp"
-
-extern char** environ;
 
 namespace rondel {
 namespace {
 
 namespace fs = std::filesystem;
 
+using test::Outcome;
+using test::quoted;
 using test::read_file;
+using test::rondel_executable;
 using test::TempDir;
 using test::write_file;
 
@@ -320,38 +322,10 @@ TEST(SetupErrors, NoOutputDirectoryIsCreatedWhenSetUpFails) {
 
 // ---- the real executable ----
 
-fs::path rondel_executable() { return fs::canonical("/proc/self/exe").parent_path().parent_path() / "rondel"; }
-
-std::string quoted(const fs::path& p) {
-  std::string s(1, '\'');  // built up in steps: GCC 12 warns (-Wrestrict, a false positive) on "'" + s + "'"
-  s += p.string();
-  s += '\'';
-  return s;
-}
-
-struct Outcome {
-  int exit_code = -1;
-  std::string out, err;
-};
-
 // Runs `rondel ARGS` from `dir` with a clean MPI environment (a singleton, even when this test runs under
 // mpirun), capturing stdout and stderr.
 Outcome run_rondel(const TempDir& dir, const std::string& args) {
-  std::string unset;
-  for (char** e = environ; *e; ++e) {
-    const std::string var(*e);
-    const std::string name = var.substr(0, var.find('='));
-    if (name.rfind("OMPI_", 0) == 0 || name.rfind("PMIX_", 0) == 0 || name.rfind("PMI_", 0) == 0)
-      unset += " -u " + name;
-  }
-  const std::string cmd = "cd " + quoted(dir.path()) + " && env" + unset + " " + quoted(rondel_executable()) + " " +
-                          args + " > stdout.txt 2> stderr.txt < /dev/null";
-  const int status = std::system(cmd.c_str());
-  Outcome o;
-  if (status != -1 && WIFEXITED(status)) o.exit_code = WEXITSTATUS(status);
-  o.out = read_file(dir / "stdout.txt");
-  o.err = read_file(dir / "stderr.txt");
-  return o;
+  return test::run_in(dir, test::without_mpi_launch(false), quoted(rondel_executable()) + " " + args);
 }
 
 TEST(Executable, BadConfigurationExitsNonZeroNamingTheKey) {

@@ -20,9 +20,8 @@
 #include "physics/LawRegistry.hpp"
 #include "rondel/Version.hpp"
 #include "support/Assertions.hpp"
+#include "support/Command.hpp"
 #include "support/TempDir.hpp"
-
-extern char** environ;
 
 namespace rondel {
 namespace {
@@ -30,7 +29,9 @@ namespace {
 namespace fs = std::filesystem;
 using test::lines_of;
 using test::names;
+using test::Outcome;
 using test::read_file;
+using test::rondel_executable;
 using test::TempDir;
 
 const fs::path kSource = RONDEL_SOURCE_DIR;
@@ -43,42 +44,19 @@ const std::string kDefaultScene = [] {
 }();
 constexpr std::size_t kThermoRows = 11;
 
-fs::path rondel_executable() { return fs::canonical("/proc/self/exe").parent_path().parent_path() / "rondel"; }
-
 bool have(const std::string& program) {
   return std::system(("command -v " + program + " > /dev/null 2>&1").c_str()) == 0;
 }
 
-struct Outcome {
-  int exit_code = -1;
-  std::string out, err;
-};
-
 // Runs `COMMAND` (where RONDEL stands for the executable) in `dir` with a clean MPI environment (this test
 // may itself run under mpirun; the run-as-root permissions stay), stdout and stderr into files.
 Outcome run(const TempDir& dir, std::string command) {
-  std::string unset;
-  for (char** e = environ; *e; ++e) {
-    const std::string var(*e);
-    const std::string name = var.substr(0, var.find('='));
-    if (name.rfind("OMPI_ALLOW_RUN_AS_ROOT", 0) == 0) continue;
-    if (name.rfind("OMPI_", 0) == 0 || name.rfind("PMIX_", 0) == 0 || name.rfind("PMI_", 0) == 0)
-      unset += " -u " + name;
-  }
-  std::string exe(1, '\'');  // built up in steps: GCC 12 warns (-Wrestrict, a false positive) on "'" + s + "'"
-  exe += rondel_executable().string();
-  exe += '\'';
+  std::string env = test::without_mpi_launch(true);
+  const std::string exe = test::quoted(test::rondel_executable());
   for (std::size_t at; (at = command.find("RONDEL")) != std::string::npos;) command.replace(at, 6, exe);
   // As root (a container), Open MPI's mpirun refuses to start without its two permissions.
-  if (geteuid() == 0) unset += " OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1";
-  const std::string cmd = "cd '" + dir.path().string() + "' && env" + unset + " sh -c \"" + command +
-                          "\" > stdout.txt 2> stderr.txt < /dev/null";
-  const int status = std::system(cmd.c_str());
-  Outcome o;
-  if (status != -1 && WIFEXITED(status)) o.exit_code = WEXITSTATUS(status);
-  o.out = read_file(dir / "stdout.txt");
-  o.err = read_file(dir / "stderr.txt");
-  return o;
+  if (geteuid() == 0) env += " OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1";
+  return test::run_in(dir, env, "sh -c \"" + command + "\"");
 }
 
 std::size_t count(const std::string& text, const std::string& what) {

@@ -19,3 +19,20 @@ def make_run(rondel, out):
     if p.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} exited with {p.returncode}:\n{p.stdout}\n{p.stderr}")
     return out
+
+
+class Checks:
+    """PASS/FAIL lines, one per check, and the closing 'N passed, N failed' line with its exit status."""
+
+    def __init__(self):
+        self.results = []
+
+    def __call__(self, name, cond, detail=""):
+        self.results.append(bool(cond))
+        print(("PASS " if cond else "FAIL ") + name + ("" if cond else f": {detail}"))
+
+    def summary(self):
+        passed = sum(self.results)
+        print(f"{passed} passed, {len(self.results) - passed} failed")
+        return 0 if self.results and passed == len(self.results) else 1
+

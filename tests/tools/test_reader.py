@@ -19,14 +19,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "tools"))
 sys.path.insert(0, HERE)
 import rondel  # noqa: E402
-from rondel_run import STEPS, make_run  # noqa: E402
+from rondel_run import Checks, STEPS, make_run  # noqa: E402
 
-results = []
-
-
-def check(name, cond, detail=""):
-    results.append(bool(cond))
-    print(("PASS " if cond else "FAIL ") + name + ("" if cond else f": {detail}"))
+check = Checks()
 
 
 def raises(name, fn, *words):
@@ -203,9 +198,7 @@ def main():
         test_config()
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
-    passed = sum(results)
-    print(f"{passed} passed, {len(results) - passed} failed")
-    return 0 if results and passed == len(results) else 1
+    return check.summary()
 
 
 if __name__ == "__main__":

@@ -20,14 +20,9 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOOLS = os.path.abspath(os.path.join(HERE, "..", "..", "tools"))
 sys.path.insert(0, HERE)
-from rondel_run import make_run  # noqa: E402
+from rondel_run import Checks, make_run  # noqa: E402
 
-results = []
-
-
-def check(name, cond, detail=""):
-    results.append(bool(cond))
-    print(("PASS " if cond else "FAIL ") + name + ("" if cond else f": {detail}"))
+check = Checks()
 
 
 def tool(name, *args):
@@ -136,9 +131,7 @@ def main():
         check("h5info on a checkpoint of this build: exit 0, checksums verified", rc == 0 and "verified" in out, err)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
-    passed = sum(results)
-    print(f"{passed} passed, {len(results) - passed} failed")
-    return 0 if results and passed == len(results) else 1
+    return check.summary()
 
 
 if __name__ == "__main__":
