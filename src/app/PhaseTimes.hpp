@@ -22,11 +22,6 @@ class PhaseTimes {
     last_ = now;
   }
   double seconds(Phase p) const { return seconds_[p]; }
-  double total() const {
-    double s = 0.0;
-    for (double v : seconds_) s += v;
-    return s;
-  }
   static const char* name(Phase p) {
     static constexpr const char* names[] = {"force", "neighbour", "communication", "integrate", "output", "other"};
     return names[p];
