@@ -19,4 +19,10 @@ struct InstabilityError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Reading or writing a file failed (disk full, permissions, a damaged file system): main exits with its
+// own code, the partial file is removed and the previous checkpoint is kept.
+struct IoError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace rondel
