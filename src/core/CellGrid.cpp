@@ -24,11 +24,10 @@ CellGrid::CellGrid(const Domain& domain, double range)
   side_y_ = domain.length_y() / ny_;
 }
 
-std::size_t CellGrid::cell_of(Vec2 x) const {
-  const int cx = clamp_index(x.x, domain_.xlo, side_x_, nx_);
-  const int cy = clamp_index(x.y, domain_.ylo, side_y_, ny_);
-  return static_cast<std::size_t>(cy) * nx_ + cx;
-}
+int CellGrid::column_of(double x) const { return clamp_index(x, domain_.xlo, side_x_, nx_); }
+int CellGrid::row_of(double y) const { return clamp_index(y, domain_.ylo, side_y_, ny_); }
+
+std::size_t CellGrid::cell_of(Vec2 x) const { return index(column_of(x.x), row_of(x.y)); }
 
 std::vector<std::size_t> CellGrid::stencil(std::size_t cell) const {
   const int cx = static_cast<int>(cell % nx_), cy = static_cast<int>(cell / nx_);

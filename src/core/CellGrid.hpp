@@ -20,6 +20,12 @@ class CellGrid {
   int ny() const { return ny_; }
   std::size_t size() const { return static_cast<std::size_t>(nx_) * ny_; }
   std::size_t cell_of(Vec2 x) const;
+  // The column and row of the cell of x (clamped like cell_of) and back.
+  int column_of(double x) const;
+  int row_of(double y) const;
+  std::size_t index(int cx, int cy) const { return static_cast<std::size_t>(cy) * static_cast<std::size_t>(nx_) + cx; }
+  bool periodic_x() const { return domain_.periodic_x; }
+  bool periodic_y() const { return domain_.periodic_y; }
   // The distinct cells of the 3 x 3 stencil around `cell` (periodic wrap; itself included), ascending.
   std::vector<std::size_t> stencil(std::size_t cell) const;
 

@@ -8,17 +8,39 @@ namespace rondel {
 
 void NeighbourList::bin(const DiscStore& discs, const Domain& domain, double R_max) {
   grid_ = CellGrid(domain, range(R_max));
-  const std::size_t n_cells = grid_.size();
-  cell_start_.assign(n_cells + 1, 0);
-  std::vector<std::size_t> cell(discs.size());
-  for (std::size_t i = 0; i < discs.size(); ++i) {
-    cell[i] = grid_.cell_of(discs.position[i]);
+  const std::size_t n = discs.size();
+  std::vector<int> cx(n), cy(n);
+  for (std::size_t i = 0; i < n; ++i)
+    cx[i] = grid_.column_of(discs.position[i].x), cy[i] = grid_.row_of(discs.position[i].y);
+  auto distinct = [](std::vector<int> v) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    return v;
+  };
+  columns_ = distinct(cx);
+  rows_ = distinct(cy);
+  const std::size_t n_bins = columns_.size() * rows_.size();
+  cell_start_.assign(n_bins + 1, 0);
+  std::vector<std::size_t> cell(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    cell[i] = static_cast<std::size_t>(bin_of(cx[i], cy[i]));
     ++cell_start_[cell[i] + 1];
   }
-  for (std::size_t c = 0; c < n_cells; ++c) cell_start_[c + 1] += cell_start_[c];
-  cell_items_.resize(discs.size());
+  for (std::size_t c = 0; c < n_bins; ++c) cell_start_[c + 1] += cell_start_[c];
+  cell_items_.resize(n);
   std::vector<std::size_t> fill(cell_start_.begin(), cell_start_.end() - 1);
-  for (std::size_t i = 0; i < discs.size(); ++i) cell_items_[fill[cell[i]]++] = i;
+  for (std::size_t i = 0; i < n; ++i) cell_items_[fill[cell[i]]++] = i;
+  bin_column_.resize(n_bins);
+  bin_row_.resize(n_bins);
+  for (std::size_t b = 0; b < n_bins; ++b)
+    bin_column_[b] = columns_[b % columns_.size()], bin_row_[b] = rows_[b / columns_.size()];
+}
+
+long NeighbourList::bin_of(int cx, int cy) const {
+  const auto x = std::lower_bound(columns_.begin(), columns_.end(), cx);
+  const auto y = std::lower_bound(rows_.begin(), rows_.end(), cy);
+  if (x == columns_.end() || *x != cx || y == rows_.end() || *y != cy) return -1;
+  return static_cast<long>(y - rows_.begin()) * static_cast<long>(columns_.size()) + (x - columns_.begin());
 }
 
 void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet& walls, const ContactParamTable& params,
@@ -30,8 +52,15 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
   const std::size_t n_owned = discs.n_owned();
 
   std::vector<std::tuple<ContactKey, std::int32_t, std::int32_t>> found;
+  std::vector<std::size_t> around;
   for (std::size_t c = 0; c + 1 < cell_start_.size(); ++c) {
-    const auto around = grid_.stencil(c);
+    if (cell_start_[c] == cell_start_[c + 1]) continue;
+    around.clear();
+    for (std::size_t g : grid_.stencil(grid_.index(bin_column_[c], bin_row_[c]))) {
+      const long b = bin_of(static_cast<int>(g % static_cast<std::size_t>(grid_.nx())),
+                            static_cast<int>(g / static_cast<std::size_t>(grid_.nx())));
+      if (b >= 0) around.push_back(static_cast<std::size_t>(b));
+    }
     for (std::size_t a = cell_start_[c]; a < cell_start_[c + 1]; ++a) {
       const std::size_t i = cell_items_[a];
       for (std::size_t c2 : around) {

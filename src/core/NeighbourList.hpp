@@ -37,11 +37,18 @@ class NeighbourList {
   std::size_t builds() const { return builds_; }
 
  private:
+  // Bins the local discs (owned and ghosts) into the cells they occupy. The bins cover only the columns and
+  // rows that hold a local disc (a compressed grid of the occupied columns x occupied rows), never the whole
+  // domain's cell grid, so the memory and the work stay those of this rank's discs (docs/design.md section 6).
   void bin(const DiscStore& discs, const Domain& domain, double R_max);
+  // The compressed bin of global column cx and row cy, or -1 when no local disc is in that column or row.
+  long bin_of(int cx, int cy) const;
 
   double skin_;
   CellGrid grid_;
+  std::vector<int> columns_, rows_;  // the occupied columns and rows, ascending
   std::vector<std::size_t> cell_start_, cell_items_;
+  std::vector<int> bin_column_, bin_row_;  // per compressed bin: its global column and row
   std::vector<Vec2> position_at_build_;
   std::size_t builds_ = 0;
 };
