@@ -139,10 +139,11 @@ void Simulation::distribute_discs() {
 }
 
 void Simulation::make_decomposition(bool replicated) {
-  const auto partitioner =
-      config_.partitioner == "grid" ? Decomposition::Partitioner::grid : Decomposition::Partitioner::metis;
+  const auto partitioner = config_.partitioner == "grid"    ? Decomposition::Partitioner::grid
+                           : config_.partitioner == "metis" ? Decomposition::Partitioner::metis
+                                                            : Decomposition::Partitioner::sfc;
   decomposition_ = std::make_unique<Decomposition>(config_.domain, neighbours_.range(R_max_), partitioner, comm_);
-  decomposition_->initial_partition(decomposition_->initial_weights(discs_, replicated));
+  decomposition_->initial_partition(discs_, replicated);
   if (decomposition_->empty_ranks() > 0 && comm_.root())
     std::cerr << "rondel: warning: " << decomposition_->empty_ranks() << " of " << comm_.size()
               << " ranks own no cell and will idle; use fewer ranks for this scene\n";
@@ -217,6 +218,7 @@ void Simulation::rebuild() {
   // Discs go to their cell owners with their contact rows; the rows (local and received) then serve as
   // the history source of the new neighbour list.
   const DiscExchange::Counts moved = exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_);
+  decomposition_->migrated();
   migrated_ += moved.sent;
   exchange_.build_ghosts(discs_, *decomposition_, comm_);
   phases_.lap(PhaseTimes::communication);
@@ -228,11 +230,11 @@ void Simulation::rebuild() {
 }
 
 void Simulation::balance_load() {
-  const double work = Decomposition::rank_work(discs_, pairs_);
+  const auto work = static_cast<double>(Decomposition::rank_work(discs_, pairs_));
   const double max = comm_.max(work), mean = comm_.sum(work) / comm_.size();
   imbalance_ = mean > 0.0 ? max / mean : 1.0;
   if (comm_.size() == 1 || (!config_.force_balance && imbalance_ <= config_.balance_threshold)) return;
-  if (decomposition_->repartition(decomposition_->cell_work(discs_, pairs_))) rebalance_due_ = true;
+  if (decomposition_->repartition(discs_, pairs_)) rebalance_due_ = true;
 }
 
 void Simulation::step() {
@@ -312,8 +314,14 @@ void Simulation::load_checkpoint(const std::string& path) {
   step_ = h.step;
   time_ = h.time;
   make_decomposition(false);
+  // Discs read by file block go to the owners of an equal-cell cut (any rank), then to the weighted cut.
   ContactTable no_pairs = make_contact_table(laws_), no_walls = make_contact_table(laws_);
-  exchange_.migrate(discs_, no_pairs, no_walls, *decomposition_, comm_);
+  exchange_.migrate(discs_, no_pairs, no_walls, *decomposition_, comm_, true);
+  decomposition_->migrated();
+  if (decomposition_->repartition(discs_, no_pairs)) {
+    exchange_.migrate(discs_, no_pairs, no_walls, *decomposition_, comm_);
+    decomposition_->migrated();
+  }
   file.read_rows(pairs_, wall_rows_, discs_);
   file.read_ledger(ledger_);
 }

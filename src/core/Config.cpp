@@ -127,7 +127,8 @@ void read_domain(const Reader& r, Config& c) {
   c.skin = r.get<double>("neighbour.skin");
   non_negative(c.skin, "neighbour.skin");
   c.partitioner = r.get<std::string>("parallel.partitioner");
-  check(c.partitioner == "metis" || c.partitioner == "grid", "parallel.partitioner", "metis | grid", c.partitioner);
+  check(c.partitioner == "sfc" || c.partitioner == "metis" || c.partitioner == "grid", "parallel.partitioner",
+        "sfc | grid | metis", c.partitioner);
   c.balance_every = r.get<std::int64_t>("parallel.balance_every");
   check(c.balance_every >= 0, "parallel.balance_every", "must be >= 0", std::to_string(c.balance_every));
   c.balance_threshold = r.get<double>("parallel.balance_threshold");

@@ -66,7 +66,7 @@ struct Config {
   // [neighbour]
   double skin = 0.0;  // 0: automatic
   // [parallel]
-  std::string partitioner = "metis";
+  std::string partitioner = "sfc";
   std::int64_t balance_every = 1000;
   double balance_threshold = 1.1;
   bool force_balance = false;

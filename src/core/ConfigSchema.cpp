@@ -129,7 +129,9 @@ void add_wall_sections(po::options_description& all) {
   neigh.add_options()("neighbour.skin", def(0.0), "[m] Verlet skin; 0 = a quarter of the mean radius");
   po::options_description par("[parallel]");
   par.add_options()
-      ("parallel.partitioner", def("metis"), "[-] cell-to-rank partitioner: metis | grid")
+      ("parallel.partitioner", def("sfc"),
+       "[-] cell-to-rank partitioner: sfc (Hilbert-curve cuts, the default) | grid (blocks) | metis (graph "
+       "partition; every rank holds the whole cell map: moderate sizes)")
       ("parallel.balance_every", def<std::int64_t>(1000), "[steps] interval of load-balance checks; 0 = never")
       ("parallel.balance_threshold", def(1.1), "[-] repartition when max/mean work per rank exceeds this, > 1")
       ("parallel.force_balance", def(false), "[-] repartition at every check (testing)");

@@ -21,24 +21,28 @@ Communicator::Communicator(MPI_Comm comm) : comm_(comm) {
 
 double Communicator::max(double local) const {
   double out = local;
+  ++stats_.collectives;
   MPI_Allreduce(&local, &out, 1, MPI_DOUBLE, MPI_MAX, comm_);
   return out;
 }
 
 double Communicator::sum(double local) const {
   double out = local;
+  ++stats_.collectives;
   MPI_Allreduce(&local, &out, 1, MPI_DOUBLE, MPI_SUM, comm_);
   return out;
 }
 
 std::int64_t Communicator::sum(std::int64_t local) const {
   std::int64_t out = local;
+  ++stats_.collectives;
   MPI_Allreduce(&local, &out, 1, MPI_INT64_T, MPI_SUM, comm_);
   return out;
 }
 
 bool Communicator::any(bool local) const {
   int in = local ? 1 : 0, out = 0;
+  ++stats_.collectives;
   MPI_Allreduce(&in, &out, 1, MPI_INT, MPI_LOR, comm_);
   return out != 0;
 }
@@ -51,13 +55,16 @@ namespace rondel {
 
 std::int64_t Communicator::max(std::int64_t local) const {
   std::int64_t out = local;
+  ++stats_.collectives;
   MPI_Allreduce(&local, &out, 1, MPI_INT64_T, MPI_MAX, comm_);
   return out;
 }
 
 void Communicator::exact_sum_in_place(ExactSum& local) const {
   local.normalise();
+  ++stats_.collectives;
   MPI_Allreduce(MPI_IN_PLACE, local.limbs().data(), ExactSum::kLimbs, MPI_INT64_T, MPI_SUM, comm_);
+  ++stats_.collectives;
   MPI_Allreduce(MPI_IN_PLACE, &local.nonfinite_count(), 1, MPI_INT64_T, MPI_SUM, comm_);
   local.normalise();
 }
@@ -70,6 +77,7 @@ double Communicator::exact_sum(ExactSum local) const {
 std::vector<ByteBuffer> Communicator::all_to_all(const std::vector<ByteBuffer>& out) const {
   std::vector<int> send_counts(size_), recv_counts(size_), send_displs(size_), recv_displs(size_);
   for (int r = 0; r < size_; ++r) send_counts[r] = static_cast<int>(out[r].bytes.size());
+  ++stats_.collectives;
   MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm_);
   std::vector<char> send, recv;
   for (int r = 0; r < size_; ++r) {
@@ -79,6 +87,7 @@ std::vector<ByteBuffer> Communicator::all_to_all(const std::vector<ByteBuffer>& 
   int total = 0;
   for (int r = 0; r < size_; ++r) recv_displs[r] = total, total += recv_counts[r];
   recv.resize(static_cast<std::size_t>(total));
+  ++stats_.collectives;
   MPI_Alltoallv(send.data(), send_counts.data(), send_displs.data(), MPI_BYTE, recv.data(), recv_counts.data(),
                 recv_displs.data(), MPI_BYTE, comm_);
   std::vector<ByteBuffer> in(static_cast<std::size_t>(size_));
@@ -86,6 +95,12 @@ std::vector<ByteBuffer> Communicator::all_to_all(const std::vector<ByteBuffer>& 
     in[r].bytes.assign(recv.begin() + recv_displs[r], recv.begin() + recv_displs[r] + recv_counts[r]);
   return in;
 }
+
+namespace {
+// Messages are sent in pieces of at most 1 GiB, so that no MPI count overflows an int whatever the size.
+constexpr std::size_t kPiece = std::size_t{1} << 30;
+constexpr int kTag = 7, kSizeTag = 8;
+}  // namespace
 
 std::vector<ByteBuffer> Communicator::exchange(const std::vector<int>& to, const std::vector<ByteBuffer>& out,
                                                const std::vector<int>& from,
@@ -95,31 +110,66 @@ std::vector<ByteBuffer> Communicator::exchange(const std::vector<int>& to, const
   requests.reserve(to.size() + from.size());
   for (std::size_t k = 0; k < from.size(); ++k) {
     in[k].bytes.resize(sizes[k]);
-    requests.emplace_back();
-    MPI_Irecv(in[k].bytes.data(), static_cast<int>(sizes[k]), MPI_BYTE, from[k], 7, comm_, &requests.back());
+    for (std::size_t at = 0; at < sizes[k] || (at == 0 && sizes[k] == 0); at += kPiece) {
+      requests.emplace_back();
+      MPI_Irecv(in[k].bytes.data() + at, static_cast<int>(std::min(kPiece, sizes[k] - at)), MPI_BYTE, from[k], kTag,
+                comm_, &requests.back());
+      if (sizes[k] == 0) break;
+    }
   }
   for (std::size_t k = 0; k < to.size(); ++k) {
-    requests.emplace_back();
-    MPI_Isend(out[k].bytes.data(), static_cast<int>(out[k].bytes.size()), MPI_BYTE, to[k], 7, comm_, &requests.back());
+    const std::size_t n = out[k].bytes.size();
+    for (std::size_t at = 0; at < n || (at == 0 && n == 0); at += kPiece) {
+      requests.emplace_back();
+      MPI_Isend(out[k].bytes.data() + at, static_cast<int>(std::min(kPiece, n - at)), MPI_BYTE, to[k], kTag, comm_,
+                &requests.back());
+      ++stats_.messages;
+      if (n == 0) break;
+    }
+    stats_.bytes += static_cast<std::int64_t>(n);
   }
   MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
   return in;
 }
 
+std::vector<ByteBuffer> Communicator::exchange(const std::vector<int>& to, const std::vector<ByteBuffer>& out,
+                                               const std::vector<int>& from) const {
+  std::vector<std::uint64_t> in_sizes(from.size()), out_sizes(to.size());
+  std::vector<MPI_Request> requests;
+  requests.reserve(to.size() + from.size());
+  for (std::size_t k = 0; k < from.size(); ++k) {
+    requests.emplace_back();
+    MPI_Irecv(&in_sizes[k], 1, MPI_UINT64_T, from[k], kSizeTag, comm_, &requests.back());
+  }
+  for (std::size_t k = 0; k < to.size(); ++k) {
+    out_sizes[k] = out[k].bytes.size();
+    requests.emplace_back();
+    MPI_Isend(&out_sizes[k], 1, MPI_UINT64_T, to[k], kSizeTag, comm_, &requests.back());
+    ++stats_.messages;
+    stats_.bytes += static_cast<std::int64_t>(sizeof(std::uint64_t));
+  }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  return exchange(to, out, from, std::vector<std::size_t>(in_sizes.begin(), in_sizes.end()));
+}
+
 void Communicator::broadcast(std::vector<char>& bytes, int root) const {
   long long n = static_cast<long long>(bytes.size());
+  ++stats_.collectives;
   MPI_Bcast(&n, 1, MPI_LONG_LONG, root, comm_);
   bytes.resize(static_cast<std::size_t>(n));
+  ++stats_.collectives;
   MPI_Bcast(bytes.data(), static_cast<int>(n), MPI_BYTE, root, comm_);
 }
 
 std::vector<ByteBuffer> Communicator::gather(const ByteBuffer& mine, int root) const {
   int n = static_cast<int>(mine.bytes.size());
   std::vector<int> counts(size_), displs(size_);
+  ++stats_.collectives;
   MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm_);
   int total = 0;
   for (int r = 0; r < size_; ++r) displs[r] = total, total += (rank_ == root ? counts[r] : 0);
   std::vector<char> all(static_cast<std::size_t>(total));
+  ++stats_.collectives;
   MPI_Gatherv(mine.bytes.data(), n, MPI_BYTE, all.data(), counts.data(), displs.data(), MPI_BYTE, root, comm_);
   std::vector<ByteBuffer> out;
   if (rank_ != root) return out;
@@ -131,10 +181,12 @@ std::vector<ByteBuffer> Communicator::gather(const ByteBuffer& mine, int root) c
 std::vector<ByteBuffer> Communicator::all_gather(const ByteBuffer& mine) const {
   int n = static_cast<int>(mine.bytes.size());
   std::vector<int> counts(size_), displs(size_);
+  ++stats_.collectives;
   MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
   int total = 0;
   for (int r = 0; r < size_; ++r) displs[r] = total, total += counts[r];
   std::vector<char> all(static_cast<std::size_t>(total));
+  ++stats_.collectives;
   MPI_Allgatherv(mine.bytes.data(), n, MPI_BYTE, all.data(), counts.data(), displs.data(), MPI_BYTE, comm_);
   std::vector<ByteBuffer> out(static_cast<std::size_t>(size_));
   for (int r = 0; r < size_; ++r) out[r].bytes.assign(all.begin() + displs[r], all.begin() + displs[r] + counts[r]);

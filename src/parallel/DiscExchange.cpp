@@ -1,7 +1,7 @@
 #include "parallel/DiscExchange.hpp"
 
 #include <algorithm>
-#include <set>
+#include <iostream>
 
 #include "parallel/RecordPacking.hpp"
 
@@ -32,26 +32,44 @@ void pack_rows_of(std::int64_t gid, const std::vector<std::pair<std::int64_t, st
 
 }  // namespace
 
+namespace {
+
+// The index of `rank` in the ascending partner list, or stops the job: a disc that has to go to a rank
+// that is not a partner has jumped further than a cell since the last migration, which the step's checks
+// exclude, so this is a bug; the other ranks are already waiting for this rank's messages, so the only way
+// out that never hangs is MPI_Abort.
+std::size_t partner_index(const std::vector<int>& partners, int rank, const Communicator& comm, std::int64_t gid) {
+  const auto it = std::lower_bound(partners.begin(), partners.end(), rank);
+  if (it != partners.end() && *it == rank) return static_cast<std::size_t>(it - partners.begin());
+  std::cerr << "rondel: internal error on rank " << comm.rank() << ": disc " << gid << " has to move to rank " << rank
+            << ", which is not next to this rank's cells\n";
+  MPI_Abort(comm.comm(), 4);
+  return 0;
+}
+
+}  // namespace
+
 DiscExchange::Counts DiscExchange::migrate(DiscStore& discs, ContactTable& pairs, ContactTable& wall_rows,
-                                           const Decomposition& dec, const Communicator& comm) {
+                                           const Decomposition& dec, const Communicator& comm, bool any_rank) {
   discs.truncate_to_owned();
   Counts counts;
+  if (comm.size() == 1) return counts;
   const auto pair_index = rows_by_gid(pairs, true);
   const auto wall_index = rows_by_gid(wall_rows, false);
-  std::vector<ByteBuffer> out(static_cast<std::size_t>(comm.size()));
+  const std::vector<int>& to = dec.send_to();
+  std::vector<ByteBuffer> out(any_rank ? static_cast<std::size_t>(comm.size()) : to.size());
   std::vector<bool> leaving(discs.n_owned(), false);
   for (std::size_t i = 0; i < discs.n_owned(); ++i) {
     const int dest = dec.owner(discs.position[i]);
     if (dest == comm.rank()) continue;
     leaving[i] = true;
     ++counts.sent;
-    ByteBuffer& b = out[dest];
+    ByteBuffer& b = out[any_rank ? static_cast<std::size_t>(dest) : partner_index(to, dest, comm, discs.gid[i])];
     pack_disc(discs, i, kMigrate, b);
     pack_rows_of(discs.gid[i], pair_index, pairs, b);
     pack_rows_of(discs.gid[i], wall_index, wall_rows, b);
   }
-  if (comm.size() == 1) return counts;
-  const auto in = comm.all_to_all(out);
+  const auto in = any_rank ? comm.all_to_all(out) : comm.exchange(to, out, dec.receive_from());
   discs.remove_owned(leaving);
   for (const ByteBuffer& b : in) {
     ByteReader r(b.bytes.data(), b.bytes.size());
@@ -79,48 +97,64 @@ void DiscExchange::build_ghosts(DiscStore& discs, const Decomposition& dec, cons
   first_ghost_ = discs.n_owned();
   ghosts_ = 0;
   if (comm.size() == 1) return;
-  std::vector<std::vector<std::size_t>> lists(static_cast<std::size_t>(comm.size()));
+  // Each owned disc goes to every neighbouring rank that owns one of the cells around its cell; every
+  // neighbour gets a message (maybe empty), so each side knows what to expect without a collective.
+  const std::vector<int>& partners = dec.neighbours();
+  std::vector<std::vector<std::size_t>> lists(partners.size());
+  std::vector<int> to;
   for (std::size_t i = 0; i < discs.n_owned(); ++i) {
-    std::set<int> to;
-    for (std::size_t c : dec.grid().stencil(dec.grid().cell_of(discs.position[i]))) to.insert(dec.owner_of_cell(c));
-    to.erase(comm.rank());
-    for (int r : to) lists[r].push_back(i);
+    to.clear();
+    for (std::size_t c : dec.grid().stencil(dec.grid().cell_of(discs.position[i]))) {
+      const int r = dec.owner_of_cell(c);
+      if (r != comm.rank()) to.push_back(r);
+    }
+    std::sort(to.begin(), to.end());
+    to.erase(std::unique(to.begin(), to.end()), to.end());
+    for (int r : to) lists[partner_index(partners, r, comm, discs.gid[i])].push_back(i);
   }
-  std::vector<ByteBuffer> out(static_cast<std::size_t>(comm.size()));
-  for (int r = 0; r < comm.size(); ++r) {
-    for (std::size_t i : lists[r]) pack_disc(discs, i, kGhostCreate, out[r]);
-    if (!lists[r].empty()) {
-      send_ranks_.push_back(r);
-      send_index_.push_back(lists[r]);
+  std::vector<ByteBuffer> out(partners.size());
+  for (std::size_t k = 0; k < partners.size(); ++k) {
+    for (std::size_t i : lists[k]) pack_disc(discs, i, kGhostCreate, out[k]);
+    if (!lists[k].empty()) {
+      send_ranks_.push_back(partners[k]);
+      send_index_.push_back(std::move(lists[k]));
     }
   }
-  const auto in = comm.all_to_all(out);
+  const auto in = comm.exchange(partners, out, partners);
   const std::size_t create = record_bytes(discs, kGhostCreate), step = record_bytes(discs, kGhostStep);
-  for (int r = 0; r < comm.size(); ++r) {
-    const ByteBuffer& b = in[r];
+  for (std::size_t k = 0; k < partners.size(); ++k) {
+    const ByteBuffer& b = in[k];
     if (b.bytes.empty()) continue;
     ByteReader reader(b.bytes.data(), b.bytes.size());
     const std::size_t n = b.bytes.size() / create;
-    for (std::size_t k = 0; k < n; ++k) append_disc(discs, kGhostCreate, reader);
-    recv_ranks_.push_back(r);
+    for (std::size_t m = 0; m < n; ++m) append_disc(discs, kGhostCreate, reader);
+    recv_ranks_.push_back(partners[k]);
     recv_bytes_.push_back(n * step);
     ghosts_ += n;
   }
 }
 
-void DiscExchange::update_ghosts(DiscStore& discs, const Communicator& comm) const {
+void DiscExchange::update_ghosts(DiscStore& discs, const Communicator& comm) {
   if (comm.size() == 1) return;
-  std::vector<ByteBuffer> out(send_ranks_.size());
+  if (out_.size() != send_ranks_.size()) out_.resize(send_ranks_.size());
   for (std::size_t k = 0; k < send_ranks_.size(); ++k) {
-    out[k].bytes.reserve(send_index_[k].size() * 40);
-    for (std::size_t i : send_index_[k]) pack_disc(discs, i, kGhostStep, out[k]);
+    out_[k].bytes.clear();
+    for (std::size_t i : send_index_[k]) pack_disc(discs, i, kGhostStep, out_[k]);
   }
-  const auto in = comm.exchange(send_ranks_, out, recv_ranks_, recv_bytes_);
+  const auto in = comm.exchange(send_ranks_, out_, recv_ranks_, recv_bytes_);
   std::size_t g = first_ghost_;
   for (const ByteBuffer& b : in) {
     ByteReader reader(b.bytes.data(), b.bytes.size());
     while (!reader.done()) read_disc(discs, g++, kGhostStep, reader);
   }
+}
+
+std::size_t DiscExchange::memory_bytes() const {
+  std::size_t n =
+      (send_ranks_.capacity() + recv_ranks_.capacity()) * sizeof(int) + recv_bytes_.capacity() * sizeof(std::size_t);
+  for (const auto& l : send_index_) n += l.capacity() * sizeof(std::size_t);
+  for (const auto& b : out_) n += b.bytes.capacity();
+  return n;
 }
 
 }  // namespace rondel

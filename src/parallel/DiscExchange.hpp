@@ -16,6 +16,7 @@ namespace rondel {
 //    cell (periodic images included: a ghost is a bit copy, never a shifted one);
 //  - update_ghosts(): refreshes the ghosts' position, velocity and omega every step between rebuilds,
 //    point to point with the ranks of the ghost lists.
+// All three talk only to the neighbouring ranks of the decomposition, point to point (64-bit sizes).
 class DiscExchange {
  public:
   struct Counts {
@@ -25,16 +26,21 @@ class DiscExchange {
   // Drops ghosts, sends away owned discs whose cell belongs to another rank and appends those received.
   // The rows of `pairs` and `wall_rows` are extended with the received rows, sorted by key, de-duplicated;
   // their local indices are stale (they only serve as history for the next neighbour build).
+  // The partners are dec.send_to() and dec.receive_from() (point to point); `any_rank` (set-up only: discs
+  // read by file block) sends to any rank with one all-to-all instead.
   Counts migrate(DiscStore& discs, ContactTable& pairs, ContactTable& wall_rows, const Decomposition& dec,
-                 const Communicator& comm);
+                 const Communicator& comm, bool any_rank = false);
   void build_ghosts(DiscStore& discs, const Decomposition& dec, const Communicator& comm);
-  void update_ghosts(DiscStore& discs, const Communicator& comm) const;
+  void update_ghosts(DiscStore& discs, const Communicator& comm);
   std::size_t ghost_count() const { return ghosts_; }
+  // Bytes this rank holds for the exchanges (ghost lists and the reused send buffers).
+  std::size_t memory_bytes() const;
 
  private:
   std::vector<int> send_ranks_, recv_ranks_;
   std::vector<std::vector<std::size_t>> send_index_;
   std::vector<std::size_t> recv_bytes_;
+  std::vector<ByteBuffer> out_;  // the ghost update's send buffers, reused every step
   std::size_t ghosts_ = 0;
   std::size_t first_ghost_ = 0;
 };

@@ -11,7 +11,7 @@
 
 namespace rondel {
 
-std::vector<int> grid_partition(const CellGrid& grid, int ranks) {
+std::pair<int, int> grid_blocks(const CellGrid& grid, int ranks) {
   // The factorisation px x py = ranks whose blocks are closest to square (in cells).
   int best_px = 1;
   double best = INFINITY;
@@ -27,14 +27,20 @@ std::vector<int> grid_partition(const CellGrid& grid, int ranks) {
     throw ConfigError("parallel.partitioner = grid: " + std::to_string(ranks) +
                       " ranks cannot be laid out in blocks of the " + std::to_string(grid.nx()) + " x " +
                       std::to_string(grid.ny()) + " cell grid; use fewer ranks or parallel.partitioner = metis");
-  const int px = best_px, py = ranks / px;
+  return {best_px, ranks / best_px};
+}
+
+int grid_block_of(const CellGrid& grid, std::pair<int, int> blocks, int cx, int cy) {
+  const int bx = static_cast<int>(static_cast<long>(cx) * blocks.first / grid.nx());
+  const int by = static_cast<int>(static_cast<long>(cy) * blocks.second / grid.ny());
+  return by * blocks.first + bx;
+}
+
+std::vector<int> grid_partition(const CellGrid& grid, int ranks) {
+  const auto blocks = grid_blocks(grid, ranks);
   std::vector<int> map(grid.size());
   for (int cy = 0; cy < grid.ny(); ++cy)
-    for (int cx = 0; cx < grid.nx(); ++cx) {
-      const int bx = static_cast<int>(static_cast<long>(cx) * px / grid.nx());
-      const int by = static_cast<int>(static_cast<long>(cy) * py / grid.ny());
-      map[static_cast<std::size_t>(cy) * grid.nx() + cx] = by * px + bx;
-    }
+    for (int cx = 0; cx < grid.nx(); ++cx) map[grid.index(cx, cy)] = grid_block_of(grid, blocks, cx, cy);
   return map;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/CellGrid.hpp"
@@ -13,6 +14,9 @@ namespace rondel {
 //    (the work per cell: discs + contacts, plus one), fixed seed; the new parts are relabelled so that
 //    most of the weight stays on the rank that had it.
 std::vector<int> grid_partition(const CellGrid& grid, int ranks);
+// The grid partitioner's px x py blocks, and the block (rank) of cell (cx, cy): the map without a table.
+std::pair<int, int> grid_blocks(const CellGrid& grid, int ranks);
+int grid_block_of(const CellGrid& grid, std::pair<int, int> blocks, int cx, int cy);
 std::vector<int> metis_partition(const CellGrid& grid, int ranks, const std::vector<long>& weights,
                                  const std::vector<int>& previous);
 // Relabels `parts` (values 0..ranks-1) to maximise the weight that keeps its previous rank (greedy on the
