@@ -24,11 +24,14 @@ bool Boundaries::any_rough(const WallSet& walls) {
   return std::any_of(walls.begin(), walls.end(), [](const Wall& w) { return w.rough; });
 }
 
-void Boundaries::measure(WallSet& walls, const DiscStore& discs, const ContactTable& pairs,
-                         const ContactTable& wall_rows, const Communicator& comm) const {
+WallLoads Boundaries::local_loads(const WallSet& walls, const DiscStore& discs, const ContactTable& pairs,
+                                  const ContactTable& wall_rows) {
   const std::size_t n_owned = discs.n_owned();
-  std::vector<std::array<ExactSum, 3>> sums(walls.size());
-  std::vector<std::int64_t> counts(walls.size(), 0);
+  WallLoads loads;
+  loads.sums.resize(walls.size());
+  loads.counts.assign(walls.size(), 0);
+  auto& sums = loads.sums;
+  auto& counts = loads.counts;
   if (any_rough(walls)) {
     for (std::size_t r = 0; r < pairs.size(); ++r) {
       if (static_cast<std::size_t>(pairs.i1[r]) >= n_owned || !(pairs.F_n[r] > 0.0)) continue;
@@ -51,11 +54,30 @@ void Boundaries::measure(WallSet& walls, const DiscStore& discs, const ContactTa
     sums[w][2] += wall_rows.F_n[r];
     ++counts[w];
   }
+  return loads;
+}
+
+std::vector<std::array<std::size_t, 4>> WallLoads::add_to(FusedReduction& r) const {
+  std::vector<std::array<std::size_t, 4>> slots(sums.size());
+  for (std::size_t w = 0; w < sums.size(); ++w)
+    slots[w] = {r.sum(sums[w][0]), r.sum(sums[w][1]), r.sum(sums[w][2]), r.sum(counts[w])};
+  return slots;
+}
+
+void Boundaries::apply(WallSet& walls, const FusedReduction& r, const std::vector<std::array<std::size_t, 4>>& slots) {
   for (std::size_t w = 0; w < walls.size(); ++w) {
-    walls[w].force = {comm.exact_sum(sums[w][0]), comm.exact_sum(sums[w][1])};
-    walls[w].normal_force = comm.exact_sum(sums[w][2]);
-    walls[w].contacts = comm.sum(counts[w]);
+    walls[w].force = {r.sum_exact(slots[w][0]).value(), r.sum_exact(slots[w][1]).value()};
+    walls[w].normal_force = r.sum_exact(slots[w][2]).value();
+    walls[w].contacts = r.sum_int(slots[w][3]);
   }
+}
+
+void Boundaries::measure(WallSet& walls, const DiscStore& discs, const ContactTable& pairs,
+                         const ContactTable& wall_rows, const Communicator& comm) const {
+  FusedReduction r;
+  const auto slots = local_loads(walls, discs, pairs, wall_rows).add_to(r);
+  r.reduce(comm);
+  apply(walls, r, slots);
 }
 
 void Boundaries::glue(DiscStore& discs, const WallSet& walls, double depth) {

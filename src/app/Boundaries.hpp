@@ -7,8 +7,10 @@
 #include "core/ContactTable.hpp"
 #include "core/DiscStore.hpp"
 #include "core/Domain.hpp"
+#include "core/ExactSum.hpp"
 #include "core/Wall.hpp"
 #include "parallel/Communicator.hpp"
+#include "parallel/FusedReduction.hpp"
 
 namespace rondel {
 
@@ -28,6 +30,15 @@ struct BoxGeometry {
   bool has_x = false, has_y = false;  // left and right walls, bottom and top walls
 };
 
+// This rank's part of every wall's load (three exact sums: x, y, normal; and the contact count), to be
+// reduced over the ranks in the step's one reduction (FusedReduction).
+struct WallLoads {
+  std::vector<std::array<ExactSum, 3>> sums;
+  std::vector<std::int64_t> counts;
+  // Adds the loads to `r`; returns the first slot of each wall (apply() reads them back).
+  std::vector<std::array<std::size_t, 4>> add_to(FusedReduction& r) const;
+};
+
 class Boundaries {
  public:
   // `k_n`, `c_n`: the stiffest normal spring and the largest normal dashpot coefficient of a contact that
@@ -42,6 +53,11 @@ class Boundaries {
   // to it (the pair rows with exactly one glued disc), each counted once over the ranks (booked rows).
   void measure(WallSet& walls, const DiscStore& discs, const ContactTable& pairs, const ContactTable& wall_rows,
                const Communicator& comm) const;
+  // The same in two halves, so that the sums ride in the step's fused reduction: local_loads() then, after
+  // the reduction, apply() with the slots that add_to() returned.
+  static WallLoads local_loads(const WallSet& walls, const DiscStore& discs, const ContactTable& pairs,
+                               const ContactTable& wall_rows);
+  static void apply(WallSet& walls, const FusedReduction& r, const std::vector<std::array<std::size_t, 4>>& slots);
   void steer(WallSet& walls, const Domain& domain, double thickness, double dt) const;
   static BoxGeometry box(const WallSet& walls, const Domain& domain);
 

@@ -95,26 +95,28 @@ void Runner::checkpoint() {
 }
 
 std::int64_t Runner::stop_flags() {
-  // Every rank agrees on the step of a signal or of a wall-clock checkpoint (rank 0's clock decides).
+  // This rank's stop request; the ranks agree on the step of a signal or of a wall-clock checkpoint in the
+  // step's reduction (rank 0's clock decides).
   const Config& config = sim_.config();
   const Communicator& comm = sim_.comm();
   const double minutes = seconds_since(last_checkpoint_) / 60.0;
   const bool timed = comm.root() && config.checkpoint_minutes > 0.0 && minutes >= config.checkpoint_minutes;
-  // One reduction for both: the signal number times 2, plus 1 for a due wall-clock checkpoint.
-  return comm.max(2 * static_cast<std::int64_t>(StopSignal::received()) + (timed ? 1 : 0));
+  // Both ride in the step's reduction (Simulation::request_stop): the signal number times 2, plus 1 for a
+  // due wall-clock checkpoint; a step without a reduction acts on them at the next one.
+  return 2 * static_cast<std::int64_t>(StopSignal::received()) + (timed ? 1 : 0);
 }
 
 int Runner::loop(ProgressLine& progress, std::int64_t first) {
   const Config& config = sim_.config();
   while (sim_.step_count() < config.steps) {
+    sim_.request_stop(stop_flags());
     sim_.step();
     const std::int64_t step = sim_.step_count();
     phases_.restart();
     if (step % config.diag_every == 0 || step == config.steps) record();
     if (files_.has_directory() && config.snapshot_every > 0 && step % config.snapshot_every == 0) sim_.write_snapshot();
     phases_.lap(PhaseTimes::output);
-    const std::int64_t flags = stop_flags();
-    phases_.lap(PhaseTimes::communication);
+    const std::int64_t flags = sim_.agreed_stop();
     const std::int64_t signal = flags / 2;
     const bool timed_any = (flags % 2) != 0;
     if (files_.has_directory() &&
@@ -148,6 +150,7 @@ RunSummary Runner::run() {
     if (first == 0 && files_.has_directory() && config.snapshot_every > 0) sim_.write_snapshot();  // the initial state
     phases_.lap(PhaseTimes::output);
     sum_.stop_signal = loop(progress, first);
+    sim_.settle_errors();  // a rank's error found since the last reduction stops the run here
     if (files_.has_directory() && config.checkpoint_at_end && sum_.stop_signal == 0 &&
         checkpointed_ != sim_.step_count())
       checkpoint();

@@ -1,7 +1,9 @@
 #pragma once
 #include <cstdint>
+#include <exception>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "app/Boundaries.hpp"
 #include "app/Measures.hpp"
@@ -36,8 +38,21 @@ class Simulation {
 
   // Runs config.steps steps with diagnostics and output; returns the summary (also logged).
   RunSummary run() { return Runner(*this).run(); }
-  // One time step (docs/design.md section 4).
+  // One time step (docs/design.md section 4). On several ranks it makes at most one collective call (none
+  // on most steps of a scene without controlled walls) and talks point to point with neighbouring ranks.
   void step();
+  // Collective: agrees on any rank's pending error (every rank throws it) and brings the walls' loads up
+  // to this step. Every output below calls it first.
+  void settle_errors();
+  // The stop request of this rank for the coming step (Runner: twice the signal number, plus one for a
+  // due wall-clock checkpoint) and, after step(), the maximum over the ranks if the step reduced (else 0).
+  void request_stop(std::int64_t flags) { stop_request_ = flags; }
+  std::int64_t agreed_stop() const { return stop_agreed_; }
+  // What this object's steps asked of MPI (collectives, messages, bytes) and how many steps it took.
+  const CommStats& step_comm() const { return step_comm_; }
+  std::int64_t steps_taken() const { return steps_taken_; }
+  // Bytes this rank holds for the decomposition and the exchanges (the scaling audit).
+  std::size_t parallel_bytes() const { return decomposition_->memory_bytes() + exchange_.memory_bytes(); }
 
   const Config& config() const { return config_; }
   const Communicator& comm() const { return comm_; }
@@ -101,11 +116,18 @@ class Simulation {
   void load_checkpoint(const std::string& path);
   // A wall that carries glued discs in the checkpoint stays rough.
   void keep_rough_walls(const std::string& path);
-  void balance_load();
   void resolve_time_step();
   void check_initial_state();
   void rebuild();
-  [[noreturn]] void report_overlap(const LedgerStep& work) const;
+  // The step's reduction (FusedReduction): returns the largest displacement since the last build over
+  // every rank; agrees on errors, stop requests and the balance check; sets the walls' loads.
+  double reduce(double moved);
+  // Counts a step without a reduction; true when this step must reduce.
+  bool reduction_due();
+  // This rank's largest |v| dt and |F/m| dt^2 (the motion bound between reductions).
+  std::pair<double, double> motion_bounds() const;
+  std::exception_ptr overlap_error(const LedgerStep& work) const;
+  std::exception_ptr motion_error(double moved) const;
 
   Config config_;
   const Communicator& comm_;
@@ -136,6 +158,17 @@ class Simulation {
   bool rough_walls_ = false;
   BoxGeometry box0_;        // the box at the start of the run (reference of the strains)
   ContactSummary summary_;  // of the last diagnostics
+  // The step's one reduction (docs/scaling.md).
+  std::exception_ptr pending_error_;  // this rank's error, not yet agreed
+  WallLoads loads_;                   // this rank's part of the controlled walls' loads, of the last step
+  std::int64_t since_reduction_ = 0;
+  double base_disp_ = 0.0, predicted_ = 0.0;  // largest displacement at the last reduction; its bound now
+  double v_step_ = 0.0, a_step_ = 0.0;        // largest |v| dt and |F/m| dt^2 at the last reduction
+  bool balance_pending_ = false;
+  std::int64_t balance_work_ = 0;
+  std::int64_t stop_request_ = 0, stop_agreed_ = 0;
+  std::int64_t steps_taken_ = 0;
+  CommStats step_comm_;
 };
 
 }  // namespace rondel

@@ -134,6 +134,9 @@ void read_domain(const Reader& r, Config& c) {
   c.balance_threshold = r.get<double>("parallel.balance_threshold");
   check(c.balance_threshold > 1.0, "parallel.balance_threshold", "must be > 1", num(c.balance_threshold));
   c.force_balance = r.get<bool>("parallel.force_balance");
+  c.check_every = r.get<std::int64_t>("parallel.check_every");
+  check(c.check_every >= 1 && c.check_every <= 1000, "parallel.check_every", "1 to 1000",
+        std::to_string(c.check_every));
 }
 
 Config build(const LawCatalog& laws, const po::options_description& schema, const po::variables_map& vm) {

@@ -70,6 +70,7 @@ struct Config {
   std::int64_t balance_every = 1000;
   double balance_threshold = 1.1;
   bool force_balance = false;
+  std::int64_t check_every = 10;
   // [walls]
   WallSet walls;
   std::vector<std::string> box_walls;

@@ -134,7 +134,11 @@ void add_wall_sections(po::options_description& all) {
        "partition; every rank holds the whole cell map: moderate sizes)")
       ("parallel.balance_every", def<std::int64_t>(1000), "[steps] interval of load-balance checks; 0 = never")
       ("parallel.balance_threshold", def(1.1), "[-] repartition when max/mean work per rank exceeds this, > 1")
-      ("parallel.force_balance", def(false), "[-] repartition at every check (testing)");
+      ("parallel.force_balance", def(false), "[-] repartition at every check (testing)")
+      ("parallel.check_every", def<std::int64_t>(10),
+       "[steps] on several ranks and without servo, strain-rate or shear walls: the longest interval between two "
+       "of the step's reductions (displacement check, error flags, signals); shorter when a bound on the discs' "
+       "motion asks for it; 1 = every step, 1 to 1000");
   po::options_description walls("[walls]");
   walls.add_options()
       ("walls.box", def(""), "[-] box sides that are walls: any of bottom left right top")
