@@ -264,6 +264,7 @@ void Simulation::step() {
   if (!reduced && moved > 0.5 * neighbours_.skin() && !pending_error_) pending_error_ = motion_error(moved);
   phases_.lap(PhaseTimes::communication);
   // 3. Rebuild the neighbour list when a disc (global max) has moved more than half the skin.
+  const bool repartitioned = rebalance_due_;
   if (rebalance_due_ || (reduced && neighbours_.needs_rebuild(disp, walls_))) {
     rebuild();
   } else {
@@ -292,8 +293,13 @@ void Simulation::step() {
   ledger_.add(work, W_g);
   ++step_;
   time_ += dt_;
-  if (config_.balance_every > 0 && step_ % config_.balance_every == 0) {
-    balance_work_ = Decomposition::rank_work(discs_, pairs_);  // agreed in the next step's reduction
+  // A balance check every balance_every steps, and once more after a repartition (the imbalance then
+  // reported is the new map's; that measurement repartitions nothing). Both are agreed in the next step's
+  // reduction.
+  const bool check = config_.balance_every > 0 && step_ % config_.balance_every == 0;
+  if (check || repartitioned) {
+    remeasure_ = !check;
+    balance_work_ = Decomposition::rank_work(discs_, pairs_);
     balance_pending_ = true;
   }
   ++steps_taken_;
@@ -332,9 +338,10 @@ double Simulation::reduce(double moved) {
     balance_pending_ = false;
     const double mean = static_cast<double>(r.sum_int(s_work_sum)) / comm_.size();
     imbalance_ = mean > 0.0 ? static_cast<double>(r.max_int(s_work_max)) / mean : 1.0;
-    if (comm_.size() > 1 && (config_.force_balance || imbalance_ > config_.balance_threshold) &&
+    if (!remeasure_ && comm_.size() > 1 && (config_.force_balance || imbalance_ > config_.balance_threshold) &&
         decomposition_->repartition(discs_, pairs_))
       rebalance_due_ = true;
+    remeasure_ = false;
   }
   since_reduction_ = 0;
   base_disp_ = r.max_double(s_disp);

@@ -68,7 +68,7 @@ struct Config {
   // [parallel]
   std::string partitioner = "sfc";
   std::int64_t balance_every = 1000;
-  double balance_threshold = 1.1;
+  double balance_threshold = 1.05;
   bool force_balance = false;
   std::int64_t check_every = 10;
   // [walls]

@@ -133,7 +133,7 @@ void add_wall_sections(po::options_description& all) {
        "[-] cell-to-rank partitioner: sfc (Hilbert-curve cuts, the default) | grid (blocks) | metis (graph "
        "partition; every rank holds the whole cell map: moderate sizes)")
       ("parallel.balance_every", def<std::int64_t>(1000), "[steps] interval of load-balance checks; 0 = never")
-      ("parallel.balance_threshold", def(1.1), "[-] repartition when max/mean work per rank exceeds this, > 1")
+      ("parallel.balance_threshold", def(1.05), "[-] repartition when max/mean work per rank exceeds this, > 1")
       ("parallel.force_balance", def(false), "[-] repartition at every check (testing)")
       ("parallel.check_every", def<std::int64_t>(10),
        "[steps] on several ranks and without servo, strain-rate or shear walls: the longest interval between two "

@@ -153,7 +153,7 @@ std::vector<std::pair<std::uint64_t, std::uint64_t>> Decomposition::weighted_cel
   std::vector<std::pair<std::uint64_t, std::uint64_t>> out;
   for (std::uint64_t k : keys) {
     if (out.empty() || out.back().first != k) out.emplace_back(k, 0);
-    out.back().second += kWorkScale;
+    out.back().second += kCurveScale;
   }
   return out;
 }

@@ -55,8 +55,11 @@ class Decomposition {
 
   // The work measure of the load balance, one definition: each owned disc and each row it books (the row of
   // its lower-gid disc) is one unit; a cell weighs kWorkScale per unit plus one (so that empty space counts
-  // a little). rank_work(): this rank's units (the imbalance is their max over mean).
-  static constexpr long kWorkScale = 100;
+  // a little; see kCurveScale for sfc). rank_work(): this rank's units (the imbalance is their max over mean).
+  static constexpr long kWorkScale = 100;  // metis (its weights are 32-bit integers)
+  // sfc: a unit weighs 2^16 cells, so the empty cells of a large sparse domain (a chamber, a hopper's air)
+  // do not shift the cuts by a measurable part of the discs' work. 64-bit sums, 128-bit cut targets.
+  static constexpr std::uint64_t kCurveScale = std::uint64_t{1} << 16;
   static std::int64_t rank_work(const DiscStore& discs, const ContactTable& pairs);
   // Number of ranks that own no cell.
   int empty_ranks() const;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <map>
 #include <set>
 #include <string>
@@ -13,6 +14,7 @@
 #include "ParallelTestUtil.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Decomposition.hpp"
+#include "parallel/Hilbert.hpp"
 #include "parallel/Partitioner.hpp"
 #include "support/Assertions.hpp"
 
@@ -47,6 +49,41 @@ double imbalance(const std::vector<long>& per_rank) {
   long total = 0, most = 0;
   for (long w : per_rank) total += w, most = std::max(most, w);
   return static_cast<double>(most) * static_cast<double>(per_rank.size()) / static_cast<double>(total);
+}
+
+TEST(Hilbert, KeysOrderEveryCellAndTheRangeQueriesAgreeWithBruteForce) {
+  for (const auto& [nx, ny] : std::vector<std::pair<int, int>>{{1, 1}, {5, 3}, {8, 8}, {13, 40}, {100, 7}}) {
+    const HilbertGrid h(nx, ny);
+    std::map<std::uint64_t, std::pair<int, int>> by_key;
+    for (int y = 0; y < ny; ++y)
+      for (int x = 0; x < nx; ++x) {
+        const std::uint64_t k = h.key(x, y);
+        ASSERT_LT(k, h.key_end());
+        ASSERT_TRUE(by_key.emplace(k, std::make_pair(x, y)).second) << "key " << k << " twice";
+        int px = -1, py = -1;
+        h.point(k, px, py);
+        ASSERT_EQ(px, x);
+        ASSERT_EQ(py, y);
+      }
+    // Consecutive keys are neighbouring cells on the square (the curve's locality).
+    for (std::uint64_t k = 0; k + 1 < h.key_end(); ++k) {
+      int x0, y0, x1, y1;
+      h.point(k, x0, y0);
+      h.point(k + 1, x1, y1);
+      ASSERT_EQ(std::abs(x0 - x1) + std::abs(y0 - y1), 1) << "keys " << k << ", " << k + 1;
+    }
+    std::vector<std::uint64_t> keys;
+    for (const auto& kv : by_key) keys.push_back(kv.first);
+    for (std::uint64_t m = 0; m < keys.size(); ++m) ASSERT_EQ(h.key_of_cell_number(m), keys[m]);
+    for (std::uint64_t k = 0; k <= h.key_end(); k += 1 + h.key_end() / 97) {
+      const auto below = static_cast<std::uint64_t>(std::lower_bound(keys.begin(), keys.end(), k) - keys.begin());
+      ASSERT_EQ(h.count_below(k), below) << nx << " x " << ny << ", k = " << k;
+      std::vector<std::uint64_t> seen;
+      h.for_each_in(k / 2, k, [&](int x, int y) { seen.push_back(h.key(x, y)); });
+      const auto lo = std::lower_bound(keys.begin(), keys.end(), k / 2);
+      ASSERT_EQ(seen, std::vector<std::uint64_t>(lo, keys.begin() + static_cast<std::ptrdiff_t>(below)));
+    }
+  }
 }
 
 TEST(GridPartition, EveryCellInOneRectangularBlockOfBalancedSize) {
@@ -141,40 +178,114 @@ TEST(MetisPartition, RelabellingKeepsTheWorkWhereItWas) {
   EXPECT_GE(static_cast<double>(kept), 0.5 * static_cast<double>(total));
 }
 
-// The map of a Decomposition on MPI_COMM_WORLD: every cell has a rank, no rank is empty, every rank holds
-// the same map, and owner(x) is the rank of x's cell.
+// The map of a Decomposition on MPI_COMM_WORLD: every cell has a rank, no rank is empty, every rank sees
+// the same owners (a test may hold an array over all cells; the product does not), owner(x) is the owner of
+// x's cell, and the neighbour lists are symmetric and exactly the owners of the cells around a rank's cells.
 void expect_world_map(const Decomposition& d) {
-  const int n = world_size();
+  const int n = world_size(), me = partest::world_rank();
+  const CellGrid& g = d.grid();
+  std::vector<int> map(g.size());
+  for (std::size_t c = 0; c < g.size(); ++c) map[c] = d.owner_of_cell(c);
   std::vector<long> cells;
-  ASSERT_TRUE(weights_per_rank(d.cell_rank(), std::vector<long>(d.grid().size(), 1), n, &cells));
+  ASSERT_TRUE(weights_per_rank(map, std::vector<long>(g.size(), 1), n, &cells));
   EXPECT_EQ(d.empty_ranks(), 0);
   std::string mine;
-  for (int r : d.cell_rank()) mine += std::to_string(r) + ",";
+  for (int r : map) mine += std::to_string(r) + ",";
   for (const std::string& other : all_gather(mine)) EXPECT_EQ(other, mine) << "ranks hold different maps";
   for (double x : {0.5, 3.2, 11.9})
-    for (double y : {0.1, 5.5}) EXPECT_EQ(d.owner({x, y}), d.cell_rank()[d.grid().cell_of({x, y})]);
+    for (double y : {0.1, 5.5}) EXPECT_EQ(d.owner({x, y}), map[g.cell_of({x, y})]);
+  std::set<int> expect;
+  for (std::size_t c = 0; c < g.size(); ++c)
+    if (map[c] == me)
+      for (std::size_t s : g.stencil(c))
+        if (map[s] != me) expect.insert(map[s]);
+  EXPECT_EQ(std::vector<int>(expect.begin(), expect.end()), d.neighbours());
+  std::string nb;
+  for (int r : d.neighbours()) nb += std::to_string(r) + ",";
+  const auto all = all_gather(nb);
+  for (int r : d.neighbours())
+    EXPECT_NE(("," + all[r]).find("," + std::to_string(me) + ","), std::string::npos)
+        << "rank " << r << " is a neighbour of " << me << " but not the other way round";
 }
 
-TEST(Decomposition, GridAndMetisMapsOnTheWorld) {
+// Discs on a third of the domain (the left part), one per unit square: every rank holds all of them.
+DiscStore discs_on_left_third(const Domain& domain) {
+  DiscStore discs;
+  std::int64_t gid = 0;
+  for (double x = 0.5; x < domain.xhi / 3.0; x += 1.0)
+    for (double y = 0.5; y < domain.yhi; y += 1.0) discs.add(gid++, 0, 0.1, 1.0, 1.0, {x, y}, {}, 0.0);
+  return discs;
+}
+
+TEST(Decomposition, SfcGridAndMetisMapsOnTheWorld) {
   static const Communicator world(MPI_COMM_WORLD);
   const Domain domain{0.0, 12.0, 0.0, 8.0, true, false};
-  for (const auto kind : {Decomposition::Partitioner::grid, Decomposition::Partitioner::metis}) {
+  for (const auto kind :
+       {Decomposition::Partitioner::sfc, Decomposition::Partitioner::grid, Decomposition::Partitioner::metis}) {
     Decomposition d(domain, 1.0, kind, world);
-    std::vector<long> weights(d.grid().size(), 1);
-    for (std::size_t c = 0; c < weights.size() / 3; ++c) weights[c] = 9;
-    d.initial_partition(weights);
+    DiscStore discs = discs_on_left_third(domain);
+    d.initial_partition(discs, true);
     expect_world_map(d);
-    d.repartition(weights);
+    // Keep this rank's discs, then repartition from them (the distributed path).
+    std::vector<bool> elsewhere(discs.n_owned());
+    for (std::size_t i = 0; i < discs.n_owned(); ++i) elsewhere[i] = d.owner(discs.position[i]) != world.rank();
+    discs.remove_owned(elsewhere);
+    d.repartition(discs, ContactTable{});
     expect_world_map(d);
     EXPECT_EQ(d.partitioner(), kind);
   }
 }
 
-TEST(Decomposition, SumOverRanks) {
+TEST(Decomposition, SfcCutsBalanceTheWorkAndAgreeWithTheReplicatedCut) {
+  // The weighted cut of a replicated scene (each rank alone) and the distributed cut (scans over ranks
+  // holding their own discs) are the same map; each rank's work (disc units x 100 + one per cell) is within
+  // one cell's weight of the mean.
   static const Communicator world(MPI_COMM_WORLD);
-  Decomposition d(Domain{0.0, 6.0, 0.0, 6.0, false, false}, 1.0, Decomposition::Partitioner::grid, world);
-  const std::vector<long> ones(d.grid().size(), 1);
-  EXPECT_EQ(d.sum_over_ranks(ones), std::vector<long>(ones.size(), world_size()));
+  const Domain domain{0.0, 40.0, 0.0, 30.0, false, false};
+  Decomposition replicated(domain, 1.0, Decomposition::Partitioner::sfc, world);
+  DiscStore all = discs_on_left_third(domain);
+  replicated.initial_partition(all, true);
+  Decomposition spread(domain, 1.0, Decomposition::Partitioner::sfc, world);
+  spread.initial_partition(all, false);  // equal-cell cut
+  DiscStore mine = all;
+  std::vector<bool> elsewhere(mine.n_owned());
+  for (std::size_t i = 0; i < mine.n_owned(); ++i) elsewhere[i] = spread.owner(mine.position[i]) != world.rank();
+  mine.remove_owned(elsewhere);
+  spread.repartition(mine, ContactTable{});
+  const CellGrid& g = replicated.grid();
+  std::vector<long> work(static_cast<std::size_t>(world_size()), 0);
+  for (std::size_t c = 0; c < g.size(); ++c) {
+    ASSERT_EQ(replicated.owner_of_cell(c), spread.owner_of_cell(c)) << "cell " << c;
+    work[replicated.owner_of_cell(c)] += 1;
+  }
+  for (std::size_t i = 0; i < all.n_owned(); ++i)
+    work[replicated.owner(all.position[i])] += static_cast<long>(Decomposition::kCurveScale);
+  long total = 0, most = 0;
+  for (long w : work) total += w, most = std::max(most, w);
+  EXPECT_LE(most, total / world_size() + static_cast<long>(Decomposition::kCurveScale) + 1)
+      << "imbalance " << imbalance(work);
+}
+
+TEST(Decomposition, SfcRepartitionKeepsMostCellsInPlace) {
+  // A shift of the work by a few cells moves the cuts a little: most cells keep their rank.
+  static const Communicator world(MPI_COMM_WORLD);
+  const Domain domain{0.0, 40.0, 0.0, 30.0, false, false};
+  Decomposition d(domain, 1.0, Decomposition::Partitioner::sfc, world);
+  DiscStore all = discs_on_left_third(domain);
+  d.initial_partition(all, true);
+  std::vector<int> before(d.grid().size());
+  for (std::size_t c = 0; c < before.size(); ++c) before[c] = d.owner_of_cell(c);
+  DiscStore mine;
+  std::int64_t gid = 0;
+  for (std::size_t i = 0; i < all.n_owned(); ++i) {
+    const Vec2 x = all.position[i] + Vec2{2.0, 0.0};
+    if (d.owner(all.position[i]) == world.rank()) mine.add(gid, 0, 0.1, 1.0, 1.0, x, {}, 0.0);
+    ++gid;
+  }
+  d.repartition(mine, ContactTable{});
+  std::size_t kept = 0;
+  for (std::size_t c = 0; c < before.size(); ++c) kept += d.owner_of_cell(c) == before[c] ? 1 : 0;
+  EXPECT_GE(static_cast<double>(kept), 0.5 * static_cast<double>(before.size()));
 }
 
 }  // namespace
