@@ -51,8 +51,10 @@ class Simulation {
   // What this object's steps asked of MPI (collectives, messages, bytes) and how many steps it took.
   const CommStats& step_comm() const { return step_comm_; }
   std::int64_t steps_taken() const { return steps_taken_; }
-  // Bytes this rank holds for the decomposition and the exchanges (the scaling audit).
-  std::size_t parallel_bytes() const { return decomposition_->memory_bytes() + exchange_.memory_bytes(); }
+  // Bytes this rank holds for the decomposition, the exchanges and the neighbour search (the scaling audit).
+  std::size_t decomposition_bytes() const { return decomposition_->memory_bytes(); }
+  std::size_t exchange_bytes() const { return exchange_.memory_bytes(); }
+  std::size_t neighbour_bytes() const { return neighbours_.memory_bytes(); }
 
   const Config& config() const { return config_; }
   const Communicator& comm() const { return comm_; }

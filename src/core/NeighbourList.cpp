@@ -30,10 +30,6 @@ void NeighbourList::bin(const DiscStore& discs, const Domain& domain, double R_m
   cell_items_.resize(n);
   std::vector<std::size_t> fill(cell_start_.begin(), cell_start_.end() - 1);
   for (std::size_t i = 0; i < n; ++i) cell_items_[fill[cell[i]]++] = i;
-  bin_column_.resize(n_bins);
-  bin_row_.resize(n_bins);
-  for (std::size_t b = 0; b < n_bins; ++b)
-    bin_column_[b] = columns_[b % columns_.size()], bin_row_[b] = rows_[b / columns_.size()];
 }
 
 long NeighbourList::bin_of(int cx, int cy) const {
@@ -56,7 +52,8 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
   for (std::size_t c = 0; c + 1 < cell_start_.size(); ++c) {
     if (cell_start_[c] == cell_start_[c + 1]) continue;
     around.clear();
-    for (std::size_t g : grid_.stencil(grid_.index(bin_column_[c], bin_row_[c]))) {
+    const int column = columns_[c % columns_.size()], row = rows_[c / columns_.size()];
+    for (std::size_t g : grid_.stencil(grid_.index(column, row))) {
       const long b = bin_of(static_cast<int>(g % static_cast<std::size_t>(grid_.nx())),
                             static_cast<int>(g / static_cast<std::size_t>(grid_.nx())));
       if (b >= 0) around.push_back(static_cast<std::size_t>(b));

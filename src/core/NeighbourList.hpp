@@ -35,6 +35,12 @@ class NeighbourList {
   bool needs_rebuild(double max_disc_disp, const WallSet& walls) const;
 
   std::size_t builds() const { return builds_; }
+  // Bytes this list holds (bins and the positions at the last build; the rows are the ContactTables').
+  std::size_t memory_bytes() const {
+    return (columns_.capacity() + rows_.capacity()) * sizeof(int) +
+           (cell_start_.capacity() + cell_items_.capacity()) * sizeof(std::size_t) +
+           position_at_build_.capacity() * sizeof(Vec2);
+  }
 
  private:
   // Bins the local discs (owned and ghosts) into the cells they occupy. The bins cover only the columns and
@@ -46,9 +52,8 @@ class NeighbourList {
 
   double skin_;
   CellGrid grid_;
-  std::vector<int> columns_, rows_;  // the occupied columns and rows, ascending
-  std::vector<std::size_t> cell_start_, cell_items_;
-  std::vector<int> bin_column_, bin_row_;  // per compressed bin: its global column and row
+  std::vector<int> columns_, rows_;                   // the occupied columns and rows, ascending
+  std::vector<std::size_t> cell_start_, cell_items_;  // bin b is column b % columns_.size(), row b / it
   std::vector<Vec2> position_at_build_;
   std::size_t builds_ = 0;
 };

@@ -1,0 +1,62 @@
+// rondel_scaling_audit: runs one scene on the ranks it is started on and prints, on rank 0, one JSON line
+// with the largest per-rank byte counts of the parallel structures and what the steps asked of MPI
+// (tests/audit/scaling_audit.py runs it on 1, 2, 4 and 8 ranks and checks the scaling; docs/scaling.md).
+//   mpirun -n P rondel_scaling_audit SCENE.ini STEPS OUTPUT_DIR [--section.key=value ...]
+#include <cstdint>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "app/Simulation.hpp"
+#include "parallel/Communicator.hpp"
+#include "physics/LawRegistry.hpp"
+
+int main(int argc, char** argv) {
+  rondel::MpiEnvironment mpi(&argc, &argv);
+  rondel::Communicator comm;
+  if (argc < 4) {
+    if (comm.root()) std::cerr << "usage: rondel_scaling_audit SCENE.ini STEPS OUTPUT_DIR [--key=value ...]\n";
+    return 2;
+  }
+  try {
+    std::vector<std::string> args{"--run.output=" + std::string(argv[3]), "--run.progress=false",
+                                  "--run.overwrite=true"};
+    for (int i = 4; i < argc; ++i) args.emplace_back(argv[i]);
+    std::vector<const char*> cargs{argv[0], argv[1]};
+    for (const auto& a : args) cargs.push_back(a.c_str());
+    rondel::Config config = rondel::parse_config(static_cast<int>(cargs.size()), cargs.data());
+    const std::int64_t steps = std::stoll(argv[2]);
+    rondel::Simulation sim(std::move(config), comm, true);
+    for (std::int64_t s = 0; s < steps; ++s) sim.step();
+    sim.settle_errors();
+    const auto before = comm.stats();
+    sim.write_checkpoint();
+    const auto after = comm.stats();
+    auto max_of = [&](std::size_t v) { return comm.max(static_cast<std::int64_t>(v)); };
+    const std::int64_t n = static_cast<std::int64_t>(sim.steps_taken());
+    const auto& c = sim.step_comm();
+    const std::int64_t owned = max_of(sim.discs().n_owned()), ghosts = max_of(sim.ghost_count());
+    const std::int64_t dec = max_of(sim.decomposition_bytes()), exch = max_of(sim.exchange_bytes()),
+                       neigh = max_of(sim.neighbour_bytes()), ckpt = max_of(0);
+    const std::int64_t coll = comm.max(c.collectives), msgs = comm.max(c.messages), bytes = comm.max(c.bytes);
+    const std::int64_t total_discs = comm.sum(static_cast<std::int64_t>(sim.discs().n_owned()));
+    const std::int64_t ckpt_coll = comm.max(after.collectives - before.collectives);
+    if (comm.root())
+      std::printf(
+          "{\"ranks\": %d, \"discs\": %lld, \"steps\": %lld, \"max_owned\": %lld, \"max_ghosts\": %lld, "
+          "\"decomposition_bytes\": %lld, \"exchange_bytes\": %lld, \"neighbour_bytes\": %lld, "
+          "\"checkpoint_bytes\": %lld, \"step_collectives\": %lld, \"step_messages\": %lld, \"step_bytes\": %lld, "
+          "\"checkpoint_collectives\": %lld, \"neighbour_builds\": %lld}\n",
+          comm.size(), static_cast<long long>(total_discs), static_cast<long long>(n), static_cast<long long>(owned),
+          static_cast<long long>(ghosts), static_cast<long long>(dec), static_cast<long long>(exch),
+          static_cast<long long>(neigh), static_cast<long long>(ckpt), static_cast<long long>(coll),
+          static_cast<long long>(msgs), static_cast<long long>(bytes), static_cast<long long>(ckpt_coll),
+          static_cast<long long>(sim.neighbour_builds()));
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "rondel_scaling_audit: " << e.what() << '\n';
+    return 1;
+  }
+}

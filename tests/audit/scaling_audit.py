@@ -1,0 +1,137 @@
+#!/usr/bin/env python3
+"""The scaling audit (docs/scaling.md): runs rondel_scaling_audit on 1, 2, 4 and 8 ranks (oversubscribed)
+and checks that
+  - at a fixed total size (strong), the largest per-rank byte count of the decomposition, exchange,
+    neighbour and checkpoint structures falls at least as 1/P plus a constant (a fifth of the 1-rank count);
+  - at a fixed size per rank (weak), it stays within 20 % of the 1-rank count;
+  - the steps of the deposition and biaxial scenes make at most one collective call per step on average,
+    and talk point to point with a bounded number of partners.
+usage: scaling_audit.py --exe rondel_scaling_audit --inputs DIR --work DIR [--mpiexec mpirun]
+Exit 0 when every check holds, 1 otherwise."""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+RANKS = [1, 2, 4, 8]
+STRUCTURES = ["decomposition_bytes", "exchange_bytes", "neighbour_bytes", "checkpoint_bytes"]
+
+LATTICE = """[run]
+steps = 100
+[domain]
+xlo = 0
+xhi = {xhi}
+ylo = 0
+yhi = {yhi}
+periodic_x = true
+periodic_y = true
+[material]
+density = 2650
+[contact]
+normal = linear
+tangential = coulomb
+rolling = none
+[linear]
+k_n = 2e6
+e = 0.5
+[coulomb]
+k_s = 1.5e6
+mu = 0.5
+[scene]
+type = lattice_square
+nx = {nx}
+ny = {ny}
+radius = 0.00049
+spacing = 0.001
+x0 = 0.0005
+y0 = 0.0005
+vx = 0.05
+vy = 0.02
+"""
+
+
+def run(args, ranks, ini, steps, extra=()):
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
+    out = os.path.join(args.work, "out-%d" % ranks)
+    cmd = [args.mpiexec, "-n", str(ranks), "--oversubscribe", args.exe, ini, str(steps), out] + list(extra)
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=300)
+    if p.returncode != 0:
+        sys.exit("FAIL: %s exited %d\n%s\n%s" % (" ".join(cmd), p.returncode, p.stdout, p.stderr))
+    for line in p.stdout.splitlines():
+        if line.startswith("{"):
+            return json.loads(line)
+    sys.exit("FAIL: no result line from %s\n%s" % (" ".join(cmd), p.stdout))
+
+
+def lattice(args, name, nx, ny):
+    path = os.path.join(args.work, name + ".ini")
+    with open(path, "w") as f:
+        f.write(LATTICE.format(nx=nx, ny=ny, xhi=nx * 0.001, yhi=ny * 0.001))
+    return path
+
+
+def total(r):
+    return sum(r[k] for k in STRUCTURES)
+
+
+def table(title, rows):
+    print("%s\n  %5s %8s %9s %9s %8s %8s %8s %10s %9s %9s" % (title, "ranks", "discs", "max_owned", "ghosts", "decomp",
+                                                              "exchange", "neigh", "checkpoint", "coll/step",
+                                                              "msgs/step"))
+    for r in rows:
+        print("  %5d %8d %9d %9d %8d %8d %8d %10d %9.3f %9.2f" % (
+            r["ranks"], r["discs"], r["max_owned"], r["max_ghosts"], r["decomposition_bytes"], r["exchange_bytes"],
+            r["neighbour_bytes"], r["checkpoint_bytes"], r["step_collectives"] / max(r["steps"], 1),
+            r["step_messages"] / max(r["steps"], 1)))
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--exe", required=True)
+    ap.add_argument("--inputs", required=True)
+    ap.add_argument("--work", required=True)
+    ap.add_argument("--mpiexec", default="mpirun")
+    args = ap.parse_args()
+    os.makedirs(args.work, exist_ok=True)
+    failures = []
+
+    strong_ini = lattice(args, "strong", 200, 100)
+    strong = [run(args, p, strong_ini, 50) for p in RANKS]
+    table("strong scaling, 20,000 discs (periodic lattice), 50 steps:", strong)
+    t1 = total(strong[0])
+    for r in strong[1:]:
+        bound = t1 / r["ranks"] + 0.25 * t1
+        if total(r) > bound:
+            failures.append("strong: %d ranks hold %d bytes, above 1/P of 1 rank's %d plus a quarter (%d)" %
+                            (r["ranks"], total(r), t1, bound))
+    if total(strong[3]) > 0.5 * total(strong[1]):
+        failures.append("strong: 8 ranks hold %d bytes each, not half or less of 2 ranks' %d" %
+                        (total(strong[3]), total(strong[1])))
+
+    weak = [run(args, p, lattice(args, "weak%d" % p, 100 * (1 if p < 4 else 2), 50 * (p if p < 4 else p // 2)), 50)
+            for p in RANKS]
+    table("weak scaling, 5,000 discs per rank (periodic lattice), 50 steps:", weak)
+    w1 = total(weak[0])
+    for r in weak[1:]:
+        if abs(total(r) - w1) > 0.2 * w1:
+            failures.append("weak: %d ranks hold %d bytes, more than 20 %% from 1 rank's %d" % (r["ranks"], total(r), w1))
+
+    for name, ini, steps in [("deposition", "deposition.ini", 400), ("biaxial", "biaxial_prepare.ini", 400)]:
+        rows = [run(args, p, os.path.join(args.inputs, ini), steps) for p in RANKS]
+        table("%s (inputs/%s), %d steps:" % (name, ini, steps), rows)
+        for r in rows[1:]:
+            per_step = r["step_collectives"] / r["steps"]
+            if per_step > 1.0:
+                failures.append("%s on %d ranks: %.3f collectives per step (at most 1)" % (name, r["ranks"], per_step))
+            if r["step_messages"] / r["steps"] > 32:
+                failures.append("%s on %d ranks: %.1f messages per step and rank" %
+                                (name, r["ranks"], r["step_messages"] / r["steps"]))
+    for f in failures:
+        print("FAIL: " + f)
+    print("scaling audit: %s" % ("FAILED" if failures else "passed"))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
