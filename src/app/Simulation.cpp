@@ -311,7 +311,7 @@ void Simulation::step() {
 
 bool Simulation::reduction_due() {
   // One rank needs no agreement: its "reduction" is free and exact every step.
-  if (comm_.size() == 1 || config_.check_every == 1 || balance_pending_) return true;
+  if (comm_.size() == 1 || config_.check_every == 1 || balance_pending_ || !bounds_known_) return true;
   ++since_reduction_;
   const double j = static_cast<double>(since_reduction_);
   // The largest displacement since the last build can grow per step by at most the speed times dt plus
@@ -348,6 +348,7 @@ double Simulation::reduce(double moved) {
   predicted_ = base_disp_;
   v_step_ = r.max_double(s_v);
   a_step_ = r.max_double(s_a);
+  bounds_known_ = bounds;
   return base_disp_;
 }
 
