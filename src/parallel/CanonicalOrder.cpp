@@ -28,7 +28,7 @@ void ByteExchange::run(const char* send, const std::vector<std::uint64_t>& send_
   MPI_Alltoall(send_bytes.data(), 1, MPI_UINT64_T, recv_bytes.data(), 1, MPI_UINT64_T, comm.comm());
   std::uint64_t total = 0;
   for (const std::uint64_t b : recv_bytes) total += b;
-  agree(comm, [&] { recv.resize(total); });
+  agree(comm, [&] { resize_buffer(recv, total); });
   requests_.clear();
   std::uint64_t in = 0, out = 0;
   for (int r = 0; r < ranks; ++r) {
@@ -52,7 +52,7 @@ void CanonicalOrder::prepare(const std::vector<OrderKey>& keys, std::size_t byte
   bytes_ = bytes;
   const int ranks = comm.size(), me = comm.rank();
   agree(comm, [&] {
-    order_.resize(keys.size());
+    resize_buffer(order_, keys.size());
     for (std::size_t i = 0; i < keys.size(); ++i) order_[i] = {keys[i], i};
     if (!std::is_sorted(order_.begin(), order_.end(), key_less)) std::sort(order_.begin(), order_.end(), key_less);
     const auto twin = std::adjacent_find(order_.begin(), order_.end(),
@@ -74,7 +74,7 @@ void CanonicalOrder::prepare(const std::vector<OrderKey>& keys, std::size_t byte
   std::uint64_t send = 0;
   for (int r = 0; r < ranks; ++r)
     if (r != me) send += send_bytes_[r] = (ranges_[r + 1] - ranges_[r]) * record;
-  agree(comm, [&] { send_.resize(send); });
+  agree(comm, [&] { resize_buffer(send_, send); });
 }
 
 void CanonicalOrder::choose_splitters(const Communicator& comm) {
@@ -122,7 +122,7 @@ void CanonicalOrder::finish(const Communicator& comm) {
   agree(comm, [&] {
     const std::size_t kept = ranges_[me + 1] - ranges_[me];
     if (ranges_[me] > 0) std::copy(order_.begin() + ranges_[me], order_.begin() + ranges_[me + 1], order_.begin());
-    order_.resize(kept + received);
+    resize_buffer(order_, kept + received);
     runs_.assign(1, 0);
     if (kept > 0) runs_.push_back(kept);
     std::uint64_t j = 0;
@@ -145,7 +145,7 @@ void CanonicalOrder::finish(const Communicator& comm) {
 
 void CanonicalOrder::merge_runs() {
   while (runs_.size() > 2) {
-    spare_.resize(order_.size());
+    resize_buffer(spare_, order_.size());
     std::size_t next = 1;
     for (std::size_t r = 0; r + 1 < runs_.size(); r += 2) {
       const std::size_t lo = runs_[r], mid = runs_[r + 1], hi = r + 2 < runs_.size() ? runs_[r + 2] : mid;

@@ -95,7 +95,7 @@ template <class T, class Local>
 void StateWriter::write_column(Hdf5File& f, const std::string& name, Local&& local, std::size_t at) {
   const double t0 = now();
   const std::size_t n = order_.count();
-  column_.resize((n * sizeof(T) + sizeof(std::uint64_t) - 1) / sizeof(std::uint64_t));
+  resize_buffer(column_, (n * sizeof(T) + sizeof(std::uint64_t) - 1) / sizeof(std::uint64_t));
   char* out = reinterpret_cast<char*>(column_.data());
   for (std::size_t k = 0; k < n; ++k) {
     const void* from = order_.is_local(k) ? static_cast<const void*>(local(order_.local_index(k)))
@@ -109,7 +109,7 @@ void StateWriter::write_column(Hdf5File& f, const std::string& name, Local&& loc
 void StateWriter::write_discs(Hdf5File& f, DiscStore& discs, const Communicator& comm,
                               const std::vector<std::string>& fields) {
   const std::size_t n = discs.n_owned();
-  keys_.resize(n);
+  resize_buffer(keys_, n);
   for (std::size_t i = 0; i < n; ++i) keys_[i] = {discs.gid[i], 0};
   // A record: the checkpoint fields, then the rank that owned the disc (a snapshot's "rank").
   const std::int32_t me = comm.rank();
@@ -154,6 +154,8 @@ void StateWriter::write_discs(Hdf5File& f, DiscStore& discs, const Communicator&
 // Rows this rank books (disc 1 owned), with state, in ascending key order over all ranks.
 void StateWriter::write_rows(Hdf5File& f, const std::string& group, const ContactTable& rows, std::size_t n_owned,
                              const Communicator& comm) {
+  resize_buffer(keys_, rows.size());  // room for every row: no doubling while booking
+  resize_buffer(booked_, rows.size());
   keys_.clear();
   booked_.clear();
   for (std::size_t r = 0; r < rows.size(); ++r) {
@@ -358,7 +360,7 @@ void pack_by_rank(std::size_t items, std::size_t bytes, int ranks, Dest&& dest, 
     if (const int d = dest(k); d >= 0) ++at[d + 1];
   send_bytes.resize(static_cast<std::size_t>(ranks));
   for (int r = 0; r < ranks; ++r) send_bytes[r] = at[r + 1] * bytes, at[r + 1] += at[r];
-  send.resize(at[ranks] * bytes);
+  resize_buffer(send, at[ranks] * bytes);
   for (std::size_t k = 0; k < items; ++k)
     if (const int d = dest(k); d >= 0) pack(k, send.data() + (at[d]++) * bytes);
 }
@@ -385,6 +387,7 @@ void route_rows_to_owners(ContactTable& rows, bool both_ends, const DiscStore& d
   exchange.run(send.data(), send_bytes, recv, recv_bytes, comm);
   std::vector<std::pair<std::int64_t, int>> owner;
   agree(comm, [&] {
+    owner.reserve(recv.size() / sizeof(std::int64_t));
     std::size_t at = 0;
     for (int r = 0; r < ranks; ++r)
       for (std::uint64_t k = 0; k < recv_bytes[r] / sizeof(std::int64_t); ++k, at += sizeof(std::int64_t)) {
