@@ -48,12 +48,10 @@ void ByteExchange::run(const char* send, const std::vector<std::uint64_t>& send_
   MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
 }
 
-void CanonicalOrder::prepare(const std::vector<OrderKey>& keys, std::size_t bytes, const Communicator& comm) {
+void CanonicalOrder::prepare(std::size_t bytes, const Communicator& comm) {
   bytes_ = bytes;
   const int ranks = comm.size(), me = comm.rank();
   agree(comm, [&] {
-    resize_buffer(order_, keys.size());
-    for (std::size_t i = 0; i < keys.size(); ++i) order_[i] = {keys[i], i};
     if (!std::is_sorted(order_.begin(), order_.end(), key_less)) std::sort(order_.begin(), order_.end(), key_less);
     const auto twin = std::adjacent_find(order_.begin(), order_.end(),
                                          [](const Entry& x, const Entry& y) { return x.first == y.first; });

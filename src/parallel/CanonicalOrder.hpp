@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "parallel/Agreement.hpp"
 #include "parallel/Communicator.hpp"
 
 namespace rondel {
@@ -58,10 +59,14 @@ class ByteExchange {
 // at most N/P + N/64 records (the errors of the ranks' segments add up only when they all lean one way).
 class CanonicalOrder {
  public:
-  // Collective. `keys[i]` is the key of this rank's record i; `pack(i, out)` writes the `bytes` bytes of
-  // record i to out (only for records that go to another rank).
-  template <class Pack>
-  void arrange(const std::vector<OrderKey>& keys, std::size_t bytes, Pack&& pack, const Communicator& comm);
+  // Collective. This rank has `n` records; `key_of(i)` is the OrderKey of record i, `pack(i, out)` writes
+  // its `bytes` bytes to out (only for records that go to another rank).
+  template <class KeyOf, class Pack>
+  void arrange(std::size_t n, KeyOf&& key_of, std::size_t bytes, Pack&& pack, const Communicator& comm);
+  void arrange(const std::vector<OrderKey>& keys, std::size_t bytes, auto&& pack, const Communicator& comm) {
+    arrange(
+        keys.size(), [&keys](std::size_t i) { return keys[i]; }, bytes, pack, comm);
+  }
 
   // This rank's records are the global rows [offset(), offset() + count()) of total().
   std::uint64_t total() const { return total_; }
@@ -86,8 +91,8 @@ class CanonicalOrder {
     std::uint64_t weight;
   };
 
-  // Sorts the local keys, chooses the splitters, sizes the send buffer (ranges_ per destination rank).
-  void prepare(const std::vector<OrderKey>& keys, std::size_t bytes, const Communicator& comm);
+  // Sorts the local keys (in order_), chooses the splitters, sizes the send buffer (ranges_ per rank).
+  void prepare(std::size_t bytes, const Communicator& comm);
   void choose_splitters(const Communicator& comm);
   // Exchanges the packed records, merges the kept and the received ones, computes offset and total.
   void finish(const Communicator& comm);
@@ -107,10 +112,13 @@ class CanonicalOrder {
   ByteExchange exchange_;
 };
 
-template <class Pack>
-void CanonicalOrder::arrange(const std::vector<OrderKey>& keys, std::size_t bytes, Pack&& pack,
-                             const Communicator& comm) {
-  prepare(keys, bytes, comm);
+template <class KeyOf, class Pack>
+void CanonicalOrder::arrange(std::size_t n, KeyOf&& key_of, std::size_t bytes, Pack&& pack, const Communicator& comm) {
+  agree(comm, [&] {
+    resize_buffer(order_, n);
+    for (std::size_t i = 0; i < n; ++i) order_[i] = {key_of(i), i};
+  });
+  prepare(bytes, comm);
   const std::size_t record = sizeof(OrderKey) + bytes;
   std::size_t at = 0;
   for (int r = 0; r < comm.size(); ++r) {

@@ -109,14 +109,17 @@ void StateWriter::write_column(Hdf5File& f, const std::string& name, Local&& loc
 void StateWriter::write_discs(Hdf5File& f, DiscStore& discs, const Communicator& comm,
                               const std::vector<std::string>& fields) {
   const std::size_t n = discs.n_owned();
-  resize_buffer(keys_, n);
-  for (std::size_t i = 0; i < n; ++i) keys_[i] = {discs.gid[i], 0};
   // A record: the checkpoint fields, then the rank that owned the disc (a snapshot's "rank").
   const std::int32_t me = comm.rank();
   const std::size_t bytes = record_bytes(discs, kCheckpoint) + sizeof me;
   const double t0 = now();
+  const std::int64_t* gid = discs.gid.data();
   order_.arrange(
-      keys_, bytes,
+      n,
+      [gid](std::size_t i) {
+        return OrderKey{gid[i], 0};
+      },
+      bytes,
       [&](std::size_t i, char* out) {
         discs.for_each_field([&](const char*, unsigned uses, auto& field) {
           if (!(uses & kCheckpoint)) return;
@@ -154,18 +157,18 @@ void StateWriter::write_discs(Hdf5File& f, DiscStore& discs, const Communicator&
 // Rows this rank books (disc 1 owned), with state, in ascending key order over all ranks.
 void StateWriter::write_rows(Hdf5File& f, const std::string& group, const ContactTable& rows, std::size_t n_owned,
                              const Communicator& comm) {
-  resize_buffer(keys_, rows.size());  // room for every row: no doubling while booking
-  resize_buffer(booked_, rows.size());
-  keys_.clear();
+  resize_buffer(booked_, rows.size());  // room for every row: no doubling while booking
   booked_.clear();
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    if (static_cast<std::size_t>(rows.i1[r]) >= n_owned || !rows.has_state(r)) continue;
-    keys_.push_back({rows.key[r].lo, rows.key[r].hi});
-    booked_.push_back(r);
-  }
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    if (static_cast<std::size_t>(rows.i1[r]) < n_owned && rows.has_state(r)) booked_.push_back(r);
+  const auto key_of = [&](std::size_t i) {
+    const ContactKey& k = rows.key[booked_[i]];
+    return OrderKey{k.lo, k.hi};
+  };
   const double t0 = now();
   order_.arrange(
-      keys_, row_bytes(rows), [&](std::size_t i, char* out) { pack_row_bytes(rows, booked_[i], out); }, comm);
+      booked_.size(), key_of, row_bytes(rows), [&](std::size_t i, char* out) { pack_row_bytes(rows, booked_[i], out); },
+      comm);
   times_.order += now() - t0;
   f.create_group(group);
   f.create_group(group + "/history");
@@ -181,7 +184,7 @@ void StateWriter::write_rows(Hdf5File& f, const std::string& group, const Contac
 }
 
 std::size_t StateWriter::checkpoint_structure_bytes() const {
-  return order_.capacity_bytes() + keys_.capacity() * sizeof(OrderKey) + booked_.capacity() * sizeof(std::size_t) +
+  return order_.capacity_bytes() + booked_.capacity() * sizeof(std::size_t) +
          column_.capacity() * sizeof(std::uint64_t);
 }
 

@@ -62,7 +62,6 @@ class StateWriter {
   void write_column(Hdf5File& f, const std::string& name, Local&& local, std::size_t at);
 
   CanonicalOrder order_;
-  std::vector<OrderKey> keys_;
   std::vector<std::size_t> booked_;    // the rows written, by index in their table
   std::vector<std::uint64_t> column_;  // one dataset's block (8-byte words: aligned for every type)
   Times times_;
