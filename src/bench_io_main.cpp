@@ -4,7 +4,8 @@
 // runs a few warm-up steps, times the steps, then times write_checkpoint() and the restart read: the
 // file readers alone (header, discs, contact rows) and a whole restart (a Simulation constructed from the
 // checkpoint: read, distribute, neighbour build). Prints times, bandwidths (file bytes / time, MB = 1e6 B),
-// the file size per disc and the checkpoint overhead at an interval of --every steps.
+// the file size per disc and the checkpoint overhead at an interval of --every steps. The write is also
+// split into its phases (ordering, copying into blocks, HDF5) by a StateWriter of its own.
 //   mpirun -n P rondel_bench_io [--discs 100000] [--steps 20] [--warmup 5] [--repeat 3] [--every 10000]
 //                               [--output DIR] [--keep]
 // Writes go to the page cache; "write + sync" adds a sync(2) of the file system after the write, the time
@@ -23,6 +24,7 @@
 #include <vector>
 
 #include "BenchSupport.hpp"
+#include "app/Restart.hpp"
 #include "app/Simulation.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"
@@ -115,6 +117,30 @@ std::string time_writes(rondel::Simulation& sim, const Options& o, const rondel:
   return path;
 }
 
+// Where a checkpoint write goes: the same file written by a StateWriter of its own (kept across the repeats,
+// as Checkpointing keeps its writer), its phases timed (slowest rank per phase, median of the repeats).
+struct WriterPhases {
+  Timing order, columns, hdf5;
+  double structure_bytes = 0.0;  // the largest rank's
+};
+WriterPhases time_writer_phases(rondel::Simulation& sim, const Options& o, const rondel::Communicator& comm) {
+  WriterPhases p;
+  rondel::StateWriter writer;
+  const std::string path = (fs::path(o.output) / "phases.h5").string();
+  const rondel::StateHeader header = rondel::Restart::header(sim, "checkpoint");
+  for (long r = 0; r < o.repeat; ++r) {
+    comm.barrier();
+    writer.write(path, header, sim.discs(), sim.pairs(), sim.wall_rows(), sim.walls(), comm, {}, 0.0);
+    p.order.runs.push_back(comm.max(writer.last_times().order));
+    p.columns.runs.push_back(comm.max(writer.last_times().columns));
+    p.hdf5.runs.push_back(comm.max(writer.last_times().hdf5));
+  }
+  p.structure_bytes = comm.max(static_cast<double>(writer.checkpoint_structure_bytes()));
+  comm.barrier();
+  if (comm.root()) fs::remove(path);
+  return p;
+}
+
 // Baseline: the same number of bytes as one dataset of doubles, each rank writing its block collectively (no
 // reordering): what parallel HDF5 and MPI-IO alone cost here.
 Timing time_raw_write(double file_bytes, const Options& o, const rondel::Communicator& comm) {
@@ -196,6 +222,7 @@ int main(int argc, char** argv) {
     const std::string path = time_writes(*sim, o, comm, write, write_sync);
     const double file_bytes = comm.sum(comm.root() ? static_cast<double>(fs::file_size(path)) : 0.0);
     const std::int64_t step = sim->step_count();
+    const WriterPhases phases = time_writer_phases(*sim, o, comm);
     sim.reset();  // the restart below holds the only copy of the state
     const Timing raw = time_raw_write(file_bytes, o, comm);
     const FileRows rows = time_reads(path, step, config, o, comm, read, restart);
@@ -209,6 +236,8 @@ int main(int argc, char** argv) {
           "  file size                  %.1f MB, %.1f B per disc\n"
           "  step time                  %.4g s (%ld timed steps after %ld warm-up)\n"
           "  write_checkpoint           %.3f s median, %.3f s best of %ld: %.0f MB/s\n"
+          "    of which                 order %.3f s, copy into blocks %.3f s, HDF5 %.3f s (medians, slowest rank)\n"
+          "    checkpoint structures    %.1f MB on the largest rank (%.0f B per disc and rank)\n"
           "  write + sync               %.3f s median: %.0f MB/s\n"
           "  raw HDF5 write, same bytes %.3f s median: %.0f MB/s (one dataset, no reordering)\n"
           "  read (file layer)          %.3f s median, %.3f s best: %.0f MB/s\n"
@@ -218,7 +247,9 @@ int main(int argc, char** argv) {
           static_cast<long long>(n), nx, ny, comm.size(), static_cast<long long>(step),
           static_cast<long long>(rows.pairs), static_cast<long long>(rows.with_history),
           static_cast<long long>(rows.walls), mb, file_bytes / static_cast<double>(n), step_time, o.steps, o.warmup,
-          write.median(), write.best(), o.repeat, mb / write.median(), write_sync.median(), mb / write_sync.median(),
+          write.median(), write.best(), o.repeat, mb / write.median(), phases.order.median(), phases.columns.median(),
+          phases.hdf5.median(), phases.structure_bytes / 1e6,
+          phases.structure_bytes * comm.size() / static_cast<double>(n), write_sync.median(), mb / write_sync.median(),
           raw.median(), mb / raw.median(), read.median(), read.best(), mb / read.median(), restart.median(),
           restart.best(), o.every, interval, 100.0 * write.median() / interval, 100.0 * write_sync.median() / interval,
           rss / 1e6, rss / static_cast<double>(n));

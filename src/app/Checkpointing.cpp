@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/Errors.hpp"
+#include "parallel/Agreement.hpp"
 
 namespace rondel {
 
@@ -44,14 +45,25 @@ std::string Checkpointing::write_checkpoint(const StateHeader& header, DiscStore
   part_name += file_name("checkpoint", header.step);
   part_name += ".part";
   const fs::path part = fs::path(dir_) / part_name;
-  write_state_file(part.string(), header, discs, pairs, wall_rows, walls, comm_, {}, wall_seconds);
-  comm_.barrier();
-  if (comm_.root()) {
-    fs::rename(part, final_path);
-    const std::vector<fs::path> existing = h5_files(dir_, "checkpoint_");
-    for (std::size_t k = 0; k + static_cast<std::size_t>(keep_) < existing.size(); ++k) fs::remove(existing[k]);
+  try {
+    writer_.write(part.string(), header, discs, pairs, wall_rows, walls, comm_, {}, wall_seconds);
+  } catch (...) {
+    // Every rank is here (the writer's errors are agreed): the partial file goes, the previous checkpoints stay.
+    std::error_code ec;
+    if (comm_.root()) fs::remove(part, ec);
+    throw;
   }
-  comm_.barrier();
+  comm_.barrier();  // every rank has closed the file
+  agree(comm_, [&] {
+    if (!comm_.root()) return;
+    try {
+      fs::rename(part, final_path);
+      const std::vector<fs::path> existing = h5_files(dir_, "checkpoint_");
+      for (std::size_t k = 0; k + static_cast<std::size_t>(keep_) < existing.size(); ++k) fs::remove(existing[k]);
+    } catch (const fs::filesystem_error& e) {
+      throw IoError("checkpoint " + final_path.string() + ": " + e.what());
+    }
+  });
   return final_path.string();
 }
 
@@ -86,7 +98,7 @@ std::string Checkpointing::write_snapshot(const StateHeader& header, DiscStore& 
                                           std::int64_t n_discs) {
   const std::string name = file_name("snapshot", header.step);
   const ContactTable none;
-  write_state_file((fs::path(dir_) / name).string(), header, discs, none, none, walls, comm_, fields_, 0.0);
+  writer_.write((fs::path(dir_) / name).string(), header, discs, none, none, walls, comm_, fields_, 0.0);
   std::vector<std::string> written = fields_;
   written.emplace_back("index");
   snapshots_.push_back({name, header.step, n_discs, header.time, written, wall_outline(walls, domain_)});

@@ -2,6 +2,7 @@
 #include <hdf5.h>
 
 #include <cstdint>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -11,12 +12,35 @@ namespace rondel {
 
 // A parallel HDF5 file opened collectively by every rank of a communicator, with the few operations the
 // checkpoint and snapshot layers need. Datasets are 1D (n) or 2D (n x 2) arrays; each rank writes or reads
-// a contiguous block of rows [offset, offset + count) collectively. Errors throw InputError naming the file.
+// a contiguous block of rows [offset, offset + count) collectively. Errors name the file: IoError when
+// creating or writing fails, InputError when a file read is missing, damaged or not what was expected.
+//
+// Errors are agreed (parallel/Agreement.hpp), so a failure on one rank throws on every rank and none is
+// left waiting: reads settle their outcome among the ranks at once; a failed group or attribute write is
+// kept and settled with the next dataset write (whose checksum reduction carries a failure count: one
+// collective per dataset) or when run() ends. The file is closed (collectively) by run(), close() or the
+// destructor on a normal exit; a destructor that runs during an exception calls nothing collective (the
+// file is left to the HDF5 library's clean-up at exit), so a rank that unwinds alone never blocks in it.
 class Hdf5File {
  public:
   enum class Mode { create, read };
   Hdf5File(const std::string& path, Mode mode, const Communicator& comm);
   ~Hdf5File();
+  // Collective: settles the errors kept, then closes the file (idempotent).
+  void close();
+  // Runs f() and closes the file, also when f throws: f's errors must be agreed ones (thrown on every rank,
+  // as this class's are), so that every rank closes.
+  template <class F>
+  void run(F&& f) {
+    try {
+      f();
+      settle_kept();
+    } catch (...) {
+      close_now();
+      throw;
+    }
+    close_now();
+  }
   Hdf5File(const Hdf5File&) = delete;
   Hdf5File& operator=(const Hdf5File&) = delete;
 
@@ -36,7 +60,13 @@ class Hdf5File {
   // Collective block write: `total` rows of `width` values; this rank's rows start at `offset`.
   template <class T>
   void write(const std::string& name, const std::vector<T>& local, std::uint64_t total, std::uint64_t offset,
-             int width = 1);
+             int width = 1) {
+    write_block(name, local.data(), local.size(), total, offset, width);
+  }
+  // The same from `values` elements of T at `local` (a reused buffer).
+  template <class T>
+  void write_block(const std::string& name, const T* local, std::uint64_t values, std::uint64_t total,
+                   std::uint64_t offset, int width = 1);
   // Collective block read of rows [offset, offset + count). Every dataset carries a checksum of its rows
   // (order-independent, so it does not depend on how the rows were split over ranks); it is verified
   // after reading: `partitioned` when the ranks' blocks cover the dataset once, otherwise (every rank reads
@@ -48,12 +78,19 @@ class Hdf5File {
   std::uint64_t rows(const std::string& name) const;
 
  private:
-  [[noreturn]] void fail(const std::string& what) const;
+  // Collective: throws on every rank (InputError, or IoError when `writing`) if `ok` is false on any.
+  void check(bool ok, const std::string& what, bool writing = false) const;
+  // Keeps the first failure of this rank for the next settlement (not collective).
+  void keep(bool ok, const std::string& what);
+  // Collective: every rank throws the kept error of the lowest failing rank, if any.
+  void settle_kept();
+  void close_now();
   std::uint64_t reduce_sum(std::uint64_t local) const;
   std::string path_;
-  MPI_Comm comm_;
+  Communicator comm_;
   hid_t file_ = -1;
   hid_t xfer_ = -1;
+  std::exception_ptr kept_;
 };
 
 }  // namespace rondel

@@ -1,11 +1,14 @@
 #include "parallel/StateFile.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <cstring>
 #include <sstream>
 #include <string_view>
 #include <type_traits>
 
 #include "core/Errors.hpp"
+#include "parallel/Agreement.hpp"
 #include "parallel/CanonicalOrder.hpp"
 #include "parallel/Hdf5File.hpp"
 #include "parallel/RecordPacking.hpp"
@@ -14,6 +17,8 @@
 namespace rondel {
 
 namespace {
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 std::string join(const std::vector<std::string>& v) {
   std::string s;
@@ -28,60 +33,6 @@ std::vector<std::string> split(const std::string& s) {
   while (std::getline(in, x, ','))
     if (!x.empty()) out.push_back(x);
   return out;
-}
-
-void write_discs(Hdf5File& f, DiscStore& discs, const Communicator& comm, const std::vector<std::string>& fields) {
-  ByteBuffer records;
-  std::vector<std::int64_t> keys(discs.gid.begin(), discs.gid.begin() + discs.n_owned());
-  for (std::size_t i = 0; i < discs.n_owned(); ++i) {
-    pack_disc(discs, i, kCheckpoint, records);
-    records.put(static_cast<std::int32_t>(comm.rank()));
-  }
-  const std::size_t bytes = record_bytes(discs, kCheckpoint) + sizeof(std::int32_t);
-  const OrderedBlock block = order_into_blocks(keys, records.bytes, bytes, comm);
-  DiscStore ordered;
-  std::vector<std::int32_t> rank;
-  ByteReader r(block.records.data(), block.records.size());
-  for (std::uint64_t k = 0; k < block.count; ++k) {
-    append_disc(ordered, kCheckpoint, r);
-    rank.push_back(r.get<std::int32_t>());
-  }
-  f.create_group("/discs");
-  ordered.for_each_field([&](const char* name, unsigned uses, auto& field) {
-    const bool wanted = fields.empty() || std::find(fields.begin(), fields.end(), name) != fields.end();
-    if ((uses & kCheckpoint) && wanted) f.write(std::string("/discs/") + name, field, block.total, block.offset);
-  });
-  // The owner rank is run metadata: in snapshots on request (for pictures), never in checkpoints.
-  if (!fields.empty() && std::find(fields.begin(), fields.end(), "rank") != fields.end())
-    f.write("/discs/rank", rank, block.total, block.offset);
-  // A snapshot's row numbers, the connectivity of its XDMF vertex cells (without cells ParaView shows
-  // nothing on Apply).
-  if (!fields.empty()) {
-    std::vector<std::int64_t> index(block.count);
-    for (std::uint64_t k = 0; k < block.count; ++k) index[k] = static_cast<std::int64_t>(block.offset + k);
-    f.write("/discs/index", index, block.total, block.offset);
-  }
-}
-
-// Rows this rank books (disc 1 owned), with state, in ascending key order over all ranks.
-void write_rows(Hdf5File& f, const std::string& group, const ContactTable& rows, std::size_t n_owned,
-                const Communicator& comm) {
-  std::vector<ContactKey> keys;
-  ByteBuffer records;
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    if (static_cast<std::size_t>(rows.i1[r]) >= n_owned || !rows.has_state(r)) continue;
-    keys.push_back(rows.key[r]);
-    pack_row(rows, r, records);
-  }
-  const OrderedBlock block = order_into_blocks(keys, records.bytes, row_bytes(rows), comm);
-  ContactTable ordered(rows.slot_names(), rows.has_moment());
-  ByteReader reader(block.records.data(), block.records.size());
-  for (std::uint64_t k = 0; k < block.count; ++k) unpack_row(ordered, reader);
-  f.create_group(group);
-  f.create_group(group + "/history");
-  ordered.for_each_column([&](std::string_view name, unsigned uses, const auto& column) {
-    if (uses & kColumnRecord) f.write(group + "/" + std::string(name), column, block.total, block.offset);
-  });
 }
 
 void write_walls(Hdf5File& f, const WallSet& walls, const Communicator& comm) {
@@ -107,12 +58,11 @@ void write_walls(Hdf5File& f, const WallSet& walls, const Communicator& comm) {
   f.write("/walls/contacts", contacts, n, 0);
 }
 
-}  // namespace
+// The peak over the writers and routings of this process (peak_checkpoint_structure_bytes()).
+std::size_t g_peak_bytes = 0;
+void note_bytes(std::size_t bytes) { g_peak_bytes = std::max(g_peak_bytes, bytes); }
 
-void write_state_file(const std::string& path, const StateHeader& h, DiscStore& discs, const ContactTable& pairs,
-                      const ContactTable& wall_rows, const WallSet& walls, const Communicator& comm,
-                      const std::vector<std::string>& fields, double wall_seconds) {
-  Hdf5File f(path, Hdf5File::Mode::create, comm);
+void write_header(Hdf5File& f, const StateHeader& h) {
   f.write_attribute("/", "format", std::string("rondel"));
   f.write_attribute("/", "format_version", kStateFormatVersion);
   f.write_attribute("/", "kind", h.kind);
@@ -124,27 +74,160 @@ void write_state_file(const std::string& path, const StateHeader& h, DiscStore& 
   f.write_attribute("/", "rolling_law", h.rolling_law);
   f.write_attribute("/", "history_slots", join(h.slots));
   f.write_attribute("/", "config", h.config);
-  write_discs(f, discs, comm, fields);
-  if (fields.empty()) {
-    write_rows(f, "/contacts", pairs, discs.n_owned(), comm);
-    write_rows(f, "/wall_contacts", wall_rows, discs.n_owned(), comm);
-  }
-  write_walls(f, walls, comm);
-  f.write_attribute("/walls", "box_width0", h.box_width0);
-  f.write_attribute("/walls", "box_height0", h.box_height0);
-  f.create_group("/ledger");
-  h.ledger.for_each_term(
-      [&f](const LedgerTermInfo& t, double value) { f.write_attribute("/ledger", std::string(t.name), value); });
-  f.create_group("/run_metadata");
-  f.write_attribute("/run_metadata", "ranks", static_cast<std::int64_t>(comm.size()));
-  f.write_attribute("/run_metadata", "wall_seconds", wall_seconds);
-  f.write_attribute("/run_metadata", "rondel_version", std::string(kRondelVersion));
-  f.write_attribute("/run_metadata", "rondel_commit", std::string(kRondelCommit));
-  f.write_attribute("/", "complete", std::int64_t{1});  // last: a file without it was cut short
 }
 
-StateHeader read_state_header(const std::string& path, const Communicator& comm) {
-  Hdf5File f(path, Hdf5File::Mode::read, comm);
+// Row r's record (RecordPacking's layout) at out.
+void pack_row_bytes(const ContactTable& t, std::size_t r, char* out) {
+  t.for_each_column([&](std::string_view, unsigned uses, const auto& column) {
+    if (!(uses & kColumnRecord)) return;
+    std::memcpy(out, &column[r], sizeof column[0]);
+    out += sizeof column[0];
+  });
+}
+
+bool listed(const std::vector<std::string>& fields, const char* name) {
+  return std::find(fields.begin(), fields.end(), name) != fields.end();
+}
+
+}  // namespace
+
+template <class T, class Local>
+void StateWriter::write_column(Hdf5File& f, const std::string& name, Local&& local, std::size_t at) {
+  const double t0 = now();
+  const std::size_t n = order_.count();
+  resize_buffer(column_, (n * sizeof(T) + sizeof(std::uint64_t) - 1) / sizeof(std::uint64_t));
+  char* out = reinterpret_cast<char*>(column_.data());
+  for (std::size_t k = 0; k < n; ++k) {
+    const void* from = order_.is_local(k) ? static_cast<const void*>(local(order_.local_index(k)))
+                                          : static_cast<const void*>(order_.received(k) + at);
+    std::memcpy(out + k * sizeof(T), from, sizeof(T));
+  }
+  times_.columns += now() - t0;
+  f.write_block(name, reinterpret_cast<const T*>(out), n, order_.total(), order_.offset());
+}
+
+void StateWriter::write_discs(Hdf5File& f, DiscStore& discs, const Communicator& comm,
+                              const std::vector<std::string>& fields) {
+  const std::size_t n = discs.n_owned();
+  // A record: the checkpoint fields, then the rank that owned the disc (a snapshot's "rank").
+  const std::int32_t me = comm.rank();
+  const std::size_t bytes = record_bytes(discs, kCheckpoint) + sizeof me;
+  const double t0 = now();
+  const std::int64_t* gid = discs.gid.data();
+  order_.arrange(
+      n,
+      [gid](std::size_t i) {
+        return OrderKey{gid[i], 0};
+      },
+      bytes,
+      [&](std::size_t i, char* out) {
+        discs.for_each_field([&](const char*, unsigned uses, auto& field) {
+          if (!(uses & kCheckpoint)) return;
+          std::memcpy(out, &field[i], sizeof field[i]);
+          out += sizeof field[i];
+        });
+        std::memcpy(out, &me, sizeof me);
+      },
+      comm);
+  times_.order += now() - t0;
+  f.create_group("/discs");
+  std::size_t at = 0;
+  discs.for_each_field([&](const char* name, unsigned uses, auto& field) {
+    using T = typename std::decay_t<decltype(field)>::value_type;
+    if (!(uses & kCheckpoint)) return;
+    if (fields.empty() || listed(fields, name))
+      write_column<T>(
+          f, std::string("/discs/") + name, [&field](std::size_t i) { return &field[i]; }, at);
+    at += sizeof(T);
+  });
+  // The owner rank is run metadata: in snapshots on request (for pictures), never in checkpoints.
+  if (!fields.empty() && listed(fields, "rank"))
+    write_column<std::int32_t>(
+        f, "/discs/rank", [&me](std::size_t) { return &me; }, at);
+  // A snapshot's row numbers, the connectivity of its XDMF vertex cells (without cells ParaView shows
+  // nothing on Apply).
+  if (!fields.empty()) {
+    std::vector<std::int64_t> index(order_.count());
+    for (std::uint64_t k = 0; k < order_.count(); ++k) index[k] = static_cast<std::int64_t>(order_.offset() + k);
+    f.write("/discs/index", index, order_.total(), order_.offset());
+  }
+  note_bytes(checkpoint_structure_bytes());
+}
+
+// Rows this rank books (disc 1 owned), with state, in ascending key order over all ranks.
+void StateWriter::write_rows(Hdf5File& f, const std::string& group, const ContactTable& rows, std::size_t n_owned,
+                             const Communicator& comm) {
+  resize_buffer(booked_, rows.size());  // room for every row: no doubling while booking
+  booked_.clear();
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    if (static_cast<std::size_t>(rows.i1[r]) < n_owned && rows.has_state(r)) booked_.push_back(r);
+  const auto key_of = [&](std::size_t i) {
+    const ContactKey& k = rows.key[booked_[i]];
+    return OrderKey{k.lo, k.hi};
+  };
+  const double t0 = now();
+  order_.arrange(
+      booked_.size(), key_of, row_bytes(rows), [&](std::size_t i, char* out) { pack_row_bytes(rows, booked_[i], out); },
+      comm);
+  times_.order += now() - t0;
+  f.create_group(group);
+  f.create_group(group + "/history");
+  std::size_t at = 0;
+  rows.for_each_column([&](std::string_view name, unsigned uses, const auto& column) {
+    using T = typename std::decay_t<decltype(column)>::value_type;
+    if (!(uses & kColumnRecord)) return;
+    write_column<T>(
+        f, group + "/" + std::string(name), [&](std::size_t i) { return &column[booked_[i]]; }, at);
+    at += sizeof(T);
+  });
+  note_bytes(checkpoint_structure_bytes());
+}
+
+std::size_t StateWriter::checkpoint_structure_bytes() const {
+  return order_.capacity_bytes() + booked_.capacity() * sizeof(std::size_t) +
+         column_.capacity() * sizeof(std::uint64_t);
+}
+
+void StateWriter::write(const std::string& path, const StateHeader& h, DiscStore& discs, const ContactTable& pairs,
+                        const ContactTable& wall_rows, const WallSet& walls, const Communicator& comm,
+                        const std::vector<std::string>& fields, double wall_seconds) {
+  times_ = {};
+  const double t0 = now();
+  Hdf5File f(path, Hdf5File::Mode::create, comm);
+  f.run([&] {
+    write_header(f, h);
+    write_discs(f, discs, comm, fields);
+    if (fields.empty()) {
+      write_rows(f, "/contacts", pairs, discs.n_owned(), comm);
+      write_rows(f, "/wall_contacts", wall_rows, discs.n_owned(), comm);
+    }
+    write_walls(f, walls, comm);
+    f.write_attribute("/walls", "box_width0", h.box_width0);
+    f.write_attribute("/walls", "box_height0", h.box_height0);
+    f.create_group("/ledger");
+    h.ledger.for_each_term(
+        [&f](const LedgerTermInfo& t, double value) { f.write_attribute("/ledger", std::string(t.name), value); });
+    f.create_group("/run_metadata");
+    f.write_attribute("/run_metadata", "ranks", static_cast<std::int64_t>(comm.size()));
+    f.write_attribute("/run_metadata", "wall_seconds", wall_seconds);
+    f.write_attribute("/run_metadata", "rondel_version", std::string(kRondelVersion));
+    f.write_attribute("/run_metadata", "rondel_commit", std::string(kRondelCommit));
+    f.write_attribute("/", "complete", std::int64_t{1});  // last: a file without it was cut short
+  });
+  times_.hdf5 += now() - t0 - times_.order - times_.columns;
+}
+
+void write_state_file(const std::string& path, const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
+                      const ContactTable& wall_rows, const WallSet& walls, const Communicator& comm,
+                      const std::vector<std::string>& fields, double wall_seconds) {
+  StateWriter().write(path, header, discs, pairs, wall_rows, walls, comm, fields, wall_seconds);
+}
+
+std::size_t peak_checkpoint_structure_bytes() { return g_peak_bytes; }
+
+namespace {
+
+StateHeader read_header(const Hdf5File& f, const std::string& path) {
   if (!f.has_attribute("/", "format") || f.read_string_attribute("/", "format") != "rondel")
     throw InputError("'" + path + "' is not a Rondel checkpoint or snapshot (no format = rondel attribute)");
   const std::int64_t version = f.read_int_attribute("/", "format_version");
@@ -171,6 +254,15 @@ StateHeader read_state_header(const std::string& path, const Communicator& comm)
   return h;
 }
 
+}  // namespace
+
+StateHeader read_state_header(const std::string& path, const Communicator& comm) {
+  Hdf5File f(path, Hdf5File::Mode::read, comm);
+  StateHeader h;
+  f.run([&] { h = read_header(f, path); });
+  return h;
+}
+
 std::uint64_t state_file_discs(const std::string& path, const Communicator& comm) {
   return Hdf5File(path, Hdf5File::Mode::read, comm).rows("/discs/position");
 }
@@ -184,6 +276,7 @@ std::vector<std::string> state_file_disc_datasets(const std::string& path, const
   });
   for (const char* extra : {"rank", "index"})
     if (f.exists(std::string("/discs/") + extra)) found.emplace_back(extra);
+  f.close();
   return found;
 }
 
@@ -193,18 +286,22 @@ void read_state_discs(const std::string& path, DiscStore& discs, const Communica
   const std::uint64_t begin = block_begin(total, comm.rank(), comm.size());
   const std::uint64_t count = block_begin(total, comm.rank() + 1, comm.size()) - begin;
   discs.clear();
-  discs.for_each_field([&](const char* name, unsigned uses, auto& field) {
-    using T = typename std::decay_t<decltype(field)>::value_type;
-    if (!(uses & kCheckpoint)) return;
-    const std::string set = std::string("/discs/") + name;
-    if (!f.exists(set)) throw InputError("'" + path + "' has no dataset " + set + " (a snapshot without every field?)");
-    field = f.read<T>(set, begin, count);
+  f.run([&] {
+    discs.for_each_field([&](const char* name, unsigned uses, auto& field) {
+      using T = typename std::decay_t<decltype(field)>::value_type;
+      if (!(uses & kCheckpoint)) return;
+      const std::string set = std::string("/discs/") + name;
+      if (!f.exists(set))
+        throw InputError("'" + path + "' has no dataset " + set + " (a snapshot without every field?)");
+      field = f.read<T>(set, begin, count);
+    });
   });
   discs.set_owned_count(count);
 }
 
-void read_state_rows(const std::string& path, ContactTable& pairs, ContactTable& wall_rows, const Communicator& comm) {
-  Hdf5File f(path, Hdf5File::Mode::read, comm);
+namespace {
+
+void read_rows(const Hdf5File& f, ContactTable& pairs, ContactTable& wall_rows, const Communicator& comm) {
   for (auto [group, table] :
        {std::pair{std::string("/contacts"), &pairs}, std::pair{std::string("/wall_contacts"), &wall_rows}}) {
     table->clear();
@@ -221,10 +318,9 @@ void read_state_rows(const std::string& path, ContactTable& pairs, ContactTable&
   }
 }
 
-WallSet read_state_walls(const std::string& path, const Communicator& comm) {
-  Hdf5File f(path, Hdf5File::Mode::read, comm);
+// Every rank reads the whole (small) wall table and checks its own copy.
+WallSet read_walls(const Hdf5File& f) {
   const std::uint64_t n = f.rows("/walls/kind");
-  // Every rank reads the whole (small) wall table and checks its own copy.
   const auto kind = f.read<std::int32_t>("/walls/kind", 0, n, 1, false);
   const auto p0 = f.read<Vec2>("/walls/p0", 0, n, 1, false), p1 = f.read<Vec2>("/walls/p1", 0, n, 1, false);
   const auto normal = f.read<Vec2>("/walls/normal", 0, n, 1, false);
@@ -241,33 +337,112 @@ WallSet read_state_walls(const std::string& path, const Communicator& comm) {
   return walls;
 }
 
+}  // namespace
+
+void read_state_rows(const std::string& path, ContactTable& pairs, ContactTable& wall_rows, const Communicator& comm) {
+  Hdf5File f(path, Hdf5File::Mode::read, comm);
+  f.run([&] { read_rows(f, pairs, wall_rows, comm); });
+}
+
+WallSet read_state_walls(const std::string& path, const Communicator& comm) {
+  Hdf5File f(path, Hdf5File::Mode::read, comm);
+  WallSet walls;
+  f.run([&] { walls = read_walls(f); });
+  return walls;
+}
+
+namespace {
+
+// Packs `items` records of `bytes` bytes into `send` grouped by destination rank (dest(item) < 0: left out),
+// with the bytes per rank in `send_bytes`: the layout ByteExchange sends.
+template <class Dest, class Pack>
+void pack_by_rank(std::size_t items, std::size_t bytes, int ranks, Dest&& dest, Pack&& pack, std::vector<char>& send,
+                  std::vector<std::uint64_t>& send_bytes) {
+  std::vector<std::uint64_t> at(static_cast<std::size_t>(ranks) + 1, 0);
+  for (std::size_t k = 0; k < items; ++k)
+    if (const int d = dest(k); d >= 0) ++at[d + 1];
+  send_bytes.resize(static_cast<std::size_t>(ranks));
+  for (int r = 0; r < ranks; ++r) send_bytes[r] = at[r + 1] * bytes, at[r + 1] += at[r];
+  resize_buffer(send, at[ranks] * bytes);
+  for (std::size_t k = 0; k < items; ++k)
+    if (const int d = dest(k); d >= 0) pack(k, send.data() + (at[d]++) * bytes);
+}
+
+int home_rank(std::int64_t gid, int ranks) {
+  const std::int64_t r = gid % ranks;
+  return static_cast<int>(r < 0 ? r + ranks : r);
+}
+
+}  // namespace
+
 void route_rows_to_owners(ContactTable& rows, bool both_ends, const DiscStore& discs, const Communicator& comm) {
-  // A directory of (gid, owner rank) from every rank's owned discs.
-  ByteBuffer mine;
-  for (std::size_t i = 0; i < discs.n_owned(); ++i) mine.put(discs.gid[i]);
+  const int ranks = comm.size();
+  ByteExchange exchange;
+  std::vector<char> send, recv;
+  std::vector<std::uint64_t> send_bytes, recv_bytes;
+  // 1. The directory: each owned gid registered on its home rank, as (gid, owner).
+  const std::int64_t* gid = discs.gid.data();
+  agree(comm, [&] {
+    pack_by_rank(
+        discs.n_owned(), sizeof(std::int64_t), ranks, [&](std::size_t i) { return home_rank(gid[i], ranks); },
+        [&](std::size_t i, char* out) { std::memcpy(out, gid + i, sizeof(std::int64_t)); }, send, send_bytes);
+  });
+  exchange.run(send.data(), send_bytes, recv, recv_bytes, comm);
   std::vector<std::pair<std::int64_t, int>> owner;
-  const auto all = comm.all_gather(mine);
-  for (int r = 0; r < comm.size(); ++r) {
-    ByteReader reader(all[r].bytes.data(), all[r].bytes.size());
-    while (!reader.done()) owner.emplace_back(reader.get<std::int64_t>(), r);
-  }
-  std::sort(owner.begin(), owner.end());
-  auto rank_of = [&owner](std::int64_t gid) {
-    const auto it = std::lower_bound(owner.begin(), owner.end(), std::make_pair(gid, -1));
-    return (it != owner.end() && it->first == gid) ? it->second : -1;
-  };
-  std::vector<ByteBuffer> out(static_cast<std::size_t>(comm.size()));
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    const int a = rank_of(rows.key[r].lo), b = both_ends ? rank_of(rows.key[r].hi) : -1;
-    if (a >= 0) pack_row(rows, r, out[a]);
-    if (b >= 0 && b != a) pack_row(rows, r, out[b]);
-  }
-  rows.clear();
-  for (const ByteBuffer& b : comm.all_to_all(out)) {
-    ByteReader reader(b.bytes.data(), b.bytes.size());
+  agree(comm, [&] {
+    owner.reserve(recv.size() / sizeof(std::int64_t));
+    std::size_t at = 0;
+    for (int r = 0; r < ranks; ++r)
+      for (std::uint64_t k = 0; k < recv_bytes[r] / sizeof(std::int64_t); ++k, at += sizeof(std::int64_t)) {
+        std::int64_t g = 0;
+        std::memcpy(&g, recv.data() + at, sizeof g);
+        owner.emplace_back(g, r);
+      }
+    std::sort(owner.begin(), owner.end());
+  });
+  std::size_t peak = send.capacity() + recv.capacity() + owner.capacity() * sizeof(owner[0]);
+  // 2. Each row to the home rank of its disc 1 (and of its disc 2), led by the gid to look up.
+  const std::size_t bytes = row_bytes(rows), ends = both_ends ? 2 : 1;
+  agree(comm, [&] {
+    pack_by_rank(
+        rows.size() * ends, sizeof(std::int64_t) + bytes, ranks,
+        [&](std::size_t k) {
+          const ContactKey& key = rows.key[k / ends];
+          return home_rank(k % ends ? key.hi : key.lo, ranks);
+        },
+        [&](std::size_t k, char* out) {
+          const ContactKey& key = rows.key[k / ends];
+          const std::int64_t g = k % ends ? key.hi : key.lo;
+          std::memcpy(out, &g, sizeof g);
+          pack_row_bytes(rows, k / ends, out + sizeof g);
+        },
+        send, send_bytes);
+  });
+  exchange.run(send.data(), send_bytes, recv, recv_bytes, comm);
+  // 3. The home rank forwards each row to the owner of that disc (none: dropped).
+  const std::size_t led = sizeof(std::int64_t) + bytes;
+  std::vector<char> forward;
+  agree(comm, [&] {
+    auto rank_of = [&](std::size_t k) {
+      std::int64_t g = 0;
+      std::memcpy(&g, recv.data() + k * led, sizeof g);
+      const auto it = std::lower_bound(owner.begin(), owner.end(), std::make_pair(g, -1));
+      return (it != owner.end() && it->first == g) ? it->second : -1;
+    };
+    pack_by_rank(
+        recv.size() / led, bytes, ranks, rank_of,
+        [&](std::size_t k, char* out) { std::memcpy(out, recv.data() + k * led + sizeof(std::int64_t), bytes); },
+        forward, send_bytes);
+  });
+  peak = std::max(peak, send.capacity() + recv.capacity() + forward.capacity() + owner.capacity() * sizeof(owner[0]));
+  exchange.run(forward.data(), send_bytes, recv, recv_bytes, comm);
+  note_bytes(std::max(peak, forward.capacity() + recv.capacity() + owner.capacity() * sizeof(owner[0])));
+  agree(comm, [&] {
+    rows.clear();
+    ByteReader reader(recv.data(), recv.size());
     while (!reader.done()) unpack_row(rows, reader);
-  }
-  rows.sort_unique_by_key();
+    rows.sort_unique_by_key();
+  });
 }
 
 }  // namespace rondel

@@ -8,9 +8,12 @@
 #include "core/DiscStore.hpp"
 #include "core/LedgerTerms.hpp"
 #include "core/Wall.hpp"
+#include "parallel/CanonicalOrder.hpp"
 #include "parallel/Communicator.hpp"
 
 namespace rondel {
+
+class Hdf5File;
 
 // The HDF5 layout of checkpoints and snapshots (FORMAT.md). Written collectively by every rank into one
 // file; discs in ascending gid and contact rows in ascending key, so the content does not depend on the rank
@@ -28,11 +31,50 @@ struct StateHeader {
   double box_width0 = 0.0, box_height0 = 0.0;  // the box walls' separation at the start (strain reference)
 };
 
-// Collective. `fields` selects the disc datasets of a snapshot (empty: every checkpointed field plus the
-// contacts); a snapshot also gets the owner rank when "rank" is listed, and its row numbers ("index").
+// Writes checkpoints and snapshots (collective). `fields` selects the disc datasets of a snapshot (empty:
+// every checkpointed field plus the contacts); a snapshot also gets the owner rank when "rank" is listed,
+// and its row numbers ("index"). Records are put in file order by a distributed sample sort (CanonicalOrder:
+// no rank holds a list of all keys) and each rank writes its block of every dataset at its prefix-sum
+// offset. Keep one writer per output directory: its buffers keep their capacity from one file to the next.
+class StateWriter {
+ public:
+  void write(const std::string& path, const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
+             const ContactTable& wall_rows, const WallSet& walls, const Communicator& comm,
+             const std::vector<std::string>& fields, double wall_seconds);
+  // The bytes of this rank's checkpoint structures (key orders, records sent and received, one dataset's
+  // block), as held now: their capacity only grows, so this is the peak of every file written so far.
+  std::size_t checkpoint_structure_bytes() const;
+  // Where the last write() spent its wall time on this rank: putting records in file order (sort,
+  // splitters, exchange, merge), copying each dataset's block into place, and HDF5 (datasets, checksums,
+  // attributes, opening and closing the file).
+  struct Times {
+    double order = 0.0, columns = 0.0, hdf5 = 0.0;
+  };
+  const Times& last_times() const { return times_; }
+
+ private:
+  void write_discs(Hdf5File& f, DiscStore& discs, const Communicator& comm, const std::vector<std::string>& fields);
+  void write_rows(Hdf5File& f, const std::string& group, const ContactTable& rows, std::size_t n_owned,
+                  const Communicator& comm);
+  // Writes one dataset from this rank's records in file order: a local record's value is *local(i), a
+  // received one's is at byte `at` of its record.
+  template <class T, class Local>
+  void write_column(Hdf5File& f, const std::string& name, Local&& local, std::size_t at);
+
+  CanonicalOrder order_;
+  std::vector<std::size_t> booked_;    // the rows written, by index in their table
+  std::vector<std::uint64_t> column_;  // one dataset's block (8-byte words: aligned for every type)
+  Times times_;
+};
+
+// One file with a writer of its own (tests and tools; a run keeps its writer in Checkpointing).
 void write_state_file(const std::string& path, const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
                       const ContactTable& wall_rows, const WallSet& walls, const Communicator& comm,
                       const std::vector<std::string>& fields, double wall_seconds);
+
+// The largest checkpoint_structure_bytes() of any writer, and of the buffers of route_rows_to_owners, in
+// this process so far (for the scaling audit: it must fall as 1/P at a fixed total size).
+std::size_t peak_checkpoint_structure_bytes();
 
 // Collective reads. The header is checked (format name and version, completeness); discs and rows come as
 // this rank's block of the file, to be sent to their owners by the caller.
@@ -45,7 +87,9 @@ void read_state_discs(const std::string& path, DiscStore& discs, const Communica
 void read_state_rows(const std::string& path, ContactTable& pairs, ContactTable& wall_rows, const Communicator& comm);
 WallSet read_state_walls(const std::string& path, const Communicator& comm);
 
-// Sends each row to the ranks owning its discs (both ends for disc pairs), rows sorted and de-duplicated.
+// Sends each row to the ranks owning its discs (both ends for disc pairs), rows sorted and de-duplicated;
+// rows of a disc no rank owns are dropped. The owners are found through a distributed directory (gid g is
+// registered on rank g mod P): O(N/P + P) per rank, no list of all discs anywhere. Collective.
 void route_rows_to_owners(ContactTable& rows, bool both_ends, const DiscStore& discs, const Communicator& comm);
 
 }  // namespace rondel
