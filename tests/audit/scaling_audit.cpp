@@ -11,6 +11,7 @@
 
 #include "app/Simulation.hpp"
 #include "parallel/Communicator.hpp"
+#include "parallel/StateFile.hpp"
 #include "physics/LawRegistry.hpp"
 
 int main(int argc, char** argv) {
@@ -39,7 +40,7 @@ int main(int argc, char** argv) {
     const auto& c = sim.step_comm();
     const std::int64_t owned = max_of(sim.discs().n_owned()), ghosts = max_of(sim.ghost_count());
     const std::int64_t dec = max_of(sim.decomposition_bytes()), exch = max_of(sim.exchange_bytes()),
-                       neigh = max_of(sim.neighbour_bytes()), ckpt = max_of(0);
+                       neigh = max_of(sim.neighbour_bytes()), ckpt = max_of(rondel::peak_checkpoint_structure_bytes());
     const std::int64_t coll = comm.max(c.collectives), msgs = comm.max(c.messages), bytes = comm.max(c.bytes);
     const std::int64_t total_discs = comm.sum(static_cast<std::int64_t>(sim.discs().n_owned()));
     const std::int64_t ckpt_coll = comm.max(after.collectives - before.collectives);
