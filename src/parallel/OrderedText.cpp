@@ -1,0 +1,70 @@
+#include "parallel/OrderedText.hpp"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+
+#include "core/Errors.hpp"
+#include "parallel/Agreement.hpp"
+
+namespace rondel {
+
+namespace {
+constexpr std::uint64_t kPiece = std::uint64_t{1} << 30;
+
+std::string mpi_error(int code) {
+  char text[MPI_MAX_ERROR_STRING];
+  int n = 0;
+  MPI_Error_string(code, text, &n);
+  return std::string(text, static_cast<std::size_t>(n));
+}
+}  // namespace
+
+void write_ordered_text(const std::string& path, const std::string& header, const CanonicalOrder& order,
+                        const std::function<void(std::size_t, std::string&)>& line, const Communicator& comm) {
+  std::string text = comm.root() ? header : std::string();
+  for (std::size_t k = 0; k < order.count(); ++k) line(k, text);
+  std::uint64_t length = text.size(), offset = 0, pieces = (length + kPiece - 1) / kPiece;
+  if (comm.size() > 1) {
+    comm.count_collective();
+    MPI_Exscan(&length, &offset, 1, MPI_UINT64_T, MPI_SUM, comm.comm());
+    if (comm.root()) offset = 0;
+    pieces = static_cast<std::uint64_t>(comm.max(static_cast<std::int64_t>(pieces)));
+  }
+  MPI_File file = MPI_FILE_NULL;
+  int rc = MPI_File_open(comm.comm(), path.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &file);
+  comm.count_collective();
+  std::exception_ptr error;
+  if (rc != MPI_SUCCESS)
+    error = std::make_exception_ptr(IoError("cannot open '" + path + "' for writing: " + mpi_error(rc)));
+  settle(comm, error);  // every rank opened it, or every rank throws
+  rc = MPI_File_set_size(file, 0);
+  comm.count_collective();
+  // Every rank makes the same number of collective writes (an empty one when its block is done).
+  for (std::uint64_t p = 0; p < pieces; ++p) {
+    const std::uint64_t at = std::min(p * kPiece, length), n = std::min(kPiece, length - at);
+    MPI_Status status;
+    const int w = MPI_File_write_at_all(file, static_cast<MPI_Offset>(offset + at), text.data() + at,
+                                        static_cast<int>(n), MPI_CHAR, &status);
+    comm.count_collective();
+    if (rc == MPI_SUCCESS) rc = w;
+  }
+  const int c = MPI_File_close(&file);
+  comm.count_collective();
+  if (rc == MPI_SUCCESS) rc = c;
+  if (rc != MPI_SUCCESS) error = std::make_exception_ptr(IoError("writing '" + path + "' failed: " + mpi_error(rc)));
+  std::exception_ptr agreed;
+  try {
+    settle(comm, error);
+  } catch (...) {
+    agreed = std::current_exception();
+  }
+  if (agreed) {
+    if (comm.root()) std::remove(path.c_str());
+    std::rethrow_exception(agreed);
+  }
+}
+
+}  // namespace rondel
