@@ -55,9 +55,14 @@ void RunFiles::open_files(bool resuming) {
   check_stream(measures_, dir / "measures.csv");
 }
 
+std::string RunFiles::write_failure(const fs::path& path) {
+  return "cannot write '" + path.string() + "' (disk full, permissions, or a removed directory)";
+}
+
+void RunFiles::write_failed(const fs::path& path) { throw IoError(write_failure(path)); }
+
 void RunFiles::check_stream(const std::ostream& out, const fs::path& path) {
-  if (!out.good())
-    throw IoError("cannot write '" + path.string() + "' (disk full, permissions, or a removed directory)");
+  if (!out.good()) write_failed(path);
 }
 
 void RunFiles::close_checked(std::ofstream& out, const fs::path& path) {
@@ -85,15 +90,13 @@ void RunFiles::log_file_only(const std::string& line) {
   // step (check_log), not here.
   if (!comm_.root() || !log_.is_open()) return;
   log_ << line << '\n' << std::flush;
-  if (!log_.good() && log_failed_.empty())
-    log_failed_ = "cannot write '" + (fs::path(config_.output) / "log.txt").string() +
-                  "' (disk full, permissions, or a removed directory)";
+  if (!log_.good() && log_failed_.empty()) log_failed_ = write_failure(fs::path(config_.output) / "log.txt");
 }
 
 void RunFiles::write_diagnostics(const DiagnosticsRow& row) {
   if (!comm_.root()) return;
   diag_.write(row);
-  if (!diag_.good()) throw IoError("cannot write '" + (fs::path(config_.output) / "diagnostics.csv").string() + "'");
+  if (!diag_.good()) write_failed(fs::path(config_.output) / "diagnostics.csv");
 }
 
 void RunFiles::write_measures(const MeasuresRow& row) {
@@ -118,7 +121,7 @@ void RunFiles::write_results(const std::string& final_state, const std::string& 
   if (!comm_.root()) return;
   const fs::path dir(config_.output);
   // The rows of diagnostics.csv and measures.csv reach their files (the writers flush them once a second).
-  if (!diag_.flush()) throw IoError("cannot write '" + (dir / "diagnostics.csv").string() + "' (disk full?)");
+  if (!diag_.flush()) write_failed(dir / "diagnostics.csv");
   if (measures_.is_open()) check_stream(measures_.flush(), dir / "measures.csv");
   std::ofstream final_csv(dir / "final.csv");
   final_csv << final_state;

@@ -57,6 +57,8 @@ class RunFiles {
   void claim_directory(bool resuming) const;
   // Rank 0: config.ini written, log.txt, diagnostics.csv and measures.csv opened.
   void open_files(bool resuming);
+  static std::string write_failure(const std::filesystem::path& path);
+  [[noreturn]] static void write_failed(const std::filesystem::path& path);
   static void check_stream(const std::ostream& out, const std::filesystem::path& path);
   static void close_checked(std::ofstream& out, const std::filesystem::path& path);
 

@@ -166,7 +166,7 @@ RunSummary Runner::run() {
         checkpointed_ != sim_.step_count())
       checkpoint();
     phases_.lap(PhaseTimes::output);
-  } catch (const std::exception& e) {  // agreed: every rank is here (an instability, an I/O error)
+  } catch (const std::exception& e) {  // an instability, an I/O error: log.txt says so (rank 0)
     progress.finish(sim_.step_count() - first);
     files_.set_progress(nullptr);
     files_.log(std::string("FAILED: ") + e.what());
