@@ -56,32 +56,37 @@ TEST(ExitCodes, ErrorOnTheLastRankOnlyIsPrintedOnceWithItsCode) {
     const std::string tag = std::to_string(ranks) + " rank(s)";
     EXPECT_EQ(o.exit_code, 1) << tag << "; stderr:\n" << o.err;
     EXPECT_EQ(count(o.err, "rondel: input error: " + test::behind_wall_message()), 1u) << tag << "; stderr:\n" << o.err;
-    EXPECT_EQ(count(o.err, "rondel:"), 1u) << tag << ": one message only; stderr:\n" << o.err;
+    EXPECT_EQ(count(o.err, "error:"), 1u) << tag << ": one message only; stderr:\n" << o.err;
     EXPECT_EQ(o.err.find("only; stopping every rank"), std::string::npos) << tag << ": not agreed; " << o.err;
   }
 }
 
 TEST(ExitCodes, AnIoErrorOfRankZeroExitsWithFive) {
-  // log.txt is /dev/full: its first lines fail to reach the disk; the run stops at the first output step.
+  // A text output of the run is /dev/full: its rows fail to reach the disk (log.txt and diagnostics.csv at
+  // the first output step, measures.csv when it is flushed before the final files); the run stops there.
   if (!have("mpirun")) GTEST_SKIP() << "mpirun is not installed";
   if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
-  for (const int ranks : {1, 3}) {
-    TempDir dir("rondel-exit-io");
-    const fs::path run = dir / "run";
-    fs::create_directories(run);
-    fs::create_symlink("/dev/full", run / "log.txt");
-    const std::string scene = (kSource / "inputs/two_disc_impact.ini").string();
-    const std::string csv = (kSource / "inputs/two_disc_impact.csv").string();
-    const Outcome o =
-        rondel_on(dir, ranks,
-                  test::quoted(scene) + " --scene.file=" + test::quoted(csv) + " --run.output=" + test::quoted(run) +
-                      " --run.overwrite=true --run.steps=50 --run.progress=false");
-    const std::string tag = std::to_string(ranks) + " rank(s)";
-    EXPECT_EQ(o.exit_code, 5) << tag << "; stderr:\n" << o.err;
-    EXPECT_EQ(count(o.err, "rondel: I/O error: cannot write '" + (run / "log.txt").string() + "'"), 1u)
-        << tag << "; stderr:\n"
-        << o.err;
-    EXPECT_FALSE(fs::exists(run / "final.csv")) << tag << ": a failed run wrote final.csv";
+  for (const char* file : {"log.txt", "diagnostics.csv", "measures.csv"}) {
+    for (const int ranks : {1, 3}) {
+      TempDir dir("rondel-exit-io");
+      const fs::path run = dir / "run";
+      fs::create_directories(run);
+      fs::create_symlink("/dev/full", run / file);
+      const std::string scene = (kSource / "inputs/two_disc_impact.ini").string();
+      const std::string csv = (kSource / "inputs/two_disc_impact.csv").string();
+      const Outcome o =
+          rondel_on(dir, ranks,
+                    test::quoted(scene) + " --scene.file=" + test::quoted(csv) + " --run.output=" + test::quoted(run) +
+                        " --run.overwrite=true --run.steps=50 --run.progress=false");
+      const std::string tag = std::string(file) + ", " + std::to_string(ranks) + " rank(s)";
+      EXPECT_EQ(o.exit_code, 5) << tag << "; stderr:\n" << o.err;
+      EXPECT_EQ(count(o.err, "rondel: I/O error: cannot write '" + (run / file).string() + "'"), 1u)
+          << tag << "; stderr:\n"
+          << o.err;
+      EXPECT_EQ(count(o.err, "error:"), 1u) << tag << ": one message only; stderr:\n" << o.err;
+      EXPECT_FALSE(fs::exists(run / "final.csv")) << tag << ": a failed run wrote final.csv";
+      EXPECT_FALSE(fs::exists(run / "summary.json")) << tag << ": a failed run wrote summary.json";
+    }
   }
 }
 

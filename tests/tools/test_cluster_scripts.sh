@@ -116,6 +116,10 @@ check "at RONDEL_MAX_JOBS: exit 10" eq "$rc" 10
 check "at RONDEL_MAX_JOBS: nothing submitted" no_sbatch
 check "at RONDEL_MAX_JOBS: it says how to continue" grep -q "continue with: sbatch" "$case_dir/job.out"
 
+run_case complete RONDEL_LAUNCH=aprun
+check "an unknown RONDEL_LAUNCH is refused" eq "$rc" 2
+check "an unknown RONDEL_LAUNCH is named" grep -q "RONDEL_LAUNCH = 'aprun'" "$case_dir/job.out"
+
 if [ "$failures" -ne 0 ]; then
   echo "$failures check(s) failed; the job outputs:"
   for f in "$work"/*/job.out; do echo "== $f"; cat "$f"; done

@@ -30,11 +30,36 @@ rondel_wait() {
   return 0
 }
 
+# Starts the ranks (RONDEL_LAUNCH: srun or mpirun) in the background and waits for them; sets RONDEL_RC. A
+# SIGUSR1 to this shell goes on to the launcher: srun passes it to every task, Open MPI's mpirun to every rank
+# (SIGUSR1 and SIGUSR2 only: a SIGTERM or SIGINT makes mpirun end the ranks itself). The trap is set before
+# the launch, so that a signal in between is not lost (the shell would die of it without one).
+rondel_launch() {  # EXECUTABLE ARGS...
+  RONDEL_PID=
+  RONDEL_SIGNALLED=0
+  trap 'echo "rondel chain: SIGUSR1 (the time limit is near): the ranks write a checkpoint and stop"
+        RONDEL_SIGNALLED=1; [ -n "$RONDEL_PID" ] && kill -USR1 "$RONDEL_PID" 2> /dev/null' USR1
+  case ${RONDEL_LAUNCH:-srun} in
+    srun) srun "$@" & ;;
+    mpirun) mpirun "$@" & ;;
+    *)
+      echo "rondel chain: RONDEL_LAUNCH = '$RONDEL_LAUNCH': use srun or mpirun" >&2
+      trap - USR1
+      RONDEL_RC=2
+      return 0
+      ;;
+  esac
+  RONDEL_PID=$!
+  [ "$RONDEL_SIGNALLED" -eq 1 ] && kill -USR1 "$RONDEL_PID" 2> /dev/null
+  rondel_wait "$RONDEL_PID"
+  trap - USR1
+}
+
 rondel_chain() {  # INPUT.ini OUTPUT_DIR [overrides...]
   local ini=$1 out=$2
   shift 2
   local here=${SLURM_SUBMIT_DIR:-$PWD}
-  local exe=${RONDEL:-$here/build/rondel} launch=${RONDEL_LAUNCH:-srun}
+  local exe=${RONDEL:-$here/build/rondel}
   local job=${RONDEL_JOB:-1} max=${RONDEL_MAX_JOBS:-20}
   local args
   if compgen -G "$out/checkpoint_*.h5" > /dev/null; then
@@ -42,26 +67,11 @@ rondel_chain() {  # INPUT.ini OUTPUT_DIR [overrides...]
   else
     args=("$ini" "--run.output=$out" "$@")
   fi
-  echo "rondel chain: job $job of at most $max (${SLURM_JOB_ID:-no job id}): $launch $exe ${args[*]}"
-  local marker
+  echo "rondel chain: job $job of at most $max (${SLURM_JOB_ID:-no job id}): ${RONDEL_LAUNCH:-srun} $exe ${args[*]}"
+  local marker rc status
   marker=$(mktemp "${TMPDIR:-/tmp}/rondel-chain.XXXXXX") || return 1
-  # srun passes SIGUSR1 on to every task; Open MPI's mpirun to every rank (SIGUSR1 and SIGUSR2 only: a
-  # SIGTERM or SIGINT makes mpirun end the ranks itself). Without the trap the batch shell would die of it.
-  case $launch in
-    srun) srun "$exe" "${args[@]}" & ;;
-    mpirun) mpirun "$exe" "${args[@]}" & ;;
-    *)
-      echo "rondel chain: RONDEL_LAUNCH = '$launch': use srun or mpirun" >&2
-      rm -f "$marker"
-      return 2
-      ;;
-  esac
-  local pid=$!
-  trap 'echo "rondel chain: SIGUSR1 (the time limit is near): the ranks write a checkpoint and stop"; kill -USR1 '"$pid"' 2> /dev/null' USR1
-  local rc status
-  rondel_wait "$pid"
+  rondel_launch "$exe" "${args[@]}"
   rc=$RONDEL_RC
-  trap - USR1
   status=$(rondel_status "$out" "$marker")
   rm -f "$marker"
   echo "rondel chain: rondel exited with $rc${status:+, $out/summary.json says '$status'}"
@@ -69,20 +79,27 @@ rondel_chain() {  # INPUT.ini OUTPUT_DIR [overrides...]
     echo "rondel chain: the run is complete; results in $out"
     return 0
   fi
-  if [ "$rc" -eq 10 ] || [ "$status" = stopped ]; then
-    if [ "$job" -ge "$max" ]; then
-      echo "rondel chain: stopped after a checkpoint, but this is job $max of RONDEL_MAX_JOBS = $max: not resubmitted; continue with: sbatch $RONDEL_SCRIPT $ini $out $*" >&2
-      return 10
-    fi
-    local next=$((job + 1))
-    # shellcheck disable=SC2086  # RONDEL_SBATCH_ARGS holds several options
-    if RONDEL_JOB=$next sbatch --export=ALL ${RONDEL_SBATCH_ARGS:-} "$RONDEL_SCRIPT" "$ini" "$out" "$@"; then
-      echo "rondel chain: stopped after a checkpoint; job $next submitted to resume it"
-      return 0
-    fi
-    echo "rondel chain: sbatch failed; continue by hand with: sbatch $RONDEL_SCRIPT $ini $out $*" >&2
+  if [ "$rc" -ne 10 ] && [ "$status" != stopped ]; then
+    echo "rondel chain: rondel failed (exit code $rc; README \"Exit codes\"); the chain stops. See the message above and $out/log.txt" >&2
+    return "$rc"
+  fi
+  rondel_resubmit "$job" "$max" "$ini" "$out" "$@"
+}
+
+# The run stopped after a checkpoint: the follow-up job, unless the chain is at RONDEL_MAX_JOBS.
+rondel_resubmit() {  # JOB MAX INPUT.ini OUTPUT_DIR [overrides...]
+  local job=$1 max=$2
+  shift 2
+  if [ "$job" -ge "$max" ]; then
+    echo "rondel chain: stopped after a checkpoint, but this is job $max of RONDEL_MAX_JOBS = $max: not resubmitted; continue with: sbatch $RONDEL_SCRIPT $*" >&2
     return 10
   fi
-  echo "rondel chain: rondel failed (exit code $rc; README \"Exit codes\"); the chain stops. See the message above and $out/log.txt" >&2
-  return "$rc"
+  local next=$((job + 1))
+  # shellcheck disable=SC2086  # RONDEL_SBATCH_ARGS holds several options
+  if RONDEL_JOB=$next sbatch --export=ALL ${RONDEL_SBATCH_ARGS:-} "$RONDEL_SCRIPT" "$@"; then
+    echo "rondel chain: stopped after a checkpoint; job $next submitted to resume it"
+    return 0
+  fi
+  echo "rondel chain: sbatch failed; continue by hand with: sbatch $RONDEL_SCRIPT $*" >&2
+  return 10
 }
