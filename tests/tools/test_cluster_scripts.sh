@@ -4,7 +4,8 @@
 # (exit 10, or mpirun's 1 with summary.json saying "stopped") submits the follow-up job, which resumes; a
 # complete run submits nothing; a failed run stops the chain with its exit code even beside an old
 # "stopped" summary.json; SIGUSR1 to the batch shell reaches the rank; the chain stops at RONDEL_MAX_JOBS.
-#   bash tests/tools/test_cluster_scripts.sh SOURCE_DIR
+# With the rondel executable as a second argument, also a real run through the real mpirun, signalled and resumed.
+#   bash tests/tools/test_cluster_scripts.sh SOURCE_DIR [RONDEL]
 set -u
 src=${1:-$(cd "$(dirname "$0")/../.." && pwd)}
 job=$src/tools/cluster/rondel.slurm
@@ -119,6 +120,39 @@ check "at RONDEL_MAX_JOBS: it says how to continue" grep -q "continue with: sbat
 run_case complete RONDEL_LAUNCH=aprun
 check "an unknown RONDEL_LAUNCH is refused" eq "$rc" 2
 check "an unknown RONDEL_LAUNCH is named" grep -q "RONDEL_LAUNCH = 'aprun'" "$case_dir/job.out"
+
+# With the real rondel and the real mpirun (when given and installed): SIGUSR1 to the batch shell reaches
+# the ranks through mpirun, they write a checkpoint and stop, the follow-up is submitted, and a follow-up job
+# resumes from the checkpoint to the end.
+real=${2:-}
+if [ -n "$real" ] && command -v mpirun > /dev/null; then
+  mkdir -p "$work/sbatch-only"
+  cp "$work/bin/sbatch" "$work/sbatch-only/"
+  case_dir=$work/real
+  mkdir -p "$case_dir"
+  cp "$src/inputs/deposition.ini" "$case_dir/in.ini"
+  real_env=(env -u RONDEL_JOB PATH="$work/sbatch-only:$PATH" RONDEL="$real" RONDEL_SCRIPT="$job" RONDEL_LAUNCH=mpirun
+    SLURM_SUBMIT_DIR="$case_dir" OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1)
+  quiet=(--run.progress=false --output.thermo_every=0)
+  (cd "$case_dir" && exec "${real_env[@]}" bash "$job" in.ini out --run.steps=400000 "${quiet[@]}" >> job.out 2>&1) &
+  shell=$!  # the batch shell itself (exec)
+  for _ in $(seq 600); do [ -f "$case_dir/out/diagnostics.csv" ] && [ "$(wc -l < "$case_dir/out/diagnostics.csv")" -ge 3 ] && break; sleep 0.05; done
+  kill -USR1 "$shell"
+  wait "$shell"
+  rc=$?
+  check "real run: the job ends well after SIGUSR1" eq "$rc" 0
+  check "real run: summary.json says stopped" grep -q '"status": "stopped"' "$case_dir/out/summary.json"
+  check "real run: job 2 is submitted" sbatched "^RONDEL_JOB=2 "
+  last=$(ls "$case_dir"/out/checkpoint_*.h5 2> /dev/null | tail -n 1)
+  step=$(basename "$last" .h5 | sed 's/^checkpoint_0*//')
+  check "real run: a checkpoint was written" test -n "$step"
+  (cd "$case_dir" && exec "${real_env[@]}" RONDEL_JOB=2 bash "$job" in.ini out --run.steps=$((step + 100)) \
+     "${quiet[@]}" >> job.out 2>&1)
+  rc=$?
+  check "real run: the follow-up job resumes and completes" eq "$rc" 0
+  check "real run: the follow-up resumed at the checkpoint" grep -q "resumed at step $step" "$case_dir/out/log.txt"
+  check "real run: summary.json says complete" grep -q '"status": "complete"' "$case_dir/out/summary.json"
+fi
 
 if [ "$failures" -ne 0 ]; then
   echo "$failures check(s) failed; the job outputs:"
