@@ -2,6 +2,8 @@
 //   mpirun -n N rondel FILE.ini [--section.key=value ...]
 //   mpirun -n N rondel [FILE.ini] --resume OUTPUT_DIR [--section.key=value ...]
 //   rondel --version | --help
+#include <mpi.h>
+
 #include <algorithm>
 #include <cstring>
 #include <exception>
@@ -12,6 +14,7 @@
 #include "app/Checkpointing.hpp"
 #include "app/Simulation.hpp"
 #include "core/Errors.hpp"
+#include "parallel/Agreement.hpp"
 #include "parallel/Communicator.hpp"
 #include "parallel/StateFile.hpp"
 #include "rondel/Version.hpp"
@@ -52,29 +55,27 @@ bool nothing_to_resume(const rondel::Config& config, const std::string& checkpoi
   return true;
 }
 
-}  // namespace
+// The set-up before the Simulation: the checkpoint to resume from and the configuration, each step agreed
+// among the ranks (an error on one rank, a file it cannot read, stops every rank before the next collective).
+struct Setup {
+  rondel::Config config;
+  std::string checkpoint;
+  bool nothing_to_do = false;
+};
 
-int main(int argc, char** argv) {
-  rondel::MpiEnvironment mpi(&argc, &argv);
-  rondel::Communicator comm;
-  // Exit codes: 0 done (also --help, --version, and a --resume with nothing to do, with a notice),
-  // 1 configuration or input error, 3 the run became unstable, 4 internal error, 10 stopped by SIGTERM,
-  // SIGINT or SIGUSR1 after writing a checkpoint (continue with --resume).
-  if (version_requested(argc, argv)) {
-    if (comm.root()) std::cout << "rondel " << rondel::kRondelVersion << " (commit " << rondel::kRondelCommit << ")\n";
-    return 0;
+Setup set_up(int argc, char** argv, const rondel::Communicator& comm) {
+  Setup s;
+  bool has_file = false;
+  const std::string resume = resume_directory(argc, argv, has_file);
+  rondel::StateHeader header;
+  if (!resume.empty()) {
+    std::vector<std::string> skipped;
+    rondel::agree(comm, [&] { s.checkpoint = rondel::Checkpointing::newest_checkpoint(resume, comm, &skipped); });
+    if (comm.root())
+      for (const auto& k : skipped) std::cerr << "rondel: skipping " << k << '\n';
+    rondel::agree(comm, [&] { header = rondel::read_state_header(s.checkpoint, comm); });
   }
-  try {
-    bool has_file = false;
-    const std::string resume = resume_directory(argc, argv, has_file);
-    std::string checkpoint;
-    rondel::Config config;
-    if (!resume.empty()) {
-      std::vector<std::string> skipped;
-      checkpoint = rondel::Checkpointing::newest_checkpoint(resume, comm, &skipped);
-      if (comm.root())
-        for (const auto& s : skipped) std::cerr << "rondel: skipping " << s << '\n';
-    }
+  rondel::agree(comm, [&] {
     if (!resume.empty() && !has_file) {
       // No INI: the configuration stored in the checkpoint, with the command line's overrides.
       // It continues in DIR itself, unless the command line names another run.output.
@@ -82,33 +83,109 @@ int main(int argc, char** argv) {
       const bool named =
           std::any_of(args.begin(), args.end(), [](const std::string& a) { return a.rfind("--run.output", 0) == 0; });
       if (!named) args.push_back("--run.output=" + resume);
-      config = rondel::parse_config_text(rondel::read_state_header(checkpoint, comm).config, args);
+      s.config = rondel::parse_config_text(header.config, args);
     } else {
-      config = rondel::parse_config(argc, argv);
+      s.config = rondel::parse_config(argc, argv);
     }
-    if (!resume.empty() && nothing_to_resume(config, checkpoint, rondel::read_state_header(checkpoint, comm).step)) {
-      if (comm.root())
-        std::cout << "rondel: nothing to do: the checkpoint '" << checkpoint << "' is at step " << config.steps
-                  << " = run.steps already (the run is complete); raise run.steps (--run.steps=N) to continue it\n";
-      return 0;
-    }
-    rondel::Simulation sim(std::move(config), comm, true, checkpoint);
-    const rondel::RunSummary summary = sim.run();
-    return summary.stop_signal != 0 ? 10 : 0;
-  } catch (const rondel::HelpRequested& h) {
-    if (comm.root()) std::cout << h.text;
+    s.nothing_to_do = !resume.empty() && nothing_to_resume(s.config, s.checkpoint, header.step);
+  });
+  return s;
+}
+
+int run(int argc, char** argv, const rondel::Communicator& comm) {
+  Setup s = set_up(argc, argv, comm);
+  if (s.nothing_to_do) {
+    if (comm.root())
+      std::cout << "rondel: nothing to do: the checkpoint '" << s.checkpoint << "' is at step " << s.config.steps
+                << " = run.steps already (the run is complete); raise run.steps (--run.steps=N) to continue it\n";
     return 0;
-  } catch (const rondel::ConfigError& e) {
-    if (comm.root()) std::cerr << "rondel: configuration error: " << e.what() << '\n';
-    return 1;
-  } catch (const rondel::InputError& e) {
-    if (comm.root()) std::cerr << "rondel: input error: " << e.what() << '\n';
-    return 1;
-  } catch (const rondel::InstabilityError& e) {
-    if (comm.root()) std::cerr << "rondel: the run became unstable: " << e.what() << '\n';
-    return 3;
-  } catch (const std::exception& e) {
-    std::cerr << "rondel: internal error: " << e.what() << '\n';
-    return 4;
   }
+  rondel::Simulation sim(std::move(s.config), comm, true, s.checkpoint);
+  const rondel::RunSummary summary = sim.run();
+  return summary.stop_signal != 0 ? 10 : 0;
+}
+
+int exit_code(rondel::ErrorKind kind) {
+  switch (kind) {
+    case rondel::ErrorKind::none:
+    case rondel::ErrorKind::help:
+      return 0;
+    case rondel::ErrorKind::config:
+    case rondel::ErrorKind::input:
+      return 1;
+    case rondel::ErrorKind::instability:
+      return 3;
+    case rondel::ErrorKind::io:
+      return 5;
+    case rondel::ErrorKind::internal:
+      break;
+  }
+  return 4;
+}
+
+std::string label(rondel::ErrorKind kind) {
+  switch (kind) {
+    case rondel::ErrorKind::config:
+      return "configuration error: ";
+    case rondel::ErrorKind::input:
+      return "input error: ";
+    case rondel::ErrorKind::instability:
+      return "the run became unstable: ";
+    case rondel::ErrorKind::io:
+      return "I/O error: ";
+    default:
+      return "internal error: ";
+  }
+}
+
+// How long the failing ranks wait for each other at the end (settle_at_exit) before one aborts the job.
+constexpr double kExitAgreementSeconds = 10.0;
+
+// The error that ended the run on this rank. Agreed (every rank has it): rank 0 prints it once and every rank
+// returns its code. Otherwise the failing ranks try to meet; if some rank does not come (it waits in a
+// collective, or runs on), this rank prints its own error and aborts the whole job with the code, never a hang.
+int report(std::exception_ptr error, MPI_Comm exit_comm, const rondel::Communicator& comm) {
+  const bool agreed = rondel::settle_at_exit(exit_comm, error, kExitAgreementSeconds);
+  const rondel::ErrorKind kind = rondel::error_kind(error);
+  const std::string message = rondel::error_message(error);
+  if (agreed && kind == rondel::ErrorKind::help) {
+    if (comm.root()) std::cout << message;
+    return 0;
+  }
+  if (agreed) {
+    if (comm.root()) std::cerr << "rondel: " << label(kind) << message << '\n';
+    return exit_code(kind);
+  }
+  std::cerr << "rondel: " << label(kind) << message << " (found on rank " << comm.rank()
+            << " only; stopping every rank)\n"
+            << std::flush;
+  MPI_Abort(MPI_COMM_WORLD, exit_code(kind));
+  return exit_code(kind);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  rondel::MpiEnvironment mpi(&argc, &argv);
+  rondel::Communicator comm;
+  // Exit codes (README "Exit codes"): 0 done (also --help, --version, and a --resume with nothing to do,
+  // with a notice), 1 configuration or input error, 3 the run became unstable, 4 internal error, 5 I/O error
+  // (a file could not be read or written), 10 stopped by SIGTERM, SIGINT or SIGUSR1 after writing a
+  // checkpoint (continue with --resume). Every rank returns the same code; the message is printed once.
+  if (version_requested(argc, argv)) {
+    if (comm.root()) std::cout << "rondel " << rondel::kRondelVersion << " (commit " << rondel::kRondelCommit << ")\n";
+    return 0;
+  }
+  // Only for the agreement at the end (report): a communicator of its own, so it cannot meet a collective
+  // that another rank is still waiting in.
+  MPI_Comm exit_comm = MPI_COMM_NULL;
+  MPI_Comm_dup(MPI_COMM_WORLD, &exit_comm);
+  int code = 0;
+  try {
+    code = run(argc, argv, comm);
+  } catch (...) {
+    code = report(std::current_exception(), exit_comm, comm);
+  }
+  MPI_Comm_free(&exit_comm);
+  return code;
 }

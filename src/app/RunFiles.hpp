@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -22,7 +23,9 @@ class RunFiles {
       : config_(config), comm_(comm), write_files_(write_files) {}
 
   // Collective: checks that run.output may be used (empty, run.overwrite, or a resumed run), creates it and
-  // opens its files; a resumed run at `step` appends and keeps its snapshots.
+  // opens its files; a resumed run at `step` appends and keeps its snapshots. Errors found by rank 0 alone
+  // are agreed (every rank throws them). Rank 0's row writers below throw IoError when a file cannot be
+  // written: call them inside an agreement (parallel/Agreement.hpp).
   void prepare(bool resuming, std::int64_t step);
   // True once prepare() has opened an output directory.
   bool has_directory() const { return checkpoints_ != nullptr; }
@@ -43,16 +46,30 @@ class RunFiles {
   void add_wall_seconds(double s) { wall_seconds_ += s; }
   // Rank 0: final.csv, summary.txt (the summary text, then the status line) and summary.json (`json`, a
   // JSON object without its closing brace: the list of the directory's files is added here).
-  void write_results(const std::string& final_state, const std::string& summary, const std::string& json,
-                     bool stopped) const;
+  // Each file is checked as it is closed: IoError (exit code 5) names the file that could not be written.
+  void write_results(const std::string& final_state, const std::string& summary, const std::string& json, bool stopped);
+  // Rank 0: throws IoError when a line of log.txt could not be written since the start (log() itself never
+  // throws: it is called between collectives). Call inside an agreement.
+  void check_log();
 
  private:
+  // Rank 0: the directory may be used (ConfigError otherwise) and exists.
+  void claim_directory(bool resuming) const;
+  // Rank 0: config.ini written, log.txt, diagnostics.csv and measures.csv opened.
+  void open_files(bool resuming);
+  static std::string write_failure(const std::filesystem::path& path);
+  [[noreturn]] static void write_failed(const std::filesystem::path& path);
+  static void check_stream(const std::ostream& out, const std::filesystem::path& path);
+  static void close_checked(std::ofstream& out, const std::filesystem::path& path);
+
   const Config& config_;
   const Communicator& comm_;
   bool write_files_;
   std::unique_ptr<Checkpointing> checkpoints_;
   ProgressLine* progress_ = nullptr;
-  double wall_seconds_ = 0.0;  // wall time of earlier runs of this simulation (before a restart) and this one
+  double wall_seconds_ = 0.0;
+  std::string log_failed_;  // the first failure to write log.txt (check_log)  // wall time of earlier runs of this
+                            // simulation (before a restart) and this one
   std::ofstream log_, measures_;
   DiagnosticsWriter diag_;
 };

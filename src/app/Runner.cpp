@@ -10,6 +10,7 @@
 #include "app/Simulation.hpp"
 #include "core/Errors.hpp"
 #include "core/StopSignal.hpp"
+#include "parallel/Agreement.hpp"
 #include "rondel/Version.hpp"
 
 namespace rondel {
@@ -57,14 +58,20 @@ void Runner::log_rough_walls() {
 }
 
 void Runner::record() {
+  // The rows are computed collectively; rank 0 writes them, agreed (a full disk stops every rank).
+  const Communicator& comm = sim_.comm();
   const DiagnosticsRow row = sim_.diagnostics();
-  files_.write_diagnostics(row);
-  const std::int64_t every = sim_.config().thermo_every;
-  if (every > 0 && (row.step % every == 0 || row.step == sim_.config().steps)) thermo(row);
-  Reports(sim_).check_stability(row);
+  agree(comm, [&] {
+    files_.write_diagnostics(row);
+    const std::int64_t every = sim_.config().thermo_every;
+    if (every > 0 && (row.step % every == 0 || row.step == sim_.config().steps)) thermo(row);
+    files_.check_log();
+  });
+  // From the global row: every rank alike (its message calls collectives), agreed so that it is printed once.
+  agree(comm, [&] { Reports(sim_).check_stability(row); });
   if (!files_.has_directory()) return;
   const MeasuresRow m = sim_.measures(sim_.last_contacts());
-  files_.write_measures(m);
+  agree(comm, [&] { files_.write_measures(m); });
 }
 
 void Runner::thermo(const DiagnosticsRow& row) {
@@ -90,8 +97,15 @@ void Runner::thermo(const DiagnosticsRow& row) {
 void Runner::checkpoint() {
   files_.add_wall_seconds(seconds_since(last_checkpoint_));
   last_checkpoint_ = std::chrono::steady_clock::now();
-  sum_.last_checkpoint = sim_.write_checkpoint();
+  agree(sim_.comm(), [&] {
+    sum_.last_checkpoint = sim_.write_checkpoint();
+    files_.check_log();
+  });
   checkpointed_ = sim_.step_count();
+}
+
+void Runner::snapshot() {
+  agree(sim_.comm(), [&] { sim_.write_snapshot(); });
 }
 
 std::int64_t Runner::stop_flags() {
@@ -114,7 +128,7 @@ int Runner::loop(ProgressLine& progress, std::int64_t first) {
     const std::int64_t step = sim_.step_count();
     phases_.restart();
     if (step % config.diag_every == 0 || step == config.steps) record();
-    if (files_.has_directory() && config.snapshot_every > 0 && step % config.snapshot_every == 0) sim_.write_snapshot();
+    if (files_.has_directory() && config.snapshot_every > 0 && step % config.snapshot_every == 0) snapshot();
     phases_.lap(PhaseTimes::output);
     const std::int64_t flags = sim_.agreed_stop();
     const std::int64_t signal = flags / 2;
@@ -147,7 +161,7 @@ RunSummary Runner::run() {
   try {
     phases_.restart();
     if (first == 0) record();
-    if (first == 0 && files_.has_directory() && config.snapshot_every > 0) sim_.write_snapshot();  // the initial state
+    if (first == 0 && files_.has_directory() && config.snapshot_every > 0) snapshot();  // the initial state
     phases_.lap(PhaseTimes::output);
     sum_.stop_signal = loop(progress, first);
     sim_.settle_errors();  // a rank's error found since the last reduction stops the run here
@@ -155,7 +169,7 @@ RunSummary Runner::run() {
         checkpointed_ != sim_.step_count())
       checkpoint();
     phases_.lap(PhaseTimes::output);
-  } catch (const InstabilityError& e) {
+  } catch (const std::exception& e) {  // an instability, an I/O error: log.txt says so (rank 0)
     progress.finish(sim_.step_count() - first);
     files_.set_progress(nullptr);
     files_.log(std::string("FAILED: ") + e.what());
@@ -191,10 +205,13 @@ void Runner::finish(std::int64_t first, std::int64_t n_discs, const PhaseTimes& 
   if (!files_.has_directory()) return;
   const std::string final_state = sim_.state_text();
   const std::string output = sim_.config().output;
-  files_.write_results(final_state, s.str() + "\n" + phases, summary_json(at_start), sum.stop_signal != 0);
-  files_.log("results in " + output +
-             "/ (config.ini, log.txt, diagnostics.csv, measures.csv, final.csv, summary.txt, summary.json" +
-             (sum.last_checkpoint.empty() ? std::string(")") : ", checkpoint_*.h5)"));
+  agree(sim_.comm(), [&] {
+    files_.write_results(final_state, s.str() + "\n" + phases, summary_json(at_start), sum.stop_signal != 0);
+    files_.log("results in " + output +
+               "/ (config.ini, log.txt, diagnostics.csv, measures.csv, final.csv, summary.txt, summary.json" +
+               (sum.last_checkpoint.empty() ? std::string(")") : ", checkpoint_*.h5)"));
+    files_.check_log();
+  });
 }
 
 std::string Runner::summary_json(const PhaseTimes& at_start) const {

@@ -44,7 +44,9 @@ class Runner {
   std::string summary_json(const PhaseTimes& at_start) const;
   // Diagnostics and measures of the present step, and the stability check.
   void record();
+  // Collective and agreed, like every output of the run: an error on one rank stops every rank.
   void checkpoint();
+  void snapshot();
   // One reduction: the signal received on any rank, and whether rank 0's clock says a checkpoint is due.
   std::int64_t stop_flags();
   // The steps after `first`; returns the signal that stopped them (0: none).

@@ -29,24 +29,31 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
       write_files_(write_files),
       neighbours_(0.0),
       files_(config_, comm_, write_files) {
-  laws_ = law_selection(config_);
-  kernel_ = select_kernel(laws_);
-  pairs_ = make_contact_table(laws_);
-  wall_rows_ = make_contact_table(laws_);
-  walls_ = config_.walls;
-  controlled_walls_ = Boundaries::controlled(walls_);
-  rough_walls_ = Boundaries::any_rough(walls_);
-  box0_ = Boundaries::box(walls_, config_.domain);
-  for (ContactParams* p : {&config_.params.pair(0, 0), &config_.params.wall(0)})
-    if (p->e_n > 0.0) p->zeta_n = zeta_from_restitution(p->e_n);
+  // Each set-up phase ends in an agreement (parallel/Agreement.hpp): an error that one rank finds (a disc
+  // behind a wall in its block of a checkpoint, a file it cannot read) stops every rank, with one message,
+  // before the next collective call. The phases that call collectives agree inside.
+  agree(comm_, [&] {
+    laws_ = law_selection(config_);
+    kernel_ = select_kernel(laws_);
+    pairs_ = make_contact_table(laws_);
+    wall_rows_ = make_contact_table(laws_);
+    walls_ = config_.walls;
+    controlled_walls_ = Boundaries::controlled(walls_);
+    rough_walls_ = Boundaries::any_rough(walls_);
+    box0_ = Boundaries::box(walls_, config_.domain);
+    for (ContactParams* p : {&config_.params.pair(0, 0), &config_.params.wall(0)})
+      if (p->e_n > 0.0) p->zeta_n = zeta_from_restitution(p->e_n);
+  });
   const bool restart = !restart_file.empty();
   if (restart) {
     load_checkpoint(restart_file);
     keep_rough_walls(restart_file);
   } else {
     build_discs();
-    resolve_time_step();
-    check_initial_state();
+    agree(comm_, [&] {
+      resolve_time_step();
+      check_initial_state();
+    });
     distribute_discs();
   }
   setup_boundaries();
@@ -74,15 +81,25 @@ void Simulation::keep_rough_walls(const std::string& path) {
   // The glue travels in the discs' flags: a wall that carries glued discs stays rough whatever the
   // configuration says (a resumed run continues the same boundary).
   const std::vector<std::int64_t> glued = Boundaries::glued_counts(discs_, walls_.size());
-  if (comm_.sum(glued.back()) > 0)
-    throw InputError("'" + path + "' has discs glued to a wall index beyond its " + std::to_string(walls_.size()) +
-                     " walls (/discs/flags)");
+  const std::int64_t beyond = comm_.sum(glued.back());
+  agree(comm_, [&] {  // every rank sees the same sum: agreed, so that main prints it once
+    if (beyond > 0)
+      throw InputError("'" + path + "' has discs glued to a wall index beyond its " + std::to_string(walls_.size()) +
+                       " walls (/discs/flags)");
+  });
   for (std::size_t w = 0; w < walls_.size(); ++w)
     if (comm_.sum(glued[w]) > 0) walls_[w].rough = true;
   rough_walls_ = Boundaries::any_rough(walls_);
 }
 
 void Simulation::build_discs() {
+  agree(comm_, [&] { add_scene_discs(); });
+  measure_radii();  // every rank holds the whole scene here
+  if (rough_walls_) Boundaries::glue(discs_, walls_, config_.rough_depth > 0.0 ? config_.rough_depth : 2.0 * R_max_);
+  setup_neighbours();
+}
+
+void Simulation::add_scene_discs() {
   const std::string dir = config_.source_file.empty() ? "" : fs::path(config_.source_file).parent_path().string();
   const bool from_file = config_.scene.type == "file";
   const auto scene =
@@ -102,9 +119,6 @@ void Simulation::build_discs() {
                        "] x [" + fmt(config_.domain.ylo) + ", " + fmt(config_.domain.yhi) + "]");
     discs_.add(d.gid, 0, d.radius, config_.density, config_.thickness, x, d.v, d.omega);
   }
-  measure_radii();  // every rank holds the whole scene here
-  if (rough_walls_) Boundaries::glue(discs_, walls_, config_.rough_depth > 0.0 ? config_.rough_depth : 2.0 * R_max_);
-  setup_neighbours();
 }
 
 void Simulation::measure_radii() {
@@ -119,9 +133,21 @@ void Simulation::measure_radii() {
 }
 
 void Simulation::setup_neighbours() {
-  // From the radii of every disc (measure_radii).
-  const double skin = config_.skin > 0.0 ? config_.skin : 0.25 * R_total_ / static_cast<double>(n_discs_);
-  neighbours_ = NeighbourList(skin);
+  // From the radii of every disc (measure_radii). The checks of the discs see this rank's discs only (a
+  // block of a checkpoint on --resume): agreed.
+  agree(comm_, [&] {
+    const double skin = config_.skin > 0.0 ? config_.skin : 0.25 * R_total_ / static_cast<double>(n_discs_);
+    neighbours_ = NeighbourList(skin);
+    check_periodic_lengths();
+    for (std::size_t w = 0; w < walls_.size(); ++w)
+      for (std::size_t i = 0; i < discs_.n_owned(); ++i)
+        if (walls_[w].kind == Wall::Kind::line && walls_[w].proximity(discs_.position[i]).dist < 0.0)
+          throw InputError("disc " + std::to_string(discs_.gid[i]) + " lies behind wall " + std::to_string(w) +
+                           " (its centre is on the far side of the line)");
+  });
+}
+
+void Simulation::check_periodic_lengths() const {
   const double range = neighbours_.range(R_max_);
   const Domain& d = config_.domain;
   if (d.periodic_x && d.length_x() < 2.0 * range)
@@ -132,11 +158,6 @@ void Simulation::setup_neighbours() {
     throw ConfigError("domain.yhi - domain.ylo = " + fmt(d.length_y()) + " is below twice the interaction range " +
                       fmt(range) + " (2 x largest radius + skin): a periodic length must be at least " +
                       fmt(2 * range));
-  for (std::size_t w = 0; w < walls_.size(); ++w)
-    for (std::size_t i = 0; i < discs_.n_owned(); ++i)
-      if (walls_[w].kind == Wall::Kind::line && walls_[w].proximity(discs_.position[i]).dist < 0.0)
-        throw InputError("disc " + std::to_string(discs_.gid[i]) + " lies behind wall " + std::to_string(w) +
-                         " (its centre is on the far side of the line)");
 }
 
 void Simulation::distribute_discs() {
@@ -392,15 +413,17 @@ std::exception_ptr Simulation::motion_error(double moved) const {
 }
 
 void Simulation::load_checkpoint(const std::string& path) {
-  const Restart file(path, config_, laws_, comm_);
-  const StateHeader& h = file.file_header();
-  file.read_discs(discs_);
-  file.read_walls(walls_);
+  // Each read is agreed: a rank's block of the file may be the only one that is short or damaged.
+  std::unique_ptr<Restart> file;
+  agree(comm_, [&] { file = std::make_unique<Restart>(path, config_, laws_, comm_); });
+  const StateHeader& h = file->file_header();
+  agree(comm_, [&] { file->read_discs(discs_); });
+  agree(comm_, [&] { file->read_walls(walls_); });
   box0_.width = h.box_width0;
   box0_.height = h.box_height0;
   measure_radii();
   setup_neighbours();
-  resolve_time_step();
+  agree(comm_, [&] { resolve_time_step(); });
   dt_ = h.dt;
   step_ = h.step;
   time_ = h.time;
@@ -413,8 +436,8 @@ void Simulation::load_checkpoint(const std::string& path) {
     exchange_.migrate(discs_, no_pairs, no_walls, *decomposition_, comm_);
     decomposition_->migrated();
   }
-  file.read_rows(pairs_, wall_rows_, discs_);
-  file.read_ledger(ledger_);
+  agree(comm_, [&] { file->read_rows(pairs_, wall_rows_, discs_); });
+  agree(comm_, [&] { file->read_ledger(ledger_); });
 }
 
 std::string Simulation::write_checkpoint() {

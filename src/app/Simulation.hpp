@@ -108,10 +108,14 @@ class Simulation {
 
  private:
   void build_discs();
+  // The scene's discs, each checked to lie in the domain (every rank builds the whole scene).
+  void add_scene_discs();
   // The largest and smallest radius, the sum of the radii and the count of every disc, once the discs exist (created or
   // loaded).
   void measure_radii();
   void setup_neighbours();
+  // A periodic length holds at least twice the interaction range.
+  void check_periodic_lengths() const;
   void setup_boundaries();
   void distribute_discs();
   void make_decomposition(bool replicated);

@@ -31,6 +31,13 @@ class DiagnosticsWriter {
   // Starts the file with its header, or appends to it (a resumed run) when `append` and it exists.
   void open(const std::string& path, bool append = false);
   void write(const DiagnosticsRow& row);
+  // False once a write or flush failed (disk full): the file lacks rows.
+  bool good() const { return !out_.is_open() || out_.good(); }
+  // Every row written so far to the file; false when that failed.
+  bool flush() {
+    if (out_.is_open()) out_.flush();
+    return good();
+  }
   static std::string header();
   static std::string format(const DiagnosticsRow& row);
 

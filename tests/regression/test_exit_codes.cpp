@@ -1,0 +1,94 @@
+// The real executable on 1 and 3 ranks: an error found on the last rank only, and an I/O error found by
+// rank 0 only, stop every rank with the documented exit code (README "Exit codes") and the message printed
+// exactly once on stderr, never a hang (each command runs under `timeout`).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "core/Config.hpp"
+#include "support/BehindWall.hpp"
+#include "support/Command.hpp"
+#include "support/TempDir.hpp"
+
+namespace rondel {
+namespace {
+
+namespace fs = std::filesystem;
+using test::Outcome;
+using test::TempDir;
+
+const fs::path kSource = RONDEL_SOURCE_DIR;
+// Seconds before `timeout` stops a command: a hang fails the test instead of the CTest timeout.
+constexpr int kLimit = 120;
+
+bool have(const std::string& program) {
+  return std::system(("command -v " + program + " > /dev/null 2>&1").c_str()) == 0;
+}
+
+// `mpirun -n RANKS rondel ARGS` in `dir` with a clean MPI environment (this test may itself run under
+// mpirun; the run-as-root permissions stay).
+Outcome rondel_on(const TempDir& dir, int ranks, const std::string& args) {
+  std::string env = test::without_mpi_launch(true);
+  if (geteuid() == 0) env += " OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1";
+  return test::run_in(dir, env,
+                      "timeout " + std::to_string(kLimit) + " mpirun -n " + std::to_string(ranks) +
+                          " --oversubscribe " + test::quoted(test::rondel_executable()) + " " + args);
+}
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(ExitCodes, ErrorOnTheLastRankOnlyIsPrintedOnceWithItsCode) {
+  if (!have("mpirun")) GTEST_SKIP() << "mpirun is not installed";
+  for (const int ranks : {1, 3}) {
+    TempDir dir("rondel-exit-behind");
+    const fs::path run = dir / "run";
+    const std::string ini = test::behind_wall_ini(run);
+    test::write_file(dir / "behind.ini", ini);
+    test::write_behind_wall_checkpoint(run, parse_config_text(ini, {}));
+    const Outcome o = rondel_on(dir, ranks, "behind.ini --resume " + run.string());
+    const std::string tag = std::to_string(ranks) + " rank(s)";
+    EXPECT_EQ(o.exit_code, 1) << tag << "; stderr:\n" << o.err;
+    EXPECT_EQ(count(o.err, "rondel: input error: " + test::behind_wall_message()), 1u) << tag << "; stderr:\n" << o.err;
+    EXPECT_EQ(count(o.err, "error:"), 1u) << tag << ": one message only; stderr:\n" << o.err;
+    EXPECT_EQ(o.err.find("only; stopping every rank"), std::string::npos) << tag << ": not agreed; " << o.err;
+  }
+}
+
+TEST(ExitCodes, AnIoErrorOfRankZeroExitsWithFive) {
+  // A text output of the run is /dev/full: its rows fail to reach the disk (log.txt and diagnostics.csv at
+  // the first output step, measures.csv when it is flushed before the final files); the run stops there.
+  if (!have("mpirun")) GTEST_SKIP() << "mpirun is not installed";
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  for (const char* file : {"log.txt", "diagnostics.csv", "measures.csv"}) {
+    for (const int ranks : {1, 3}) {
+      TempDir dir("rondel-exit-io");
+      const fs::path run = dir / "run";
+      fs::create_directories(run);
+      fs::create_symlink("/dev/full", run / file);
+      const std::string scene = (kSource / "inputs/two_disc_impact.ini").string();
+      const std::string csv = (kSource / "inputs/two_disc_impact.csv").string();
+      const Outcome o =
+          rondel_on(dir, ranks,
+                    test::quoted(scene) + " --scene.file=" + test::quoted(csv) + " --run.output=" + test::quoted(run) +
+                        " --run.overwrite=true --run.steps=50 --run.progress=false");
+      const std::string tag = std::string(file) + ", " + std::to_string(ranks) + " rank(s)";
+      EXPECT_EQ(o.exit_code, 5) << tag << "; stderr:\n" << o.err;
+      EXPECT_EQ(count(o.err, "rondel: I/O error: cannot write '" + (run / file).string() + "'"), 1u)
+          << tag << "; stderr:\n"
+          << o.err;
+      EXPECT_EQ(count(o.err, "error:"), 1u) << tag << ": one message only; stderr:\n" << o.err;
+      EXPECT_FALSE(fs::exists(run / "final.csv")) << tag << ": a failed run wrote final.csv";
+      EXPECT_FALSE(fs::exists(run / "summary.json")) << tag << ": a failed run wrote summary.json";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rondel
