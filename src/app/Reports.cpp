@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <sstream>
 
 #include "app/Format.hpp"
@@ -13,6 +14,8 @@
 #include "core/Errors.hpp"
 #include "core/ExactSum.hpp"
 #include "parallel/ByteBuffer.hpp"
+#include "parallel/CanonicalOrder.hpp"
+#include "parallel/OrderedText.hpp"
 
 namespace rondel {
 
@@ -121,39 +124,77 @@ void Reports::check_stability(const DiagnosticsRow& row) const {
         most_energetic_disc() + "; lower run.dt or run.safety");
 }
 
+namespace {
+
+// One line of final.csv: the radius is the last column, so the first seven stay as they were (scripts and
+// comparisons that read them). %.17g reads back to the same double, as %a does.
+struct FinalRecord {
+  std::int64_t gid;
+  double x, y, vx, vy, theta, omega, radius;
+};
+constexpr const char* kFinalHeader = "gid,x,y,vx,vy,theta,omega,radius\n";
+
+FinalRecord final_record(const DiscStore& d, std::size_t i) {
+  return {d.gid[i],        d.position[i].x, d.position[i].y, d.velocity[i].x,
+          d.velocity[i].y, d.theta[i],      d.omega[i],      d.radius[i]};
+}
+
+void append_final_line(const FinalRecord& d, bool decimal, std::string& out) {
+  char buf[512];
+  const auto gid = static_cast<long long>(d.gid);
+  if (decimal)
+    std::snprintf(buf, sizeof buf, "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", gid, d.x, d.y, d.vx, d.vy,
+                  d.theta, d.omega, d.radius);
+  else
+    std::snprintf(buf, sizeof buf, "%lld,%a,%a,%a,%a,%a,%a,%a\n", gid, d.x, d.y, d.vx, d.vy, d.theta, d.omega,
+                  d.radius);
+  out += buf;
+}
+
+}  // namespace
+
 std::string Reports::state_text() const {
-  struct Record {
-    std::int64_t gid;
-    double x, y, vx, vy, theta, omega, radius;
-  };
   ByteBuffer mine;
-  for (std::size_t i = 0; i < discs_.n_owned(); ++i)
-    mine.put(Record{discs_.gid[i], discs_.position[i].x, discs_.position[i].y, discs_.velocity[i].x,
-                    discs_.velocity[i].y, discs_.theta[i], discs_.omega[i], discs_.radius[i]});
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) mine.put(final_record(discs_, i));
   const auto all = comm_.gather(mine);
   if (!comm_.root()) return "";
-  std::vector<Record> records;
+  std::vector<FinalRecord> records;
   for (const ByteBuffer& b : all) {
     ByteReader r(b.bytes.data(), b.bytes.size());
-    while (!r.done()) records.push_back(r.get<Record>());
+    while (!r.done()) records.push_back(r.get<FinalRecord>());
   }
-  std::sort(records.begin(), records.end(), [](const Record& a, const Record& b) { return a.gid < b.gid; });
-  // The radius is the last column: the first seven stay as they were (scripts and comparisons that read them).
-  // %.17g reads back to the same double, as %a does.
-  std::string out = "gid,x,y,vx,vy,theta,omega,radius\n";
+  std::sort(records.begin(), records.end(), [](const auto& a, const auto& b) { return a.gid < b.gid; });
+  std::string out = kFinalHeader;
   const bool decimal = sim_.config().final_format == "decimal";
-  char buf[512];
-  for (const Record& d : records) {
-    const auto gid = static_cast<long long>(d.gid);
-    if (decimal)
-      std::snprintf(buf, sizeof buf, "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", gid, d.x, d.y, d.vx, d.vy,
-                    d.theta, d.omega, d.radius);
-    else
-      std::snprintf(buf, sizeof buf, "%lld,%a,%a,%a,%a,%a,%a,%a\n", gid, d.x, d.y, d.vx, d.vy, d.theta, d.omega,
-                    d.radius);
-    out += buf;
-  }
+  for (const FinalRecord& d : records) append_final_line(d, decimal, out);
   return out;
+}
+
+void Reports::write_final(const std::string& path) const {
+  CanonicalOrder order;
+  order.arrange(
+      discs_.n_owned(),
+      [&](std::size_t i) {
+        return OrderKey{discs_.gid[i], 0};
+      },
+      sizeof(FinalRecord),
+      [&](std::size_t i, char* out) {
+        const FinalRecord r = final_record(discs_, i);
+        std::memcpy(out, &r, sizeof r);
+      },
+      comm_);
+  const bool decimal = sim_.config().final_format == "decimal";
+  write_ordered_text(
+      path, kFinalHeader, order,
+      [&](std::size_t k, std::string& out) {
+        FinalRecord r{};
+        if (order.is_local(k))
+          r = final_record(discs_, order.local_index(k));
+        else
+          std::memcpy(&r, order.received(k), sizeof r);
+        append_final_line(r, decimal, out);
+      },
+      comm_);
 }
 
 }  // namespace rondel

@@ -31,6 +31,8 @@ class Reports {
   // Every disc as "gid,x,y,vx,vy,theta,omega,radius", ascending gid, on rank 0: hexadecimal floats, or
   // decimal ones with output.final_format = decimal.
   std::string state_text() const;
+  // Collective: final.csv at `path`, each rank writing its block in gid order (no gather).
+  void write_final(const std::string& path) const;
 
  private:
   // This rank's translational and rotational kinetic energy of the free discs, added to the sums.

@@ -116,16 +116,19 @@ void RunFiles::write_snapshot(const StateHeader& header, DiscStore& discs, const
   checkpoints_->write_snapshot(header, discs, walls, n_discs);
 }
 
-void RunFiles::write_results(const std::string& final_state, const std::string& summary, const std::string& json,
-                             bool stopped) {
+void RunFiles::flush_tables() {
   if (!comm_.root()) return;
   const fs::path dir(config_.output);
   // The rows of diagnostics.csv and measures.csv reach their files (the writers flush them once a second).
   if (!diag_.flush()) write_failed(dir / "diagnostics.csv");
   if (measures_.is_open()) check_stream(measures_.flush(), dir / "measures.csv");
-  std::ofstream final_csv(dir / "final.csv");
-  final_csv << final_state;
-  close_checked(final_csv, dir / "final.csv");
+}
+
+std::string RunFiles::final_path() const { return (fs::path(config_.output) / "final.csv").string(); }
+
+void RunFiles::write_results(const std::string& summary, const std::string& json, bool stopped) {
+  if (!comm_.root()) return;
+  const fs::path dir(config_.output);
   std::ofstream summary_txt(dir / "summary.txt");
   summary_txt << summary
               << (stopped ? "\nstatus: stopped by a signal; resume with --resume " + config_.output + "\n"

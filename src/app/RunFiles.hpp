@@ -44,10 +44,13 @@ class RunFiles {
   void write_snapshot(const StateHeader& header, DiscStore& discs, const WallSet& walls, std::int64_t n_discs);
   // Wall time of the run so far, recorded in the checkpoints' metadata.
   void add_wall_seconds(double s) { wall_seconds_ += s; }
-  // Rank 0: final.csv, summary.txt (the summary text, then the status line) and summary.json (`json`, a
-  // JSON object without its closing brace: the list of the directory's files is added here).
-  // Each file is checked as it is closed: IoError (exit code 5) names the file that could not be written.
-  void write_results(const std::string& final_state, const std::string& summary, const std::string& json, bool stopped);
+  // Rank 0: the rows of diagnostics.csv and measures.csv reach their files (checked).
+  void flush_tables();
+  // Where final.csv goes (written by every rank, in gid order: Simulation::write_final).
+  std::string final_path() const;
+  // Rank 0: summary.txt (the summary text, then the status line) and summary.json (`json`, a JSON object
+  // without its closing brace; the list of the directory's files is appended).
+  void write_results(const std::string& summary, const std::string& json, bool stopped);
   // Rank 0: throws IoError when a line of log.txt could not be written since the start (log() itself never
   // throws: it is called between collectives). Call inside an agreement.
   void check_log();

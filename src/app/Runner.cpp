@@ -203,10 +203,14 @@ void Runner::finish(std::int64_t first, std::int64_t n_discs, const PhaseTimes& 
   const std::string phases = phases_.line_since(at_start) + " (rank 0)";
   files_.log(phases);
   if (!files_.has_directory()) return;
-  const std::string final_state = sim_.state_text();
   const std::string output = sim_.config().output;
   agree(sim_.comm(), [&] {
-    files_.write_results(final_state, s.str() + "\n" + phases, summary_json(at_start), sum.stop_signal != 0);
+    files_.flush_tables();
+    files_.check_log();
+  });
+  sim_.write_final(files_.final_path());  // every rank its block, in gid order (agreed inside)
+  agree(sim_.comm(), [&] {
+    files_.write_results(s.str() + "\n" + phases, summary_json(at_start), sum.stop_signal != 0);
     files_.log("results in " + output +
                "/ (config.ini, log.txt, diagnostics.csv, measures.csv, final.csv, summary.txt, summary.json" +
                (sum.last_checkpoint.empty() ? std::string(")") : ", checkpoint_*.h5)"));

@@ -471,4 +471,6 @@ MeasuresRow Simulation::measures(const ContactSummary& contacts) {
 
 std::string Simulation::state_text() const { return Reports(*this).state_text(); }
 
+void Simulation::write_final(const std::string& path) const { Reports(*this).write_final(path); }
+
 }  // namespace rondel

@@ -105,6 +105,9 @@ class Simulation {
   // Every disc as "gid,x,y,vx,vy,theta,omega" in hexadecimal floats, ascending gid (bit-exact), gathered
   // on rank 0 (collective; other ranks get an empty string).
   std::string state_text() const;
+  // Collective: the same lines as final.csv at `path`, written by every rank in gid order (MPI-IO, no
+  // gather: what a run writes; state_text() serves tests).
+  void write_final(const std::string& path) const;
 
  private:
   void build_discs();
