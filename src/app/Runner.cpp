@@ -199,6 +199,18 @@ void Runner::finish(std::int64_t first, std::int64_t n_discs, const PhaseTimes& 
     << fmt(sum.disc_steps_per_second, 4) << " disc-steps/s; dt " << fmt(dt) << " s (" << fmt(dt / critical.dt, 4)
     << " x critical, " << critical.mode << " mode); ledger residual " << fmt(sum.ledger_residual, 3) << "; "
     << sum.neighbour_builds << " neighbour builds";
+  if (sim_.comm().size() > 1 && sim_.steps_taken() > 0) {
+    // What the steps asked of MPI, largest rank (docs/scaling.md): at most one collective per step.
+    const Communicator& comm = sim_.comm();
+    const CommStats& c = sim_.step_comm();
+    const auto per_step = [&](std::int64_t v) {
+      return static_cast<double>(comm.max(v)) / static_cast<double>(sim_.steps_taken());
+    };
+    sum.collectives_per_step = per_step(c.collectives);
+    sum.messages_per_step = per_step(c.messages);
+    s << "; per step and rank " << fmt(sum.collectives_per_step, 3) << " collectives, "
+      << fmt(sum.messages_per_step, 3) << " messages";
+  }
   files_.log(s.str());
   const std::string phases = phases_.line_since(at_start) + " (rank 0)";
   files_.log(phases);
@@ -244,7 +256,8 @@ std::string Runner::summary_json(const PhaseTimes& at_start) const {
     << ",\n  \"disc_steps_per_second\": " << num(m.disc_steps_per_second) << ",\n  \"dt\": " << num(m.dt)
     << ",\n  \"critical_dt\": " << num(m.critical.dt) << ",\n  \"critical_mode\": " << str(m.critical.mode)
     << ",\n  \"critical_pair\": " << str(m.critical.pair) << ",\n  \"ledger_residual\": " << num(m.ledger_residual)
-    << ",\n  \"neighbour_builds\": " << m.neighbour_builds << ",\n  \"phase_seconds_rank0\": {";
+    << ",\n  \"neighbour_builds\": " << m.neighbour_builds << ",\n  \"collectives_per_step\": " << num(m.collectives_per_step)
+    << ",\n  \"messages_per_step\": " << num(m.messages_per_step) << ",\n  \"phase_seconds_rank0\": {";
   for (int p = 0; p < PhaseTimes::count; ++p) {
     const auto phase = static_cast<PhaseTimes::Phase>(p);
     j << (p ? ", " : "") << str(PhaseTimes::name(phase)) << ": "

@@ -24,6 +24,7 @@ struct RunSummary {
   CriticalStep critical;
   double ledger_residual = 0.0;
   std::size_t neighbour_builds = 0;
+  double collectives_per_step = 0.0, messages_per_step = 0.0;  // the steps', largest rank (several ranks)
 };
 
 // The run of a Simulation to run.steps: the opening log lines, the time loop with the schedules of
