@@ -94,6 +94,9 @@ class Simulation {
   // The largest and smallest radius, the sum of the radii and the count of every disc, once the discs exist (created or
   // loaded).
   void measure_radii();
+  // walls.rough_materials, once the discs are glued; a warning for a material that nothing uses.
+  void assign_rough_materials();
+  void warn_unused_materials() const;
   void setup_neighbours();
   void setup_boundaries();
   void distribute_discs();

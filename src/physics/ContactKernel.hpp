@@ -255,7 +255,14 @@ struct ContactKernel {
       const TangentialForce T = Tangential::force(p, row.b, k, F_n, dt, hist.t(), hist.row);
       RollingCouple M;
       if constexpr (Rolling::kActive) {
-        if (p.rolling) M = Rolling::moment(p, row.b, k, F_n, dt, row.w1, row.w2, hist.r(), hist.row);
+        if (p.rolling) {
+          if constexpr (Normal::kStiffening) {  // the rolling law sees this contact's normal stiffness
+            const ContactParams q = Normal::linearised(p, row.b, k);
+            M = Rolling::moment(q, row.b, k, F_n, dt, row.w1, row.w2, hist.r(), hist.row);
+          } else {
+            M = Rolling::moment(p, row.b, k, F_n, dt, row.w1, row.w2, hist.r(), hist.row);
+          }
+        }
       }
       const Vec2 f1 = T.F_t * k.t - F_n * k.n;
       if (book) book_work<kWall>(tab, r, row, F_n, T, M, f1, dt, L);
@@ -278,8 +285,8 @@ struct ContactKernel {
       if (static_cast<std::size_t>(tab.i1[r]) >= c.discs.n_owned()) continue;
       if (!kinematics<kWall>(c, tab, r, row) || row.k.u_n <= 0.0) continue;
       const ContactParams& p = params[static_cast<std::size_t>(tab.param[r])];
-      e.normal += 0.5 * p.k_n * row.k.u_n * row.k.u_n;
-      e.tangential += Tangential::stored(p, h.t.data(), r);
+      e.normal += Normal::stored(p, row.k);
+      e.tangential += Tangential::stored(p, row.k, h.t.data(), r);
       const double F_n = tab.F_n[r];
       if (!(F_n > 0.0)) continue;
       ++e.contacts;
@@ -288,8 +295,9 @@ struct ContactKernel {
       if (Tangential::kFriction && std::fabs(tab.F_t[r]) >= kAtCap * p.mu * F_n) ++e.sliding;
       if constexpr (Rolling::kActive) {
         if (p.rolling) {
-          e.rolling += Rolling::stored(p, row.b, row.k, F_n, h.r.data(), r);
-          if (std::fabs(tab.M1[r]) >= kAtCap * Rolling::cap(p, row.k, F_n)) ++e.rolling_yield;
+          const ContactParams q = Normal::linearised(p, row.b, row.k);
+          e.rolling += Rolling::stored(q, row.b, row.k, F_n, h.r.data(), r);
+          if (std::fabs(tab.M1[r]) >= kAtCap * Rolling::cap(q, row.k, F_n)) ++e.rolling_yield;
         }
       }
     }

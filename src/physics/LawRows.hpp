@@ -9,6 +9,7 @@
 #include "core/LawSpec.hpp"
 #include "physics/LawConcepts.hpp"
 #include "physics/LawRegistry.hpp"
+#include "physics/NormalHertz.hpp"
 #include "physics/NormalLinear.hpp"
 #include "physics/RollingConstantTorque.hpp"
 #include "physics/RollingDisplacementDamping.hpp"
@@ -19,6 +20,7 @@
 #include "physics/RollingNone.hpp"
 #include "physics/RollingWang.hpp"
 #include "physics/TangentialLaws.hpp"
+#include "physics/TangentialMindlin.hpp"
 
 namespace rondel::registry {
 
@@ -53,8 +55,8 @@ struct LawList {
 };
 
 // The registry rows. The first law of each list is the default of its contact.<kind> key.
-using NormalLaws = LawList<NormalRow, NormalLinear>;
-using TangentialLaws = LawList<TangentialRow, TangentialCoulomb, TangentialNone>;
+using NormalLaws = LawList<NormalRow, NormalLinear, NormalHertz>;
+using TangentialLaws = LawList<TangentialRow, TangentialCoulomb, TangentialNone, TangentialMindlin>;
 using RollingLaws =
     LawList<RollingRow, RollingNone, RollingJiangPlastic, RollingJiangBrittle, RollingWang, RollingIwashitaOda,
             RollingForceProportional, RollingConstantTorque, RollingDisplacementDamping>;
