@@ -20,7 +20,10 @@ void check_scene_type(const Reader& r, SceneConfig& s) {
   } else if (s.type == "random") {
     check(s.count > 0, "scene.count", "must be > 0 for a random scene", std::to_string(s.count));
     check(s.max_attempts > 0, "scene.max_attempts", "must be > 0", std::to_string(s.max_attempts));
-    if (s.distribution == "uniform_radius" || s.distribution == "uniform_area") {
+    const bool own_ranges = !r.get<std::string>("scene.material_radius_min").empty();
+    if ((s.distribution == "uniform_radius" || s.distribution == "uniform_area") && own_ranges) {
+      // each material's own range (read_scene_materials)
+    } else if (s.distribution == "uniform_radius" || s.distribution == "uniform_area") {
       positive(r, "scene.radius_min");
       check(s.radius_max >= s.radius_min, "scene.radius_max", ">= scene.radius_min", num(s.radius_max));
     } else if (s.distribution == "list") {

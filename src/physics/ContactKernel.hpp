@@ -25,6 +25,7 @@
 #include "core/LedgerTerms.hpp"
 #include "core/Wall.hpp"
 #include "physics/ContactKinematics.hpp"
+#include "physics/LawConcepts.hpp"
 #include "physics/LawTypes.hpp"
 
 namespace rondel {
@@ -217,6 +218,22 @@ struct ContactKernel {
     if constexpr (!kWall) tab.tq2[r] = k.a2 * T.F_t + M.M2;
   }
 
+  // The rolling law's couple; a law with an exact ledger split (ExactRollingSplit) then books its dissipation
+  // from this step's trapezoid work (the previous couple is still in the row).
+  template <class H>
+  [[gnu::always_inline]] static RollingCouple rolling_moment(const ContactParams& p, const ContactTable& tab,
+                                                             std::size_t r, const Row& row, double F_n, double dt,
+                                                             H& hist) {
+    if constexpr (ExactRollingSplit<Rolling>) {
+      const double before = hist.r()[0][hist.row];
+      RollingCouple M = Rolling::moment(p, row.b, row.k, F_n, dt, row.w1, row.w2, hist.r(), hist.row);
+      Rolling::split(p, row.b, row.k, tab.M1[r], before, hist.r()[0][hist.row], dt, M);
+      return M;
+    } else {
+      return Rolling::moment(p, row.b, row.k, F_n, dt, row.w1, row.w2, hist.r(), hist.row);
+    }
+  }
+
   template <bool kWall, bool kCommit = true>
   static void run_rows(const KernelContext& c, ContactTable& tab, LedgerStep& ledger) {
     const std::size_t n_owned = c.discs.n_owned();
@@ -257,10 +274,9 @@ struct ContactKernel {
       if constexpr (Rolling::kActive) {
         if (p.rolling) {
           if constexpr (Normal::kStiffening) {  // the rolling law sees this contact's normal stiffness
-            const ContactParams q = Normal::linearised(p, row.b, k);
-            M = Rolling::moment(q, row.b, k, F_n, dt, row.w1, row.w2, hist.r(), hist.row);
+            M = rolling_moment(Normal::linearised(p, row.b, k), tab, r, row, F_n, dt, hist);
           } else {
-            M = Rolling::moment(p, row.b, k, F_n, dt, row.w1, row.w2, hist.r(), hist.row);
+            M = rolling_moment(p, tab, r, row, F_n, dt, hist);
           }
         }
       }

@@ -75,6 +75,13 @@ concept RollingCalls = requires(const ContactParams& p, const ContactBodies& b, 
   { L::cap(p, k, 0.0) } -> std::same_as<double>;
 };
 
+// A rolling law that makes its ledger split consistent with the kernel's trapezoid (RollingJiangPlastic::split).
+template <class L>
+concept ExactRollingSplit = requires(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
+                                     RollingCouple& c) {
+  L::split(p, b, k, 0.0, 0.0, 0.0, 0.0, c);
+};
+
 template <class L>
 concept RollingLawType = DeclaredLaw<L> && HistoryLaw<L> && RollingCalls<L> &&
     (RollingAPrioriSpring<L> || DeclaresNoSpring<L>);
