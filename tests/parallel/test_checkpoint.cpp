@@ -339,7 +339,7 @@ TEST(Checkpoint, RestartIsBitwiseWithServoWall) {
 TEST(Checkpoint, RestartIsBitwiseWithTwoMaterials) {
   restart_cases("wang", {"--material.glass.density=2500", "--material.steel.density=7800",
                          "--scene.materials=glass steel", "--scene.material_fractions=0.6 0.4",
-                         "--walls.material=steel", "--linear.glass.steel.k_n=5e6", "--coulomb.steel.steel.mu=0.3",
+                         "--walls.material=steel", "--linear.glass.steel.zeta=0.3", "--coulomb.steel.steel.mu=0.3",
                          "--wang.glass.wall.steel.mu_r=0.05", "--contact.steel.steel.rolling=false"});
 }
 
