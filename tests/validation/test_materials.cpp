@@ -15,6 +15,7 @@
 #include <string>
 
 #include "app/Simulation.hpp"
+#include "core/Errors.hpp"
 #include "physics/PairConstants.hpp"
 #include "support/Format.hpp"
 #include "support/TempDir.hpp"
@@ -184,6 +185,113 @@ material_fractions = 0.3 0.7
   EXPECT_EQ(n[1], 70);
   // The critical step is searched over every pair that occurs and names it.
   EXPECT_NE(sim.critical().pair.find("material "), std::string::npos) << sim.critical().pair;
+}
+
+const std::string kRandom = R"(
+[run]
+progress = false
+[domain]
+xlo = 0
+xhi = 0.1
+ylo = 0
+yhi = 0.1
+[material.glass]
+density = 2500
+[material.steel]
+density = 7800
+[linear]
+k_n = 1e5
+[coulomb]
+k_s = 7.5e4
+mu = 0.5
+[walls]
+box = bottom left right
+rough = bottom
+rough_depth = 0.004
+rough_materials = bottom:steel
+[scene]
+type = random
+count = 300
+distribution = list
+sizes = 0.002 0.0015
+fractions = 0.25 0.75
+size_materials = steel glass
+)";
+
+// A random scene by a size list with a material per size, and the discs glued to a rough wall taking that
+// wall's material.
+TEST(Materials, SizeListAndRoughWallAssignMaterials) {
+  Communicator comm;
+  Simulation sim(parse_config_text(kRandom), comm, false);
+  const DiscStore& D = sim.discs();
+  int glued = 0, glued_steel = 0;
+  for (std::size_t i = 0; i < D.n_owned(); ++i) {
+    if (is_attached(D.flags[i])) {
+      ++glued;
+      glued_steel += D.material[i] == 1;
+      EXPECT_EQ(D.mass[i], 7800 * std::numbers::pi * D.radius[i] * D.radius[i]);
+    } else {
+      EXPECT_EQ(D.material[i], D.radius[i] == 0.002 ? 1 : 0) << "the material of its size";
+    }
+  }
+  EXPECT_GT(glued, 0);
+  EXPECT_EQ(glued_steel, glued) << "walls.rough_materials = bottom:steel";
+}
+
+// Area fractions with a radius range per material: counts n_k proportional to f_k / <R^2>_k.
+TEST(Materials, AreaFractionsWithRadiusRangesPerMaterial) {
+  std::string ini = kRandom;
+  ini = ini.substr(0, ini.find("distribution = list")) +
+        "materials = glass steel\nmaterial_fractions = 0.5 0.5\nmaterial_by = area\n"
+        "material_radius_min = 0.001 0.002\nmaterial_radius_max = 0.002 0.003\n";
+  for (const char* line : {"rough = bottom\n", "rough_depth = 0.004\n", "rough_materials = bottom:steel\n"})
+    ini.erase(ini.find(line), std::string(line).size());
+  Communicator comm;
+  Simulation sim(parse_config_text(ini), comm, false);
+  const DiscStore& D = sim.discs();
+  const double g = (1 + 2 + 4) / 3.0, s = (4 + 6 + 9) / 3.0;  // <R^2> in mm^2 (uniform radius)
+  const double n_glass = 300 * (0.5 / g) / (0.5 / g + 0.5 / s);
+  int n[2] = {0, 0};
+  for (std::size_t i = 0; i < D.n_owned(); ++i) {
+    ++n[D.material[i]];
+    const double lo = D.material[i] == 0 ? 0.001 : 0.002;
+    EXPECT_GE(D.radius[i], lo);
+    EXPECT_LE(D.radius[i], lo + 0.001);
+  }
+  EXPECT_NEAR(n[0], n_glass, 0.5 + 1e-9) << "exact counts by largest remainder";
+  EXPECT_EQ(n[0] + n[1], 300);
+}
+
+// A restart refuses a material table that differs from the checkpoint's, unless run.accept_materials; then the
+// discs keep their material index and take mass and inertia from the new table.
+TEST(Materials, RestartRefusesADifferentMaterialTableUnlessAsked) {
+  test::TempDir dir("rondel-test-materials-restart");
+  const std::string out = "--run.output=" + (dir.path() / "run").string();
+  std::string checkpoint;
+  Communicator comm;
+  {
+    Simulation sim(parse_config_text(kRandom, {out, "--run.steps=10"}), comm, true);
+    for (int s = 0; s < 10; ++s) sim.step();
+    checkpoint = sim.write_checkpoint();
+  }
+  const std::vector<std::string> same{out, "--run.overwrite=true"};
+  EXPECT_NO_THROW(Simulation(parse_config_text(kRandom, same), comm, true, checkpoint));
+  std::vector<std::string> denser = same;
+  denser.push_back("--material.glass.density=2600");
+  try {
+    Simulation(parse_config_text(kRandom, denser), comm, true, checkpoint);
+    ADD_FAILURE() << "a different material table was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("material table"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("run.accept_materials"), std::string::npos) << e.what();
+  }
+  denser.push_back("--run.accept_materials=true");
+  Simulation sim(parse_config_text(kRandom, denser), comm, true, checkpoint);
+  const DiscStore& D = sim.discs();
+  for (std::size_t i = 0; i < D.n_owned(); ++i)
+    if (D.material[i] == 0) {
+      EXPECT_EQ(D.mass[i], 2600 * std::numbers::pi * D.radius[i] * D.radius[i]);
+    }
 }
 
 }  // namespace
