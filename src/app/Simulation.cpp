@@ -346,8 +346,9 @@ void Simulation::report_overlap(const LedgerStep& work) const {
   }
   throw InstabilityError("step " + std::to_string(step_ + 1) + " (t = " + fmt(time_ + dt_) + " s): " + where +
                          ", above run.max_overlap = " + fmt(config_.max_overlap) +
-                         ". The linear contact is not valid there: stiffen the contacts (linear.k_n), slow the "
-                         "impact, or lower run.dt if the run became unstable");
+                         ". The contact law is not valid there: stiffen the contacts (linear.k_n, or the "
+                         "materials' youngs_modulus with hertz), slow the impact, or lower run.dt if the run became "
+                         "unstable");
 }
 
 void Simulation::load_checkpoint(const std::string& path) {
