@@ -273,10 +273,14 @@ struct ContactKernel {
       RollingCouple M;
       if constexpr (Rolling::kActive) {
         if (p.rolling) {
+          // The plain call for the linear normal law and a law without an exact split: the code of the
+          // kernels that existed before the Hertz-Mindlin laws, unchanged.
           if constexpr (Normal::kStiffening) {  // the rolling law sees this contact's normal stiffness
             M = rolling_moment(Normal::linearised(p, row.b, k), tab, r, row, F_n, dt, hist);
-          } else {
+          } else if constexpr (ExactRollingSplit<Rolling>) {
             M = rolling_moment(p, tab, r, row, F_n, dt, hist);
+          } else {
+            M = Rolling::moment(p, row.b, k, F_n, dt, row.w1, row.w2, hist.r(), hist.row);
           }
         }
       }
