@@ -115,7 +115,7 @@ po::options_description config_schema(const LawCatalog& laws, const DynamicSecti
     po::options_description p(
         "[BLOCK.A.B] disc-disc and [BLOCK.A.wall.W] disc-wall parameters of one unordered material pair: any key "
         "of the selected law's block BLOCK, replacing the default (e.g. [linear.glass.steel] k_n = 2e6); "
-        "[contact.A.B] / [contact.A.wall.W]:");
+        "[contact.A.B] and [contact.A.wall.W] hold the key below");
     add_pair_keys(p, laws, "contact.A.B");
     all.add(m).add(p);
     return all;
