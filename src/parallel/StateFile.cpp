@@ -38,13 +38,14 @@ std::vector<std::string> split(const std::string& s) {
 void write_walls(Hdf5File& f, const WallSet& walls, const Communicator& comm) {
   f.create_group("/walls");
   const std::uint64_t n = walls.size();
-  std::vector<std::int32_t> kind;
+  std::vector<std::int32_t> kind, material;
   std::vector<std::int64_t> contacts;
   std::vector<double> normal_force;
   std::vector<Vec2> p0, p1, normal, velocity, force;
   if (comm.root())
     for (const Wall& w : walls) {
       kind.push_back(w.kind == Wall::Kind::line ? 0 : 1);
+      material.push_back(w.material);
       p0.push_back(w.p0), p1.push_back(w.p1), normal.push_back(w.normal), velocity.push_back(w.velocity);
       force.push_back(w.force), normal_force.push_back(w.normal_force), contacts.push_back(w.contacts);
     }
@@ -56,6 +57,7 @@ void write_walls(Hdf5File& f, const WallSet& walls, const Communicator& comm) {
   f.write("/walls/force", force, n, 0);
   f.write("/walls/normal_force", normal_force, n, 0);
   f.write("/walls/contacts", contacts, n, 0);
+  f.write("/walls/material", material, n, 0);
 }
 
 // The peak over the writers and routings of this process (peak_checkpoint_structure_bytes()).
@@ -74,6 +76,8 @@ void write_header(Hdf5File& f, const StateHeader& h) {
   f.write_attribute("/", "rolling_law", h.rolling_law);
   f.write_attribute("/", "history_slots", join(h.slots));
   f.write_attribute("/", "config", h.config);
+  f.create_group("/materials");
+  f.write_attribute("/materials", "table", h.materials);
 }
 
 // Row r's record (RecordPacking's layout) at out.
@@ -245,6 +249,7 @@ StateHeader read_header(const Hdf5File& f, const std::string& path) {
   h.rolling_law = f.read_string_attribute("/", "rolling_law");
   h.slots = split(f.read_string_attribute("/", "history_slots"));
   h.config = f.read_string_attribute("/", "config");
+  if (f.has_attribute("/materials", "table")) h.materials = f.read_string_attribute("/materials", "table");
   h.box_width0 = f.read_double_attribute("/walls", "box_width0");
   h.box_height0 = f.read_double_attribute("/walls", "box_height0");
   h.ledger.for_each_term([&f](const LedgerTermInfo& t, double& value) {
@@ -328,8 +333,12 @@ WallSet read_walls(const Hdf5File& f) {
   const auto force = f.read<Vec2>("/walls/force", 0, n, 1, false);
   const auto normal_force = f.read<double>("/walls/normal_force", 0, n, 1, false);
   const auto contacts = f.read<std::int64_t>("/walls/contacts", 0, n, 1, false);
+  // Files written before the materials have no /walls/material: every wall is of material 0.
+  const auto material = f.rows("/walls/material") == n ? f.read<std::int32_t>("/walls/material", 0, n, 1, false)
+                                                       : std::vector<std::int32_t>(n, 0);
   WallSet walls(n);
   for (std::uint64_t w = 0; w < n; ++w) {
+    walls[w].material = material[w];
     walls[w].kind = kind[w] == 0 ? Wall::Kind::line : Wall::Kind::segment;
     walls[w].p0 = p0[w], walls[w].p1 = p1[w], walls[w].normal = normal[w], walls[w].velocity = velocity[w];
     walls[w].force = force[w], walls[w].normal_force = normal_force[w], walls[w].contacts = contacts[w];
