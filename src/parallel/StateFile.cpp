@@ -94,8 +94,13 @@ bool listed(const std::vector<std::string>& fields, const char* name) {
 template <class T, class Local>
 void StateWriter::write_column(Hdf5File& f, const std::string& name, Local&& local, std::size_t at) {
   const double t0 = now();
-  const std::size_t n = order_.count();
-  resize_buffer(column_, (n * sizeof(T) + sizeof(std::uint64_t) - 1) / sizeof(std::uint64_t));
+  std::size_t n = order_.count();
+  try {
+    resize_buffer(column_, (n * sizeof(T) + sizeof(std::uint64_t) - 1) / sizeof(std::uint64_t));
+  } catch (...) {
+    f.defer_error(std::current_exception());  // thrown on every rank by the write below
+    n = 0;
+  }
   char* out = reinterpret_cast<char*>(column_.data());
   for (std::size_t k = 0; k < n; ++k) {
     const void* from = order_.is_local(k) ? static_cast<const void*>(local(order_.local_index(k)))
