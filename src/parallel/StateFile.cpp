@@ -378,33 +378,46 @@ int home_rank(std::int64_t gid, int ranks) {
   return static_cast<int>(r < 0 ? r + ranks : r);
 }
 
-}  // namespace
-
-void route_rows_to_owners(ContactTable& rows, bool both_ends, const DiscStore& discs, const Communicator& comm) {
-  const int ranks = comm.size();
+// The buffers of one routing: what is sent, what came, and the bytes per rank of each.
+struct Routing {
   ByteExchange exchange;
   std::vector<char> send, recv;
   std::vector<std::uint64_t> send_bytes, recv_bytes;
-  // 1. The directory: each owned gid registered on its home rank, as (gid, owner).
+};
+
+// The directory part of this rank: (gid, owner rank) of every owned gid whose home rank this is, sorted.
+std::vector<std::pair<std::int64_t, int>> gid_directory(const DiscStore& discs, Routing& x, const Communicator& comm) {
+  const int ranks = comm.size();
   const std::int64_t* gid = discs.gid.data();
   agree(comm, [&] {
     pack_by_rank(
         discs.n_owned(), sizeof(std::int64_t), ranks, [&](std::size_t i) { return home_rank(gid[i], ranks); },
-        [&](std::size_t i, char* out) { std::memcpy(out, gid + i, sizeof(std::int64_t)); }, send, send_bytes);
+        [&](std::size_t i, char* out) { std::memcpy(out, gid + i, sizeof(std::int64_t)); }, x.send, x.send_bytes);
   });
-  exchange.run(send.data(), send_bytes, recv, recv_bytes, comm);
+  x.exchange.run(x.send.data(), x.send_bytes, x.recv, x.recv_bytes, comm);
   std::vector<std::pair<std::int64_t, int>> owner;
   agree(comm, [&] {
-    owner.reserve(recv.size() / sizeof(std::int64_t));
+    owner.reserve(x.recv.size() / sizeof(std::int64_t));
     std::size_t at = 0;
     for (int r = 0; r < ranks; ++r)
-      for (std::uint64_t k = 0; k < recv_bytes[r] / sizeof(std::int64_t); ++k, at += sizeof(std::int64_t)) {
+      for (std::uint64_t k = 0; k < x.recv_bytes[r] / sizeof(std::int64_t); ++k, at += sizeof(std::int64_t)) {
         std::int64_t g = 0;
-        std::memcpy(&g, recv.data() + at, sizeof g);
+        std::memcpy(&g, x.recv.data() + at, sizeof g);
         owner.emplace_back(g, r);
       }
     std::sort(owner.begin(), owner.end());
   });
+  return owner;
+}
+
+}  // namespace
+
+void route_rows_to_owners(ContactTable& rows, bool both_ends, const DiscStore& discs, const Communicator& comm) {
+  const int ranks = comm.size();
+  // 1. The directory: each owned gid registered on its home rank, as (gid, owner).
+  Routing x;
+  const std::vector<std::pair<std::int64_t, int>> owner = gid_directory(discs, x, comm);
+  auto& [exchange, send, recv, send_bytes, recv_bytes] = x;
   std::size_t peak = send.capacity() + recv.capacity() + owner.capacity() * sizeof(owner[0]);
   // 2. Each row to the home rank of its disc 1 (and of its disc 2), led by the gid to look up.
   const std::size_t bytes = row_bytes(rows), ends = both_ends ? 2 : 1;
