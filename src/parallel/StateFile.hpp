@@ -92,7 +92,8 @@ WallSet read_state_walls(const std::string& path, const Communicator& comm);
 
 // Sends each row to the ranks owning its discs (both ends for disc pairs), rows sorted and de-duplicated;
 // rows of a disc no rank owns are dropped. The owners are found through a distributed directory (gid g is
-// registered on rank g mod P): O(N/P + P) per rank, no list of all discs anywhere. Collective.
+// registered on rank g mod P, which answers the owner of g to the ranks that ask), then each row travels
+// once to each owner: O(N/P + P) per rank, no list of all discs anywhere. Collective.
 void route_rows_to_owners(ContactTable& rows, bool both_ends, const DiscStore& discs, const Communicator& comm);
 
 }  // namespace rondel
