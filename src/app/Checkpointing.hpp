@@ -39,7 +39,7 @@ class Checkpointing {
   // A replaced run (run.overwrite) leaves no checkpoint or snapshot that could be taken for the new one's.
   void remove_old_files() const;
   // The peak bytes of this rank's checkpoint and snapshot structures so far (StateWriter), for the scaling
-  // audit: about (24 + record) B per disc or contact row this rank writes, plus O(P).
+  // audit: O(N/P + P), see StateWriter::checkpoint_structure_bytes.
   std::size_t checkpoint_structure_bytes() const { return writer_.checkpoint_structure_bytes(); }
 
  private:

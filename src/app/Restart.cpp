@@ -12,6 +12,32 @@ namespace rondel {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// A file's material table must be the configuration's (a file written before the materials existed has none:
+// then the configuration must have one material), unless run.accept_materials.
+void check_material_table(const std::string& path, const StateHeader& h, const Config& config) {
+  const std::string mine = material_table_text(config.materials);
+  if (h.materials.empty() ? config.materials.size() == 1 : h.materials == mine) return;
+  if (config.accept_materials) return;
+  throw InputError("'" + path + "' was written with the material table\n" +
+                   (h.materials.empty() ? std::string("(one material, no table)\n") : h.materials) +
+                   "but the configuration has\n" + mine +
+                   "(name, body, density, thickness, E, nu): use the same [material] sections, or set "
+                   "run.accept_materials = true to take the configuration's materials by index");
+}
+
+// Every disc's material index names a material of the configuration.
+void check_disc_materials(const std::string& path, const DiscStore& d, const Config& config) {
+  for (std::size_t i = 0; i < d.n_owned(); ++i)
+    if (d.material[i] < 0 || static_cast<std::size_t>(d.material[i]) >= config.materials.size())
+      throw InputError("'" + path + "': disc " + std::to_string(d.gid[i]) + " has material " +
+                       std::to_string(d.material[i]) + " but the configuration defines " +
+                       std::to_string(config.materials.size()) + " materials (/discs/material)");
+}
+
+}  // namespace
+
 StateHeader Restart::header(const Simulation& sim, const char* kind) {
   const Config& config = sim.config();
   StateHeader h;
@@ -24,6 +50,7 @@ StateHeader Restart::header(const Simulation& sim, const char* kind) {
   h.rolling_law = config.rolling_law;
   h.slots = history_slots(sim.laws());
   h.config = config.resolved_text;
+  h.materials = material_table_text(config.materials);
   h.box_width0 = sim.box0().width;
   h.box_height0 = sim.box0().height;
   h.ledger = sim.global_ledger();
@@ -37,21 +64,23 @@ std::vector<SceneDisc> Restart::scene_from_file(const Config& config, WallSet& w
   const Communicator self = Communicator::self();
   std::string path = config.scene.file;
   if (fs::is_directory(path)) path = Checkpointing::newest_checkpoint(path, self);
-  read_state_header(path, self);
+  check_material_table(path, read_state_header(path, self), config);
   DiscStore d;
   read_state_discs(path, d, self);
+  check_disc_materials(path, d, config);
   const WallSet walls = read_state_walls(path, self);
   if (walls.size() == walls_out.size())
     for (std::size_t w = 0; w < walls.size(); ++w) walls_out[w].p0 = walls[w].p0, walls_out[w].p1 = walls[w].p1;
   std::vector<SceneDisc> out;
   for (std::size_t i = 0; i < d.n_owned(); ++i)
-    out.push_back({d.gid[i], d.position[i], d.radius[i], d.velocity[i], d.omega[i]});
+    out.push_back({d.gid[i], d.position[i], d.radius[i], d.velocity[i], d.omega[i], d.material[i]});
   return out;
 }
 
 Restart::Restart(std::string path, const Config& config, const LawSelection& laws, const Communicator& comm)
     : path_(std::move(path)), config_(config), laws_(laws), comm_(comm), header_(read_state_header(path_, comm_)) {
   check_laws_match();
+  check_material_table(path_, header_, config_);
 }
 
 void Restart::check_laws_match() const {
@@ -83,6 +112,11 @@ bool Restart::same_laws() const {
 void Restart::read_discs(DiscStore& discs) const {
   read_state_discs(path_, discs, comm_);
   if (comm_.sum(static_cast<std::int64_t>(discs.n_owned())) == 0) throw InputError("'" + path_ + "' holds no discs");
+  check_disc_materials(path_, discs, config_);
+  // Accepted materials that differ: mass and inertia from the configuration's table, by index.
+  if (config_.accept_materials && header_.materials != material_table_text(config_.materials))
+    for (std::size_t i = 0; i < discs.n_owned(); ++i)
+      discs.set_material(i, discs.material[i], config_.materials[static_cast<std::size_t>(discs.material[i])]);
 }
 
 void Restart::read_walls(WallSet& into) const {

@@ -16,8 +16,9 @@
 #include "core/SceneBuilder.hpp"
 #include "parallel/Agreement.hpp"
 #include "parallel/FusedReduction.hpp"
+#include "physics/NormalHertz.hpp"
 #include "physics/NormalLinear.hpp"
-#include "physics/Restitution.hpp"
+#include "physics/PairConstants.hpp"
 
 namespace rondel {
 
@@ -41,8 +42,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
     controlled_walls_ = Boundaries::controlled(walls_);
     rough_walls_ = Boundaries::any_rough(walls_);
     box0_ = Boundaries::box(walls_, config_.domain);
-    for (ContactParams* p : {&config_.params.pair(0, 0), &config_.params.wall(0)})
-      if (p->e_n > 0.0) p->zeta_n = zeta_from_restitution(p->e_n);
+    resolve_pair_constants(config_.params, config_.materials);
   });
   const bool restart = !restart_file.empty();
   if (restart) {
@@ -95,7 +95,11 @@ void Simulation::keep_rough_walls(const std::string& path) {
 void Simulation::build_discs() {
   agree(comm_, [&] { add_scene_discs(); });
   measure_radii();  // every rank holds the whole scene here
-  if (rough_walls_) Boundaries::glue(discs_, walls_, config_.rough_depth > 0.0 ? config_.rough_depth : 2.0 * R_max_);
+  if (rough_walls_) {
+    Boundaries::glue(discs_, walls_, config_.rough_depth > 0.0 ? config_.rough_depth : 2.0 * R_max_);
+    assign_rough_materials();
+  }
+  warn_unused_materials();
   setup_neighbours();
 }
 
@@ -117,8 +121,29 @@ void Simulation::add_scene_discs() {
       throw InputError("disc " + std::to_string(d.gid) + " at (" + fmt(d.x.x) + ", " + fmt(d.x.y) +
                        ") lies outside the domain [" + fmt(config_.domain.xlo) + ", " + fmt(config_.domain.xhi) +
                        "] x [" + fmt(config_.domain.ylo) + ", " + fmt(config_.domain.yhi) + "]");
-    discs_.add(d.gid, 0, d.radius, config_.density, config_.thickness, x, d.v, d.omega);
+    discs_.add(d.gid, d.material, d.radius, config_.materials[static_cast<std::size_t>(d.material)], x, d.v, d.omega);
   }
+}
+
+void Simulation::assign_rough_materials() {
+  // walls.rough_materials: the discs glued to a box wall take that wall's material (mass and inertia too).
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
+    if (!is_attached(discs_.flags[i])) continue;
+    const int side = walls_[attached_wall(discs_.flags[i])].box_side;
+    const int mat = side >= 0 ? config_.scene.rough_materials.at(static_cast<std::size_t>(side)) : -1;
+    if (mat >= 0) discs_.set_material(i, mat, config_.materials[static_cast<std::size_t>(mat)]);
+  }
+}
+
+void Simulation::warn_unused_materials() const {
+  // Every rank holds the whole scene here. A material that no disc and no wall has is most likely a typo.
+  std::vector<bool> used(config_.materials.size(), false);
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) used[static_cast<std::size_t>(discs_.material[i])] = true;
+  for (const Wall& w : walls_) used[static_cast<std::size_t>(w.material)] = true;
+  for (std::size_t m = 0; m < used.size(); ++m)
+    if (!used[m] && comm_.root())
+      std::cerr << "rondel: warning: material '" << config_.materials[m].name << "' ([material."
+                << config_.materials[m].name << "]) is used by no disc and no wall\n";
 }
 
 void Simulation::measure_radii() {
@@ -192,19 +217,46 @@ void Simulation::setup_boundaries() {
     b.m_eff = m;
     return NormalLinear::c_n(p, b);
   };
-  const ContactParams& w = config_.params.wall(0);
-  double k_n = w.k_n, c_n = dashpot(w, m_max);
-  if (rough_walls_) {
-    const ContactParams& p = config_.params.pair(0, 0);
-    k_n = std::max(k_n, p.k_n);
-    c_n = std::max(c_n, dashpot(p, 0.5 * m_max));
+  // A Hertz contact counts with its stiffness and dashpot at the largest overlap the run allows.
+  const double u = config_.max_overlap * R_max_;
+  auto linear = [&](const ContactParams& p, double m, double R_star) {
+    if (laws_.normal != "hertz") return p;
+    ContactBodies b;
+    b.m_eff = m;
+    ContactKinematics k;
+    k.R_star = R_star, k.u_n = u;
+    return NormalHertz::linearised(p, b, k);
+  };
+  double k_n = 0.0, c_n = 0.0;
+  for (const ContactParams& w : config_.params.walls()) {
+    const ContactParams q = linear(w, m_max, R_max_);
+    k_n = std::max(k_n, q.k_n), c_n = std::max(c_n, dashpot(q, m_max));
   }
+  if (rough_walls_)
+    for (const ContactParams& p : config_.params.pairs()) {
+      const ContactParams q = linear(p, 0.5 * m_max, 0.5 * R_max_);
+      k_n = std::max(k_n, q.k_n), c_n = std::max(c_n, dashpot(q, 0.5 * m_max));
+    }
   boundaries_ = Boundaries(config_.servo_gain, config_.servo_max_speed, k_n, c_n);
 }
 
 void Simulation::resolve_time_step() {
-  const std::vector<MaterialInfo> mats{{config_.density, config_.thickness, R_min_, R_max_}};
-  critical_ = critical_time_step(laws_, config_.params, mats, !walls_.empty());
+  // Every material's radius range over all ranks, and the materials of the walls.
+  std::vector<MaterialInfo> mats;
+  for (const Material& m : config_.materials)
+    mats.push_back({m.density, m.thickness, INFINITY, 0.0, m.body, m.youngs_modulus, m.poisson_ratio,
+                    config_.materials.size() > 1 ? m.name : ""});
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
+    MaterialInfo& m = mats[static_cast<std::size_t>(discs_.material[i])];
+    m.R_min = std::min(m.R_min, discs_.radius[i]), m.R_max = std::max(m.R_max, discs_.radius[i]);
+  }
+  for (MaterialInfo& m : mats) m.R_min = -comm_.max(-m.R_min), m.R_max = comm_.max(m.R_max);
+  CriticalOptions options{config_.max_overlap, {}};
+  for (const Wall& w : walls_)
+    if (std::find(options.wall_materials.begin(), options.wall_materials.end(), w.material) ==
+        options.wall_materials.end())
+      options.wall_materials.push_back(w.material);
+  critical_ = critical_time_step(laws_, config_.params, mats, !walls_.empty(), options);
   if (config_.dt == 0.0) {
     dt_ = config_.safety * critical_.dt;
   } else {
@@ -400,8 +452,9 @@ std::exception_ptr Simulation::overlap_error(const LedgerStep& work) const {
   return std::make_exception_ptr(
       InstabilityError("step " + std::to_string(step_ + 1) + " (t = " + fmt(time_ + dt_) + " s): " + where +
                        ", above run.max_overlap = " + fmt(config_.max_overlap) +
-                       ". The linear contact is not valid there: stiffen the contacts (linear.k_n), slow the "
-                       "impact, or lower run.dt if the run became unstable"));
+                       ". The contact law is not valid there: stiffen the contacts (linear.k_n, or the "
+                       "materials' youngs_modulus with hertz), slow the impact, or lower run.dt if the run "
+                       "became unstable"));
 }
 
 std::exception_ptr Simulation::motion_error(double moved) const {

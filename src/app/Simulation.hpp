@@ -116,6 +116,9 @@ class Simulation {
   // The largest and smallest radius, the sum of the radii and the count of every disc, once the discs exist (created or
   // loaded).
   void measure_radii();
+  // walls.rough_materials, once the discs are glued; a warning for a material that nothing uses.
+  void assign_rough_materials();
+  void warn_unused_materials() const;
   void setup_neighbours();
   // A periodic length holds at least twice the interaction range.
   void check_periodic_lengths() const;

@@ -45,9 +45,10 @@ std::string resolved_text(const LawCatalog& laws, const po::options_description&
   for (const auto& opt : schema.options()) {
     const std::string& name = opt->long_name();
     if (!vm.count(name)) continue;
-    const auto dot = name.find('.');
+    const auto dot = name.rfind('.');  // [material.glass] density = ..., [linear.glass.steel] k_n = ...
     const std::string sec = name.substr(0, dot);
-    if (config::unselected_law_block(laws, c, sec)) continue;
+    if (config::unselected_law_block(laws, c, sec.substr(0, sec.find('.')))) continue;
+    if (sec == "material" && c.materials.front().name != "default") continue;  // [material.NAME] instead
     if (sec != section) {
       out << (section.empty() ? "" : "\n") << "[" << sec << "]\n";
       section = sec;
@@ -74,6 +75,7 @@ void read_run(const Reader& r, Config& c) {
   c.max_residual = r.get<double>("run.max_residual");
   check(c.max_residual > 0.0, "run.max_residual", "must be > 0", num(c.max_residual));
   c.reset_history = r.get<bool>("run.reset_history");
+  c.accept_materials = r.get<bool>("run.accept_materials");
 }
 
 void read_output(const Reader& r, Config& c) {
@@ -120,10 +122,6 @@ void read_domain(const Reader& r, Config& c) {
   c.domain.periodic_x = r.get<bool>("domain.periodic_x");
   c.domain.periodic_y = r.get<bool>("domain.periodic_y");
   c.gravity = {r.get<double>("gravity.x"), r.get<double>("gravity.y")};
-  positive(r, "material.density");
-  positive(r, "material.thickness");
-  c.density = r.get<double>("material.density");
-  c.thickness = r.get<double>("material.thickness");
   c.skin = r.get<double>("neighbour.skin");
   non_negative(c.skin, "neighbour.skin");
   c.partitioner = r.get<std::string>("parallel.partitioner");
@@ -139,27 +137,72 @@ void read_domain(const Reader& r, Config& c) {
         std::to_string(c.check_every));
 }
 
-Config build(const LawCatalog& laws, const po::options_description& schema, const po::variables_map& vm) {
+Config build(const LawCatalog& laws, const DynamicSections& dynamic, const po::variables_map& vm) {
+  const po::options_description schema = config_schema(laws, dynamic);
   const Reader r{vm};
   Config c;
   read_run(r, c);
   read_output(r, c);
   read_domain(r, c);
+  read_materials(r, dynamic, c);
   read_contact(laws, r, c);
   read_walls(r, c);
+  read_pairs(laws, r, dynamic, c);
   read_scene(r, c);
+  read_scene_materials(r, c);
   c.resolved_text = resolved_text(laws, schema, vm, c);
   return c;
 }
 
-po::variables_map parse(const LawCatalog& laws, const std::vector<std::string>& args, std::string* file_out,
-                        const std::string* ini_text) {
-  const auto schema = config_schema(laws);
+std::string read_text(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw ConfigError("cannot read the configuration file '" + file + "'");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+po::options_description command_line(const po::options_description& schema) {
   po::options_description cli("Command line");
   cli.add_options()("help,h", "print every key with its default, unit and meaning")(
       "config", po::value<std::string>(), "INI file (also the first positional argument)")(
       "resume", po::value<std::string>(), "continue from the newest complete checkpoint of this output directory");
   cli.add(schema);
+  return cli;
+}
+
+// The INI file named on the command line ("" when none, or when the command line does not parse: the real
+// parse then reports it).
+std::string configuration_file(const LawCatalog& laws, const std::vector<std::string>& args) {
+  po::positional_options_description pos;
+  pos.add("config", 1);
+  po::variables_map vm;
+  try {
+    po::store(po::command_line_parser(args)
+                  .options(command_line(config_schema(laws)))
+                  .positional(pos)
+                  .allow_unregistered()
+                  .run(),
+              vm);
+  } catch (const po::error&) {
+    return "";
+  }
+  return vm.count("config") && !vm.count("help") ? vm["config"].as<std::string>() : "";
+}
+
+po::variables_map parse(const LawCatalog& laws, const std::vector<std::string>& args, std::string* file_out,
+                        const std::string* ini_text, DynamicSections* dynamic_out) {
+  // The names of [material.NAME] and pair sections come from the keys given (INI and command line).
+  std::string file_text;
+  std::vector<std::string> keys = argument_keys(args);
+  if (!ini_text) {
+    const std::string file = configuration_file(laws, args);
+    if (!file.empty()) file_text = read_text(file);
+  }
+  for (std::string& k : ini_keys(ini_text ? *ini_text : file_text)) keys.push_back(std::move(k));
+  *dynamic_out = dynamic_sections(laws, keys);
+  const auto schema = config_schema(laws, *dynamic_out);
+  po::options_description cli = command_line(schema);
   po::positional_options_description pos;
   pos.add("config", 1);
   po::variables_map vm;
@@ -171,8 +214,7 @@ po::variables_map parse(const LawCatalog& laws, const std::vector<std::string>& 
       po::store(po::parse_config_file(in, schema, false), vm);
     } else if (vm.count("config")) {
       const std::string file = vm["config"].as<std::string>();
-      std::ifstream in(file);
-      if (!in) throw ConfigError("cannot read the configuration file '" + file + "'");
+      std::istringstream in(file_text.empty() ? read_text(file) : file_text);
       *file_out = file;
       try {
         po::store(po::parse_config_file(in, schema, false), vm);
@@ -196,23 +238,25 @@ std::string config_help(const LawCatalog& laws) {
   s << "Usage: mpirun -n N rondel FILE.ini [--section.key=value ...]\n"
        "Every key may be set in FILE.ini (under [section] as 'key = value') or on the command line,\n"
        "which wins. Units in brackets.\n\n"
-    << config_schema(laws);
+    << config_schema(laws, {}, true);
   return s.str();
 }
 
 Config parse_config(const LawCatalog& laws, int argc, const char* const* argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   std::string file;
-  const auto vm = parse(laws, args, &file, nullptr);
-  Config c = build(laws, config_schema(laws), vm);
+  DynamicSections dynamic;
+  const auto vm = parse(laws, args, &file, nullptr, &dynamic);
+  Config c = build(laws, dynamic, vm);
   c.source_file = file;
   return c;
 }
 
 Config parse_config_text(const LawCatalog& laws, const std::string& ini, const std::vector<std::string>& overrides) {
   std::string file;
-  const auto vm = parse(laws, overrides, &file, &ini);
-  return build(laws, config_schema(laws), vm);
+  DynamicSections dynamic;
+  const auto vm = parse(laws, overrides, &file, &ini, &dynamic);
+  return build(laws, dynamic, vm);
 }
 
 }  // namespace rondel

@@ -5,6 +5,7 @@
 
 #include "core/ContactParams.hpp"
 #include "core/Domain.hpp"
+#include "core/Material.hpp"
 #include "core/Vec2.hpp"
 #include "core/Wall.hpp"
 
@@ -30,6 +31,14 @@ struct SceneConfig {
   Vec2 velocity;
   double omega = 0.0;
   double max_initial_overlap = 0.0;  // fraction of the smaller radius
+  // materials (docs/physics.md section 7): the material of each disc, by index into Config::materials
+  std::vector<int> materials;                                    // scene.materials (empty: every disc has material 0)
+  std::vector<double> material_fractions;                        // lattice, random: number fractions (sum 1)
+  std::string material_by = "number";                            // number | area: what the fractions count
+  std::vector<double> material_radius_min, material_radius_max;  // random: a radius range per material
+  std::vector<int> size_materials;   // random, list: the material of each size (scene.size_materials)
+  std::vector<int> rough_materials;  // per box side (bottom left right top): the material of glued discs; -1 keep
+  std::vector<std::string> material_names;  // of Config::materials (a csv scene names them in a column)
 };
 
 struct Config {
@@ -44,6 +53,7 @@ struct Config {
   double max_overlap = 0.1;
   double max_residual = 0.5;
   bool reset_history = false;
+  bool accept_materials = false;  // a restart or file scene may have a material table other than the file's
   // [output]
   std::int64_t snapshot_every = 0;
   std::vector<std::string> snapshot_fields;
@@ -56,10 +66,11 @@ struct Config {
   std::string resume_dir;            // --resume DIR (command line only)
   // [diagnostics]
   std::int64_t diag_every = 100;
-  // [domain], [gravity], [material]
+  // [domain], [gravity], [material] or [material.NAME]
   Domain domain;
   Vec2 gravity;
-  double density = 0.0, thickness = 1.0;
+  double density = 0.0, thickness = 1.0;  // of material 0; the thickness is every material's
+  std::vector<Material> materials;        // one ([material]) or several ([material.NAME], ordered by name)
   // [contact] and law blocks
   std::string normal_law, tangential_law, rolling_law;
   ContactParamTable params;

@@ -77,9 +77,14 @@ ContactParams read_wall_contact(const Reader& r, const Config& c, const ContactP
     w.e_n = e;
     w.c_n_fixed = -1.0;
   }
-  for (const char* k : {"wall_contact.k_s", "wall_contact.mu"})
-    if (r.vm.count(k) && c.tangential_law != "coulomb")
-      throw ConfigError(std::string("key '") + k + "' needs contact.tangential = coulomb");
+  for (const char* k : {"wall_contact.k_n", "wall_contact.zeta"})
+    if (r.vm.count(k) && c.normal_law != "linear")
+      throw ConfigError(std::string("key '") + k + "' needs contact.normal = linear (hertz: the materials' E and nu, " +
+                        "[hertz.A.wall.W] e)");
+  if (r.vm.count("wall_contact.k_s") && c.tangential_law != "coulomb")
+    throw ConfigError("key 'wall_contact.k_s' needs contact.tangential = coulomb");
+  if (r.vm.count("wall_contact.mu") && c.tangential_law == "none")
+    throw ConfigError("key 'wall_contact.mu' needs contact.tangential = coulomb or mindlin");
   if (r.vm.count("wall_contact.k_s")) positive(r, "wall_contact.k_s"), w.k_s = r.get<double>("wall_contact.k_s");
   if (r.vm.count("wall_contact.mu")) non_negative(w.mu = r.get<double>("wall_contact.mu"), "wall_contact.mu");
   return w;

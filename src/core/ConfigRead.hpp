@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/Config.hpp"
+#include "core/ConfigSchema.hpp"
 #include "core/Errors.hpp"
 #include "core/LawSpec.hpp"
 
@@ -36,6 +37,12 @@ std::vector<std::vector<double>> records(const std::string& text, const std::str
 
 void read_contact(const LawCatalog& laws, const Reader& r, Config& c);
 void read_walls(const Reader& r, Config& c);
+// [material] or [material.NAME] (before the contact laws); then the wall materials and the pair blocks (after
+// the laws and walls: the default parameters are copied to every pair, then the pair blocks override them).
+void read_materials(const Reader& r, const DynamicSections& dynamic, Config& c);
+void read_pairs(const LawCatalog& laws, const Reader& r, const DynamicSections& dynamic, Config& c);
+// scene.materials and its fractions, scene.size_materials, walls.rough_materials (after read_scene).
+void read_scene_materials(const Reader& r, Config& c);
 void read_scene(const Reader& r, Config& c);
 // Whether [section] is the block of a law that is not selected (left out of the resolved text).
 bool unselected_law_block(const LawCatalog& laws, const Config& c, const std::string& section);

@@ -1,6 +1,7 @@
 // [scene]: the initial discs (a lattice, a random packing, a CSV file or a Rondel file).
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "core/ConfigRead.hpp"
 
@@ -19,7 +20,10 @@ void check_scene_type(const Reader& r, SceneConfig& s) {
   } else if (s.type == "random") {
     check(s.count > 0, "scene.count", "must be > 0 for a random scene", std::to_string(s.count));
     check(s.max_attempts > 0, "scene.max_attempts", "must be > 0", std::to_string(s.max_attempts));
-    if (s.distribution == "uniform_radius" || s.distribution == "uniform_area") {
+    const bool own_ranges = !r.get<std::string>("scene.material_radius_min").empty();
+    if ((s.distribution == "uniform_radius" || s.distribution == "uniform_area") && own_ranges) {
+      // each material's own range (read_scene_materials)
+    } else if (s.distribution == "uniform_radius" || s.distribution == "uniform_area") {
       positive(r, "scene.radius_min");
       check(s.radius_max >= s.radius_min, "scene.radius_max", ">= scene.radius_min", num(s.radius_max));
     } else if (s.distribution == "list") {
@@ -88,6 +92,86 @@ void read_scene(const Reader& r, Config& c) {
     throw ConfigError("key 'scene.region' must be 'xlo xhi ylo yhi' with xlo < xhi and ylo < yhi");
 
   check_scene_type(r, s);
+}
+
+namespace {
+
+std::vector<int> material_list(const Config& c, const std::string& text, const std::string& key) {
+  std::istringstream in(text);
+  std::vector<int> out;
+  for (std::string name; in >> name;) {
+    const int i = material_index(c.materials, name);
+    if (i < 0) throw ConfigError("key '" + key + "' names the material '" + name + "', which is not defined");
+    out.push_back(i);
+  }
+  return out;
+}
+
+void check_fractions(const std::vector<double>& f, std::size_t n, const std::string& key, const std::string& of) {
+  check(f.size() == n, key, "one fraction per name in " + of, std::to_string(f.size()) + " for " + std::to_string(n));
+  double sum = 0.0;
+  for (double v : f) check(v >= 0.0, key, "fractions must be >= 0", num(v)), sum += v;
+  check(std::fabs(sum - 1.0) < 1e-9, key, "fractions must sum to 1", num(sum));
+}
+
+}  // namespace
+
+void read_scene_materials(const Reader& r, Config& c) {
+  SceneConfig& s = c.scene;
+  for (const Material& m : c.materials) s.material_names.push_back(m.name);
+  s.materials = material_list(c, r.get<std::string>("scene.materials"), "scene.materials");
+  s.material_fractions = numbers(r.get<std::string>("scene.material_fractions"), "scene.material_fractions");
+  s.material_by = r.get<std::string>("scene.material_by");
+  check(s.material_by == "number" || s.material_by == "area", "scene.material_by", "number | area", s.material_by);
+  s.material_radius_min = numbers(r.get<std::string>("scene.material_radius_min"), "scene.material_radius_min");
+  s.material_radius_max = numbers(r.get<std::string>("scene.material_radius_max"), "scene.material_radius_max");
+  s.size_materials = material_list(c, r.get<std::string>("scene.size_materials"), "scene.size_materials");
+  const bool lattice_or_random = s.type == "lattice_square" || s.type == "lattice_hex" || s.type == "random";
+  if (!s.materials.empty()) {
+    // A file scene keeps the materials its discs have in the file: the keys are left unused.
+    check(lattice_or_random || s.type == "file", "scene.materials",
+          "a lattice or random scene (csv: a material column)", s.type);
+    if (s.materials.size() > 1 || !s.material_fractions.empty())
+      check_fractions(s.material_fractions, s.materials.size(), "scene.material_fractions", "scene.materials");
+    if (s.material_fractions.empty()) s.material_fractions = {1.0};
+  } else if (!s.material_fractions.empty()) {
+    throw ConfigError("key 'scene.material_fractions' needs scene.materials");
+  }
+  const std::size_t ranges = s.material_radius_min.size() + s.material_radius_max.size();
+  if (ranges > 0) {
+    check(s.type == "random" && s.distribution != "list", "scene.material_radius_min",
+          "a random scene with uniform_radius or uniform_area", s.type + " / " + s.distribution);
+    check(s.material_radius_min.size() == s.materials.size() && s.material_radius_max.size() == s.materials.size(),
+          "scene.material_radius_min", "one smallest and one largest radius per name in scene.materials",
+          std::to_string(s.material_radius_min.size()) + " and " + std::to_string(s.material_radius_max.size()));
+    for (std::size_t k = 0; k < s.materials.size(); ++k) {
+      check(s.material_radius_min[k] > 0.0, "scene.material_radius_min", "must be > 0", num(s.material_radius_min[k]));
+      check(s.material_radius_max[k] >= s.material_radius_min[k], "scene.material_radius_max",
+            ">= scene.material_radius_min", num(s.material_radius_max[k]));
+    }
+  }
+  if (!s.size_materials.empty()) {
+    check(s.type == "random" && s.distribution == "list", "scene.size_materials", "a random scene with list",
+          s.type + " / " + s.distribution);
+    check(s.size_materials.size() == s.sizes.size(), "scene.size_materials", "one material per size in scene.sizes",
+          std::to_string(s.size_materials.size()));
+    check(s.materials.empty(), "scene.materials", "not with scene.size_materials (the sizes give the materials)",
+          r.get<std::string>("scene.materials"));
+  }
+  // The discs glued to a rough wall may take a material of their own (walls.rough_materials).
+  s.rough_materials.assign(4, -1);
+  std::istringstream in(r.get<std::string>("walls.rough_materials"));
+  static const char* kSides[4] = {"bottom", "left", "right", "top"};
+  for (std::string spec; in >> spec;) {
+    const auto colon = spec.find(':');
+    int side = -1;
+    for (int k = 0; k < 4; ++k)
+      if (spec.substr(0, colon) == kSides[k]) side = k;
+    if (colon == std::string::npos || side < 0)
+      throw ConfigError("key 'walls.rough_materials': '" + spec + "' is not 'side:NAME' with a box side");
+    s.rough_materials[static_cast<std::size_t>(side)] =
+        material_list(c, spec.substr(colon + 1), "walls.rough_materials").at(0);
+  }
 }
 
 }  // namespace rondel::config

@@ -40,6 +40,8 @@ void add_run_sections(po::options_description& all) {
       ("run.progress", def(true), "[-] progress line on rank 0")
       ("run.max_overlap", def(0.1), "[-] stop when an overlap exceeds this fraction of the smaller radius")
       ("run.reset_history", def(false), "[-] start from a file whose laws differ: drop its contact history")
+      ("run.accept_materials", def(false), "[-] start from a file whose material table differs: the discs keep their "
+                                           "material index and take mass and inertia from this configuration")
       ("run.max_residual", def(0.5), "[-] stop when the energy ledger residual exceeds this fraction of the energy scale");
   po::options_description out("[output] snapshots and checkpoints (HDF5, FORMAT.md)");
   out.add_options()
@@ -73,10 +75,13 @@ void add_body_sections(po::options_description& all) {
       ("domain.periodic_y", def(false), "[-] periodic in y");
   po::options_description grav("[gravity]");
   grav.add_options()("gravity.x", def(0.0), "[m/s^2] gravity x")("gravity.y", def(0.0), "[m/s^2] gravity y");
-  po::options_description mat("[material]");
+  po::options_description mat("[material] the one material of a run (several: [material.NAME], below)");
   mat.add_options()
       ("material.density", def(2650.0), "[kg/m^3] disc density")
-      ("material.thickness", def(1.0), "[m] disc thickness t (forces and energies are per t)");
+      ("material.thickness", def(1.0), "[m] disc thickness t (forces and energies are per t)")
+      ("material.body", def("disc"), "[-] disc (m = rho pi R^2 t, I = m R^2/2) | sphere (m = 4/3 pi rho R^3, I = 2/5 m R^2)")
+      ("material.youngs_modulus", opt<double>(), "[Pa] Young's modulus E (required with contact.normal = hertz)")
+      ("material.poisson_ratio", opt<double>(), "[-] Poisson's ratio nu, in (-1, 0.5) (required with contact.normal = hertz)");
   // clang-format on
   all.add(domain).add(grav).add(mat);
 }
@@ -148,6 +153,9 @@ void add_wall_sections(po::options_description& all) {
                                  "e.g. 'top:strain_rate:0.05 left:servo:2e5 right:servo:2e5' or 'top:servo:1e5 top:shear:0.01'")
       ("walls.rough", def(""), "[-] rough box walls: any of bottom left right top; at the start of a stage the discs "
                                "whose centre lies within walls.rough_depth of such a wall are glued to it (they move with it)")
+      ("walls.material", def(""), "[-] material of every wall (a [material.NAME]); empty = the first material")
+      ("walls.materials", def(""), "[-] box wall materials 'side:NAME ...', e.g. 'bottom:steel' (replace walls.material)")
+      ("walls.rough_materials", def(""), "[-] 'side:NAME ...': the discs glued to that rough wall take material NAME")
       ("walls.rough_depth", def(0.0), "[m] glue depth of walls.rough; 0 = the largest disc diameter")
       ("walls.servo_gain", def(0.2), "[-] servo gain in (0, 1): fraction of the force error closed per step")
       ("walls.servo_max_speed", def(0.1), "[m/s] largest servo wall speed")
@@ -184,7 +192,15 @@ void add_scene_section(po::options_description& all) {
       ("scene.vx", def(0.0), "[m/s] initial velocity x of every disc (csv: added to the file's)")
       ("scene.vy", def(0.0), "[m/s] initial velocity y")
       ("scene.omega", def(0.0), "[rad/s] initial angular velocity")
-      ("scene.max_initial_overlap", def(0.01), "[-] largest initial overlap allowed, / smaller radius");
+      ("scene.max_initial_overlap", def(0.01), "[-] largest initial overlap allowed, / smaller radius")
+      ("scene.materials", def(""), "[-] lattice, random: the materials of the discs 'NAME1 NAME2 ...'; empty = the first material")
+      ("scene.material_fractions", def(""), "[-] lattice, random: the fraction of each of scene.materials (sum 1); "
+                                            "exact counts (largest remainder), placed by scene.seed")
+      ("scene.material_by", def("number"), "[-] what scene.material_fractions count: number | area")
+      ("scene.material_radius_min", def(""), "[m] random: smallest radius of each of scene.materials (replaces scene.radius_min)")
+      ("scene.material_radius_max", def(""), "[m] random: largest radius of each of scene.materials (replaces scene.radius_max)")
+      ("scene.size_materials", def(""), "[-] random, list: the material of each of scene.sizes 'NAME1 NAME2 ...'; "
+                                        "csv: a last column 'material' (a name) after radius or omega");
   // clang-format on
   all.add(scene);
 }

@@ -12,6 +12,11 @@ struct ContactParams {
   double zeta_n = 0.0;      // normal damping ratio, used when c_n_fixed < 0
   double c_n_fixed = -1.0;  // a user-given normal dashpot [N s/m]; < 0 means "from zeta_n"
   double e_n = -1.0;        // a user-given restitution; > 0 means zeta_n is derived from it at set-up
+  // hertz / mindlin (docs/physics.md section 6): the restitution e_n above, and the pair constants mixed
+  // from the two materials at set-up (E*, G*, beta = ln e/sqrt(ln^2 e + pi^2))
+  double E_star = 0.0;
+  double G_star = 0.0;
+  double beta = 0.0;
   // coulomb tangential
   double k_s = 0.0;
   double zeta_t = 0.0;
@@ -31,19 +36,25 @@ struct ContactParams {
   double f_visc = 1.0;        // displacement_damping viscous factor at the limit
 };
 
-// Parameters for every (material, material) pair and every (material, wall) pair.
+// Parameters for every (material, material) pair and every (disc material, wall material) pair. A contact
+// row holds the index of its entry (pair_index or wall_index, set at the neighbour build), so the kernel's
+// lookup is one load whatever the number of materials.
 class ContactParamTable {
  public:
   ContactParamTable() = default;
   explicit ContactParamTable(std::size_t n_materials)
-      : n_(n_materials), pairs_(n_materials * n_materials), walls_(n_materials) {}
+      : n_(n_materials), pairs_(n_materials * n_materials), walls_(n_materials * n_materials) {}
 
   std::size_t n_materials() const { return n_; }
   std::size_t pair_index(std::size_t a, std::size_t b) const { return a * n_ + b; }
+  std::size_t wall_index(std::size_t disc, std::size_t wall) const { return disc * n_ + wall; }
   ContactParams& pair(std::size_t a, std::size_t b) { return pairs_[pair_index(a, b)]; }
   const ContactParams& pair(std::size_t a, std::size_t b) const { return pairs_[pair_index(a, b)]; }
-  ContactParams& wall(std::size_t a) { return walls_[a]; }
-  const ContactParams& wall(std::size_t a) const { return walls_[a]; }
+  // A disc of material `disc` against a wall of material `wall`.
+  ContactParams& wall(std::size_t disc, std::size_t wall = 0) { return walls_[wall_index(disc, wall)]; }
+  const ContactParams& wall(std::size_t disc, std::size_t wall = 0) const { return walls_[wall_index(disc, wall)]; }
+  std::vector<ContactParams>& pairs() { return pairs_; }
+  std::vector<ContactParams>& walls() { return walls_; }
   const std::vector<ContactParams>& pairs() const { return pairs_; }
   const std::vector<ContactParams>& walls() const { return walls_; }
 

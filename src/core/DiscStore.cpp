@@ -24,6 +24,18 @@ std::size_t DiscStore::add(std::int64_t id, std::int32_t mat, double R, double d
   return n_owned_++;
 }
 
+std::size_t DiscStore::add(std::int64_t id, std::int32_t mat, double R, const Material& m, Vec2 x, Vec2 v, double w) {
+  const std::size_t i = add(id, mat, R, m.density, m.thickness, x, v, w);
+  set_material(i, mat, m);
+  return i;
+}
+
+void DiscStore::set_material(std::size_t i, std::int32_t mat, const Material& m) {
+  material[i] = mat;
+  mass[i] = m.mass(radius[i]);
+  inertia[i] = m.inertia(mass[i], radius[i]);
+}
+
 void DiscStore::reserve(std::size_t n) {
   for_each_field([n](const char*, unsigned, auto& field) { field.reserve(n); });
 }

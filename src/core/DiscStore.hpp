@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/Material.hpp"
 #include "core/Vec2.hpp"
 
 namespace rondel {
@@ -50,6 +51,10 @@ class DiscStore {
   // Appends an owned disc (only while there are no ghosts). Mass and inertia follow docs/physics.md section 1.
   std::size_t add(std::int64_t id, std::int32_t mat, double R, double density, double thickness, Vec2 x, Vec2 v = {},
                   double w = 0.0);
+  // The same with the mass and inertia of the material's body (core/Material.hpp).
+  std::size_t add(std::int64_t id, std::int32_t mat, double R, const Material& m, Vec2 x, Vec2 v = {}, double w = 0.0);
+  // Gives owned disc i the material `mat` (index) with the mass and inertia of its body.
+  void set_material(std::size_t i, std::int32_t mat, const Material& m);
   void reserve(std::size_t n);
   void clear();
   // Drops ghosts (everything past n_owned).

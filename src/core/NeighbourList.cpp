@@ -91,7 +91,8 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
     for (std::size_t w = 0; w < walls.size(); ++w) {
       if (walls[w].proximity(discs.position[i]).dist < discs.radius[i] + skin_)
         wall_rows.push({discs.gid[i], static_cast<std::int64_t>(w)}, static_cast<std::int32_t>(i),
-                       static_cast<std::int32_t>(w), discs.material[i]);
+                       static_cast<std::int32_t>(w),
+                       static_cast<std::int32_t>(params.wall_index(discs.material[i], walls[w].material)));
     }
   }
   wall_rows.inherit_history(old_walls);

@@ -20,6 +20,44 @@ std::uint64_t SceneRandom::next() {
 
 namespace {
 
+// The mean R^2 of the discs of material slot k (scene.material_by = area turns area fractions into numbers).
+double mean_square_radius(const SceneConfig& s, std::size_t k) {
+  if (s.material_radius_min.empty()) return 1.0;  // one radius law for every material: the areas cancel
+  const double a = s.material_radius_min[k], b = s.material_radius_max[k];
+  return s.distribution == "uniform_area" ? 0.5 * (a * a + b * b) : (a * a + a * b + b * b) / 3.0;
+}
+
+// The material slot (index into scene.materials) of each of n discs: exact counts from the fractions
+// (largest remainder, ties to the lower slot), in an order shuffled by the scene's seed. Its own generator:
+// the positions and radii draw the same numbers with or without materials.
+std::vector<std::size_t> material_slots(const SceneConfig& s, std::size_t n) {
+  const std::size_t m = s.materials.size();
+  if (m == 0) return std::vector<std::size_t>(n, 0);
+  std::vector<double> w(m);
+  double total = 0.0;
+  for (std::size_t k = 0; k < m; ++k)
+    total += w[k] =
+        s.material_by == "area" ? s.material_fractions[k] / mean_square_radius(s, k) : s.material_fractions[k];
+  std::vector<std::size_t> count(m);
+  std::vector<std::pair<double, std::size_t>> remainder;
+  std::size_t given = 0;
+  for (std::size_t k = 0; k < m; ++k) {
+    const double exact = static_cast<double>(n) * w[k] / total;
+    count[k] = static_cast<std::size_t>(std::floor(exact));
+    given += count[k];
+    remainder.emplace_back(-(exact - std::floor(exact)), k);
+  }
+  std::sort(remainder.begin(), remainder.end());
+  for (std::size_t r = 0; given < n; ++r, ++given) ++count[remainder[r % m].second];
+  std::vector<std::size_t> out;
+  for (std::size_t k = 0; k < m; ++k) out.insert(out.end(), count[k], k);
+  SceneRandom rng(s.seed ^ 0x6d6174657269616cULL);  // "material"
+  for (std::size_t i = out.size(); i > 1; --i) std::swap(out[i - 1], out[rng.next() % i]);
+  return out;
+}
+
+int slot_material(const SceneConfig& s, std::size_t slot) { return s.materials.empty() ? 0 : s.materials[slot]; }
+
 std::vector<SceneDisc> lattice(const SceneConfig& s, bool hex) {
   std::vector<SceneDisc> out;
   const double row = hex ? s.spacing * std::sqrt(3.0) / 2.0 : s.spacing;
@@ -32,30 +70,43 @@ std::vector<SceneDisc> lattice(const SceneConfig& s, bool hex) {
                      s.velocity,
                      s.omega});
     }
+  const auto slots = material_slots(s, out.size());
+  for (std::size_t k = 0; k < out.size(); ++k) out[k].material = slot_material(s, slots[k]);
   return out;
 }
 
-double draw_radius(const SceneConfig& s, SceneRandom& rng) {
+// A radius, and its material: that of the slot (its own radius range when scene.material_radius_min is
+// given), or of the size drawn (scene.size_materials).
+std::pair<double, int> draw_radius(const SceneConfig& s, std::size_t slot, SceneRandom& rng) {
   const double u = rng.uniform();
-  if (s.distribution == "uniform_radius") return s.radius_min + u * (s.radius_max - s.radius_min);
-  if (s.distribution == "uniform_area")
-    return std::sqrt(s.radius_min * s.radius_min + u * (s.radius_max * s.radius_max - s.radius_min * s.radius_min));
+  const bool own = !s.material_radius_min.empty();
+  const double lo = own ? s.material_radius_min[slot] : s.radius_min,
+               hi = own ? s.material_radius_max[slot] : s.radius_max;
+  if (s.distribution == "uniform_radius") return {lo + u * (hi - lo), slot_material(s, slot)};
+  if (s.distribution == "uniform_area") return {std::sqrt(lo * lo + u * (hi * hi - lo * lo)), slot_material(s, slot)};
+  auto size = [&s](std::size_t k) {
+    return std::pair<double, int>{s.sizes[k], s.size_materials.empty() ? 0 : s.size_materials[k]};
+  };
   double acc = 0.0;
   for (std::size_t k = 0; k < s.sizes.size(); ++k) {
     acc += s.fractions[k];
-    if (u < acc) return s.sizes[k];
+    if (u < acc) return size(k);
   }
-  return s.sizes.back();
+  return size(s.sizes.size() - 1);
 }
 
 // Random sequential addition, largest discs first, with a cell grid for the overlap checks.
 std::vector<SceneDisc> random_packing(const SceneConfig& s, const Domain& domain) {
   SceneRandom rng(s.seed);
-  std::vector<double> radii(static_cast<std::size_t>(s.count));
-  for (double& r : radii) r = draw_radius(s, rng);
-  std::sort(radii.begin(), radii.end(), std::greater<>());
+  const auto slots = material_slots(s, static_cast<std::size_t>(s.count));
+  std::vector<std::pair<double, int>> radii(static_cast<std::size_t>(s.count));
+  for (std::size_t k = 0; k < radii.size(); ++k) radii[k] = draw_radius(s, slots[k], rng);
+  // Largest first; equal radii by material (a fixed order for a fixed seed).
+  std::sort(radii.begin(), radii.end(), [](const auto& a, const auto& b) {
+    return a.first > b.first || (a.first == b.first && a.second < b.second);
+  });
   const double xlo = s.region[0], xhi = s.region[1], ylo = s.region[2], yhi = s.region[3];
-  const double r_max = radii.front();
+  const double r_max = radii.front().first;
   if (xhi - xlo < 2 * r_max || yhi - ylo < 2 * r_max)
     throw InputError("scene.region is smaller than the largest disc (diameter " + std::to_string(2 * r_max) + ")");
   const double cell = 2.0 * r_max;
@@ -65,7 +116,7 @@ std::vector<SceneDisc> random_packing(const SceneConfig& s, const Domain& domain
   std::vector<std::vector<std::size_t>> grid(static_cast<std::size_t>(nx) * ny);
   std::vector<SceneDisc> out;
   out.reserve(radii.size());
-  for (double R : radii) {
+  for (const auto& [R, material] : radii) {
     bool placed = false;
     for (std::int64_t attempt = 0; attempt < s.max_attempts && !placed; ++attempt) {
       const Vec2 x{xlo + R + rng.uniform() * (xhi - xlo - 2 * R), ylo + R + rng.uniform() * (yhi - ylo - 2 * R)};
@@ -89,7 +140,7 @@ std::vector<SceneDisc> random_packing(const SceneConfig& s, const Domain& domain
         }
       if (!free) continue;
       grid[static_cast<std::size_t>(iy) * nx + ix].push_back(out.size());
-      out.push_back({static_cast<std::int64_t>(out.size()), x, R, s.velocity, s.omega});
+      out.push_back({static_cast<std::int64_t>(out.size()), x, R, s.velocity, s.omega, material});
       placed = true;
     }
     if (!placed) {
@@ -124,9 +175,13 @@ std::vector<SceneDisc> csv(const SceneConfig& s, const Domain& domain, const std
     // strtod reads decimal and hexadecimal floats (final.csv is written in hexadecimal, bit-exact).
     std::replace(line.begin(), line.end(), ',', ' ');
     std::istringstream fields(line);
+    std::vector<std::string> tokens;
+    for (std::string tok; fields >> tok;) tokens.push_back(tok);
+    std::string material;  // a last column after radius or omega: the material's name
+    if (tokens.size() == 5 || tokens.size() == 8) material = tokens.back(), tokens.pop_back();
     std::vector<double> v;
     bool numeric = true;
-    for (std::string tok; fields >> tok;) {
+    for (const std::string& tok : tokens) {
       char* end = nullptr;
       const double x = std::strtod(tok.c_str(), &end);
       if (end != tok.c_str() + tok.size()) numeric = false;
@@ -138,8 +193,16 @@ std::vector<SceneDisc> csv(const SceneConfig& s, const Domain& domain, const std
     }
     if (!numeric || (v.size() != 4 && v.size() != 7))
       throw InputError("scene.file '" + s.file + "' line " + std::to_string(lineno) +
-                       ": expected 'id,x,y,radius' or 'id,x,y,radius,vx,vy,omega'");
+                       ": expected 'id,x,y,radius' or 'id,x,y,radius,vx,vy,omega', each optionally with a last "
+                       "column material");
     SceneDisc d{static_cast<std::int64_t>(v[0]), {v[1], v[2]}, v[3], s.velocity, s.omega};
+    if (!material.empty()) {
+      const auto it = std::find(s.material_names.begin(), s.material_names.end(), material);
+      if (it == s.material_names.end())
+        throw InputError("scene.file '" + s.file + "' line " + std::to_string(lineno) + ": material '" + material +
+                         "' is not defined ([material.NAME])");
+      d.material = static_cast<int>(it - s.material_names.begin());
+    }
     if (v.size() == 7) d.v += Vec2{v[4], v[5]}, d.omega += v[6];
     if (!(d.radius > 0.0))
       throw InputError("scene.file '" + s.file + "' line " + std::to_string(lineno) + ": radius must be > 0");

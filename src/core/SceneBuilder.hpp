@@ -13,6 +13,7 @@ struct SceneDisc {
   double radius;
   Vec2 v;
   double omega;
+  int material = 0;  // index into Config::materials
 };
 
 // Builds the initial discs of a scene. Every rank builds the same list from the configuration alone (the

@@ -20,6 +20,7 @@ struct Wall {
   int box_side = -1;            // 0 bottom, 1 left, 2 right, 3 top for walls of walls.box; -1 otherwise
   double shear_velocity = 0.0;  // box walls: a velocity along the wall [m/s], +x (bottom, top) or +y (left,
                                 // right), added to the servo or strain-rate motion
+  int material = 0;             // index into Config::materials (walls.material, walls.materials)
   bool rough = false;           // walls.rough: the discs near it at the start of a stage are glued to it
   // The last step's load from the discs, summed exactly over ranks: total force on the wall, its
   // component against the normal (>= 0 when discs push), and the number of loaded contacts.

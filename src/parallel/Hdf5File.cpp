@@ -125,9 +125,10 @@ void Hdf5File::settle_kept() {
 }
 
 void Hdf5File::check(bool ok, const std::string& what, bool writing) const {
-  std::exception_ptr error;
+  std::exception_ptr error = kept_;
   const std::string message = "HDF5 file '" + path_ + "': " + what;
-  if (!ok) error = writing ? std::make_exception_ptr(IoError(message)) : std::make_exception_ptr(InputError(message));
+  if (!ok && !error)
+    error = writing ? std::make_exception_ptr(IoError(message)) : std::make_exception_ptr(InputError(message));
   settle(comm_, error);
 }
 

@@ -28,6 +28,11 @@ class Hdf5File {
   ~Hdf5File();
   // Collective: settles the errors kept, then closes the file (idempotent).
   void close();
+  // Keeps an error of this rank (e.g. an allocation that failed while preparing a block) to be thrown on
+  // every rank at the next dataset write or when run() ends; not collective.
+  void defer_error(std::exception_ptr error) {
+    if (!kept_) kept_ = std::move(error);
+  }
   // Runs f() and closes the file, also when f throws: f's errors must be agreed ones (thrown on every rank,
   // as this class's are), so that every rank closes.
   template <class F>
@@ -78,7 +83,8 @@ class Hdf5File {
   std::uint64_t rows(const std::string& name) const;
 
  private:
-  // Collective: throws on every rank (InputError, or IoError when `writing`) if `ok` is false on any.
+  // Collective: throws on every rank (InputError, or IoError when `writing`) if `ok` is false on any, or
+  // if any rank kept an error (that one then).
   void check(bool ok, const std::string& what, bool writing = false) const;
   // Keeps the first failure of this rank for the next settlement (not collective).
   void keep(bool ok, const std::string& what);

@@ -38,13 +38,14 @@ std::vector<std::string> split(const std::string& s) {
 void write_walls(Hdf5File& f, const WallSet& walls, const Communicator& comm) {
   f.create_group("/walls");
   const std::uint64_t n = walls.size();
-  std::vector<std::int32_t> kind;
+  std::vector<std::int32_t> kind, material;
   std::vector<std::int64_t> contacts;
   std::vector<double> normal_force;
   std::vector<Vec2> p0, p1, normal, velocity, force;
   if (comm.root())
     for (const Wall& w : walls) {
       kind.push_back(w.kind == Wall::Kind::line ? 0 : 1);
+      material.push_back(w.material);
       p0.push_back(w.p0), p1.push_back(w.p1), normal.push_back(w.normal), velocity.push_back(w.velocity);
       force.push_back(w.force), normal_force.push_back(w.normal_force), contacts.push_back(w.contacts);
     }
@@ -56,6 +57,7 @@ void write_walls(Hdf5File& f, const WallSet& walls, const Communicator& comm) {
   f.write("/walls/force", force, n, 0);
   f.write("/walls/normal_force", normal_force, n, 0);
   f.write("/walls/contacts", contacts, n, 0);
+  f.write("/walls/material", material, n, 0);
 }
 
 // The peak over the writers and routings of this process (peak_checkpoint_structure_bytes()).
@@ -74,6 +76,8 @@ void write_header(Hdf5File& f, const StateHeader& h) {
   f.write_attribute("/", "rolling_law", h.rolling_law);
   f.write_attribute("/", "history_slots", join(h.slots));
   f.write_attribute("/", "config", h.config);
+  f.create_group("/materials");
+  f.write_attribute("/materials", "table", h.materials);
 }
 
 // Row r's record (RecordPacking's layout) at out.
@@ -94,8 +98,13 @@ bool listed(const std::vector<std::string>& fields, const char* name) {
 template <class T, class Local>
 void StateWriter::write_column(Hdf5File& f, const std::string& name, Local&& local, std::size_t at) {
   const double t0 = now();
-  const std::size_t n = order_.count();
-  resize_buffer(column_, (n * sizeof(T) + sizeof(std::uint64_t) - 1) / sizeof(std::uint64_t));
+  std::size_t n = order_.count();
+  try {
+    resize_buffer(column_, (n * sizeof(T) + sizeof(std::uint64_t) - 1) / sizeof(std::uint64_t));
+  } catch (...) {
+    f.defer_error(std::current_exception());  // thrown on every rank by the write below
+    n = 0;
+  }
   char* out = reinterpret_cast<char*>(column_.data());
   for (std::size_t k = 0; k < n; ++k) {
     const void* from = order_.is_local(k) ? static_cast<const void*>(local(order_.local_index(k)))
@@ -245,6 +254,7 @@ StateHeader read_header(const Hdf5File& f, const std::string& path) {
   h.rolling_law = f.read_string_attribute("/", "rolling_law");
   h.slots = split(f.read_string_attribute("/", "history_slots"));
   h.config = f.read_string_attribute("/", "config");
+  if (f.has_attribute("/materials", "table")) h.materials = f.read_string_attribute("/materials", "table");
   h.box_width0 = f.read_double_attribute("/walls", "box_width0");
   h.box_height0 = f.read_double_attribute("/walls", "box_height0");
   h.ledger.for_each_term([&f](const LedgerTermInfo& t, double& value) {
@@ -328,8 +338,12 @@ WallSet read_walls(const Hdf5File& f) {
   const auto force = f.read<Vec2>("/walls/force", 0, n, 1, false);
   const auto normal_force = f.read<double>("/walls/normal_force", 0, n, 1, false);
   const auto contacts = f.read<std::int64_t>("/walls/contacts", 0, n, 1, false);
+  // Files written before the materials have no /walls/material: every wall is of material 0.
+  const auto material = f.rows("/walls/material") == n ? f.read<std::int32_t>("/walls/material", 0, n, 1, false)
+                                                       : std::vector<std::int32_t>(n, 0);
   WallSet walls(n);
   for (std::uint64_t w = 0; w < n; ++w) {
+    walls[w].material = material[w];
     walls[w].kind = kind[w] == 0 ? Wall::Kind::line : Wall::Kind::segment;
     walls[w].p0 = p0[w], walls[w].p1 = p1[w], walls[w].normal = normal[w], walls[w].velocity = velocity[w];
     walls[w].force = force[w], walls[w].normal_force = normal_force[w], walls[w].contacts = contacts[w];
@@ -373,73 +387,104 @@ int home_rank(std::int64_t gid, int ranks) {
   return static_cast<int>(r < 0 ? r + ranks : r);
 }
 
-}  // namespace
-
-void route_rows_to_owners(ContactTable& rows, bool both_ends, const DiscStore& discs, const Communicator& comm) {
-  const int ranks = comm.size();
+// The buffers of one routing: what is sent, what came, and the bytes per rank of each.
+struct Routing {
   ByteExchange exchange;
   std::vector<char> send, recv;
   std::vector<std::uint64_t> send_bytes, recv_bytes;
-  // 1. The directory: each owned gid registered on its home rank, as (gid, owner).
+};
+
+// The directory part of this rank: (gid, owner rank) of every owned gid whose home rank this is, sorted.
+std::vector<std::pair<std::int64_t, int>> gid_directory(const DiscStore& discs, Routing& x, const Communicator& comm) {
+  const int ranks = comm.size();
   const std::int64_t* gid = discs.gid.data();
   agree(comm, [&] {
     pack_by_rank(
         discs.n_owned(), sizeof(std::int64_t), ranks, [&](std::size_t i) { return home_rank(gid[i], ranks); },
-        [&](std::size_t i, char* out) { std::memcpy(out, gid + i, sizeof(std::int64_t)); }, send, send_bytes);
+        [&](std::size_t i, char* out) { std::memcpy(out, gid + i, sizeof(std::int64_t)); }, x.send, x.send_bytes);
   });
-  exchange.run(send.data(), send_bytes, recv, recv_bytes, comm);
+  x.exchange.run(x.send.data(), x.send_bytes, x.recv, x.recv_bytes, comm);
   std::vector<std::pair<std::int64_t, int>> owner;
   agree(comm, [&] {
-    owner.reserve(recv.size() / sizeof(std::int64_t));
+    owner.reserve(x.recv.size() / sizeof(std::int64_t));
     std::size_t at = 0;
     for (int r = 0; r < ranks; ++r)
-      for (std::uint64_t k = 0; k < recv_bytes[r] / sizeof(std::int64_t); ++k, at += sizeof(std::int64_t)) {
+      for (std::uint64_t k = 0; k < x.recv_bytes[r] / sizeof(std::int64_t); ++k, at += sizeof(std::int64_t)) {
         std::int64_t g = 0;
-        std::memcpy(&g, recv.data() + at, sizeof g);
+        std::memcpy(&g, x.recv.data() + at, sizeof g);
         owner.emplace_back(g, r);
       }
     std::sort(owner.begin(), owner.end());
   });
-  std::size_t peak = send.capacity() + recv.capacity() + owner.capacity() * sizeof(owner[0]);
-  // 2. Each row to the home rank of its disc 1 (and of its disc 2), led by the gid to look up.
-  const std::size_t bytes = row_bytes(rows), ends = both_ends ? 2 : 1;
+  return owner;
+}
+
+// The home rank's answers to the gids asked in x.recv: their owners (-1: no rank owns the disc), in the
+// order asked, for ByteExchange back to the askers.
+void answer_owners(const std::vector<std::pair<std::int64_t, int>>& owner, const Routing& x, int ranks,
+                   std::vector<char>& answers, std::vector<std::uint64_t>& answer_bytes) {
+  const std::size_t asked = x.recv.size() / sizeof(std::int64_t);
+  resize_buffer(answers, asked * sizeof(std::int32_t));
+  for (std::size_t j = 0; j < asked; ++j) {
+    std::int64_t g = 0;
+    std::memcpy(&g, x.recv.data() + j * sizeof g, sizeof g);
+    const auto it = std::lower_bound(owner.begin(), owner.end(), std::make_pair(g, -1));
+    const std::int32_t r = (it != owner.end() && it->first == g) ? it->second : -1;
+    std::memcpy(answers.data() + j * sizeof r, &r, sizeof r);
+  }
+  answer_bytes.resize(static_cast<std::size_t>(ranks));
+  for (int r = 0; r < ranks; ++r) answer_bytes[r] = x.recv_bytes[r] / sizeof(std::int64_t) * sizeof(std::int32_t);
+}
+
+}  // namespace
+
+void route_rows_to_owners(ContactTable& rows, bool both_ends, const DiscStore& discs, const Communicator& comm) {
+  const int ranks = comm.size();
+  // 1. The directory: each owned gid registered on its home rank, as (gid, owner).
+  Routing x;
+  const std::vector<std::pair<std::int64_t, int>> owner = gid_directory(discs, x, comm);
+  // 2. The owner of each end of each row (item k: row k / ends, end k % ends), asked of its home rank.
+  const std::size_t ends = both_ends ? 2 : 1, items = rows.size() * ends;
+  auto gid_of = [&](std::size_t k) { return k % ends ? rows.key[k / ends].hi : rows.key[k / ends].lo; };
   agree(comm, [&] {
     pack_by_rank(
-        rows.size() * ends, sizeof(std::int64_t) + bytes, ranks,
-        [&](std::size_t k) {
-          const ContactKey& key = rows.key[k / ends];
-          return home_rank(k % ends ? key.hi : key.lo, ranks);
-        },
+        items, sizeof(std::int64_t), ranks, [&](std::size_t k) { return home_rank(gid_of(k), ranks); },
         [&](std::size_t k, char* out) {
-          const ContactKey& key = rows.key[k / ends];
-          const std::int64_t g = k % ends ? key.hi : key.lo;
+          const std::int64_t g = gid_of(k);
           std::memcpy(out, &g, sizeof g);
-          pack_row_bytes(rows, k / ends, out + sizeof g);
         },
-        send, send_bytes);
+        x.send, x.send_bytes);
   });
-  exchange.run(send.data(), send_bytes, recv, recv_bytes, comm);
-  // 3. The home rank forwards each row to the owner of that disc (none: dropped).
-  const std::size_t led = sizeof(std::int64_t) + bytes;
-  std::vector<char> forward;
+  x.exchange.run(x.send.data(), x.send_bytes, x.recv, x.recv_bytes, comm);
+  std::vector<char> answers;
+  std::vector<std::uint64_t> answer_bytes, reply_bytes;
+  agree(comm, [&] { answer_owners(owner, x, ranks, answers, answer_bytes); });
+  std::vector<char> replies;
+  x.exchange.run(answers.data(), answer_bytes, replies, reply_bytes, comm);
+  // The replies of rank d answer the items sent to d, in ascending item order (pack_by_rank's layout).
+  std::vector<std::int32_t> end_owner;
   agree(comm, [&] {
-    auto rank_of = [&](std::size_t k) {
-      std::int64_t g = 0;
-      std::memcpy(&g, recv.data() + k * led, sizeof g);
-      const auto it = std::lower_bound(owner.begin(), owner.end(), std::make_pair(g, -1));
-      return (it != owner.end() && it->first == g) ? it->second : -1;
-    };
-    pack_by_rank(
-        recv.size() / led, bytes, ranks, rank_of,
-        [&](std::size_t k, char* out) { std::memcpy(out, recv.data() + k * led + sizeof(std::int64_t), bytes); },
-        forward, send_bytes);
+    std::vector<std::uint64_t> at(static_cast<std::size_t>(ranks) + 1, 0);
+    for (int r = 0; r < ranks; ++r) at[r + 1] = at[r] + reply_bytes[r] / sizeof(std::int32_t);
+    end_owner.resize(items);
+    for (std::size_t k = 0; k < items; ++k)
+      std::memcpy(&end_owner[k], replies.data() + (at[home_rank(gid_of(k), ranks)]++) * sizeof(std::int32_t),
+                  sizeof(std::int32_t));
   });
-  peak = std::max(peak, send.capacity() + recv.capacity() + forward.capacity() + owner.capacity() * sizeof(owner[0]));
-  exchange.run(forward.data(), send_bytes, recv, recv_bytes, comm);
-  note_bytes(std::max(peak, forward.capacity() + recv.capacity() + owner.capacity() * sizeof(owner[0])));
+  // 3. Each row to the owner of each end (once when both ends have the same owner; none: dropped).
+  const std::size_t bytes = row_bytes(rows);
+  agree(comm, [&] {
+    pack_by_rank(
+        items, bytes, ranks,
+        [&](std::size_t k) { return (k % ends && end_owner[k] == end_owner[k - 1]) ? -1 : end_owner[k]; },
+        [&](std::size_t k, char* out) { pack_row_bytes(rows, k / ends, out); }, x.send, x.send_bytes);
+  });
+  x.exchange.run(x.send.data(), x.send_bytes, x.recv, x.recv_bytes, comm);
+  note_bytes(x.send.capacity() + x.recv.capacity() + owner.capacity() * sizeof(owner[0]) + answers.capacity() +
+             replies.capacity() + end_owner.capacity() * sizeof(std::int32_t));
   agree(comm, [&] {
     rows.clear();
-    ByteReader reader(recv.data(), recv.size());
+    ByteReader reader(x.recv.data(), x.recv.size());
     while (!reader.done()) unpack_row(rows, reader);
     rows.sort_unique_by_key();
   });

@@ -29,6 +29,7 @@ struct StateHeader {
   std::string config;                          // the resolved configuration
   LedgerTerms ledger;                          // the run's ledger (terms missing from a file read as zero)
   double box_width0 = 0.0, box_height0 = 0.0;  // the box walls' separation at the start (strain reference)
+  std::string materials;  // the material table (core/Material.hpp material_table_text); "" in older files
 };
 
 // Writes checkpoints and snapshots (collective). `fields` selects the disc datasets of a snapshot (empty:
@@ -41,8 +42,11 @@ class StateWriter {
   void write(const std::string& path, const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
              const ContactTable& wall_rows, const WallSet& walls, const Communicator& comm,
              const std::vector<std::string>& fields, double wall_seconds);
-  // The bytes of this rank's checkpoint structures (key orders, records sent and received, one dataset's
-  // block), as held now: their capacity only grows, so this is the peak of every file written so far.
+  // The bytes of this rank's checkpoint structures, as held now: their capacity only grows, so this is
+  // the peak of every file written so far. Per record this rank writes: 24 B of key and index (48 B
+  // while merging received runs), 8 B of row index, and the largest dataset's element (16 B); per record
+  // that changes rank: 16 B of key plus the record (116 B a disc, 84 B a row with two history slots),
+  // once sent and once received; and O(P) counts and splitters (CanonicalOrder).
   std::size_t checkpoint_structure_bytes() const;
   // Where the last write() spent its wall time on this rank: putting records in file order (sort,
   // splitters, exchange, merge), copying each dataset's block into place, and HDF5 (datasets, checksums,
@@ -89,7 +93,8 @@ WallSet read_state_walls(const std::string& path, const Communicator& comm);
 
 // Sends each row to the ranks owning its discs (both ends for disc pairs), rows sorted and de-duplicated;
 // rows of a disc no rank owns are dropped. The owners are found through a distributed directory (gid g is
-// registered on rank g mod P): O(N/P + P) per rank, no list of all discs anywhere. Collective.
+// registered on rank g mod P, which answers the owner of g to the ranks that ask), then each row travels
+// once to each owner: O(N/P + P) per rank, no list of all discs anywhere. Collective.
 void route_rows_to_owners(ContactTable& rows, bool both_ends, const DiscStore& discs, const Communicator& comm);
 
 }  // namespace rondel

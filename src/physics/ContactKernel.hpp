@@ -25,6 +25,7 @@
 #include "core/LedgerTerms.hpp"
 #include "core/Wall.hpp"
 #include "physics/ContactKinematics.hpp"
+#include "physics/LawConcepts.hpp"
 #include "physics/LawTypes.hpp"
 
 namespace rondel {
@@ -217,6 +218,22 @@ struct ContactKernel {
     if constexpr (!kWall) tab.tq2[r] = k.a2 * T.F_t + M.M2;
   }
 
+  // The rolling law's couple; a law with an exact ledger split (ExactRollingSplit) then books its dissipation
+  // from this step's trapezoid work (the previous couple is still in the row).
+  template <class H>
+  [[gnu::always_inline]] static RollingCouple rolling_moment(const ContactParams& p, const ContactTable& tab,
+                                                             std::size_t r, const Row& row, double F_n, double dt,
+                                                             H& hist) {
+    if constexpr (ExactRollingSplit<Rolling>) {
+      const double before = hist.r()[0][hist.row];
+      RollingCouple M = Rolling::moment(p, row.b, row.k, F_n, dt, row.w1, row.w2, hist.r(), hist.row);
+      Rolling::split(p, row.b, row.k, tab.M1[r], before, hist.r()[0][hist.row], dt, M);
+      return M;
+    } else {
+      return Rolling::moment(p, row.b, row.k, F_n, dt, row.w1, row.w2, hist.r(), hist.row);
+    }
+  }
+
   template <bool kWall, bool kCommit = true>
   static void run_rows(const KernelContext& c, ContactTable& tab, LedgerStep& ledger) {
     const std::size_t n_owned = c.discs.n_owned();
@@ -255,7 +272,17 @@ struct ContactKernel {
       const TangentialForce T = Tangential::force(p, row.b, k, F_n, dt, hist.t(), hist.row);
       RollingCouple M;
       if constexpr (Rolling::kActive) {
-        if (p.rolling) M = Rolling::moment(p, row.b, k, F_n, dt, row.w1, row.w2, hist.r(), hist.row);
+        if (p.rolling) {
+          // The plain call for the linear normal law and a law without an exact split: the code of the
+          // kernels that existed before the Hertz-Mindlin laws, unchanged.
+          if constexpr (Normal::kStiffening) {  // the rolling law sees this contact's normal stiffness
+            M = rolling_moment(Normal::linearised(p, row.b, k), tab, r, row, F_n, dt, hist);
+          } else if constexpr (ExactRollingSplit<Rolling>) {
+            M = rolling_moment(p, tab, r, row, F_n, dt, hist);
+          } else {
+            M = Rolling::moment(p, row.b, k, F_n, dt, row.w1, row.w2, hist.r(), hist.row);
+          }
+        }
       }
       const Vec2 f1 = T.F_t * k.t - F_n * k.n;
       if (book) book_work<kWall>(tab, r, row, F_n, T, M, f1, dt, L);
@@ -278,8 +305,8 @@ struct ContactKernel {
       if (static_cast<std::size_t>(tab.i1[r]) >= c.discs.n_owned()) continue;
       if (!kinematics<kWall>(c, tab, r, row) || row.k.u_n <= 0.0) continue;
       const ContactParams& p = params[static_cast<std::size_t>(tab.param[r])];
-      e.normal += 0.5 * p.k_n * row.k.u_n * row.k.u_n;
-      e.tangential += Tangential::stored(p, h.t.data(), r);
+      e.normal += Normal::stored(p, row.k);
+      e.tangential += Tangential::stored(p, row.k, h.t.data(), r);
       const double F_n = tab.F_n[r];
       if (!(F_n > 0.0)) continue;
       ++e.contacts;
@@ -288,8 +315,9 @@ struct ContactKernel {
       if (Tangential::kFriction && std::fabs(tab.F_t[r]) >= kAtCap * p.mu * F_n) ++e.sliding;
       if constexpr (Rolling::kActive) {
         if (p.rolling) {
-          e.rolling += Rolling::stored(p, row.b, row.k, F_n, h.r.data(), r);
-          if (std::fabs(tab.M1[r]) >= kAtCap * Rolling::cap(p, row.k, F_n)) ++e.rolling_yield;
+          const ContactParams q = Normal::linearised(p, row.b, row.k);
+          e.rolling += Rolling::stored(q, row.b, row.k, F_n, h.r.data(), r);
+          if (std::fabs(tab.M1[r]) >= kAtCap * Rolling::cap(q, row.k, F_n)) ++e.rolling_yield;
         }
       }
     }

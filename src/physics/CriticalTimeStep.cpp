@@ -5,7 +5,9 @@
 #include <numbers>
 #include <sstream>
 
+#include "physics/NormalHertz.hpp"
 #include "physics/NormalLinear.hpp"
+#include "physics/TangentialMindlin.hpp"
 
 namespace rondel {
 
@@ -21,13 +23,30 @@ struct Best {
   }
 };
 
+// A stiffening contact as the linear spring-dashpot it is at the overlap u (the largest the run allows):
+// k_n = S_n, c_n of the Tsuji dashpot; mindlin: k_s = S_t, zeta_t = sqrt(5/6)|beta| (its dashpot
+// 2 sqrt(5/6)|beta| sqrt(S_t m_eff) in the coulomb form 2 zeta_t sqrt(m_eff k_s)).
+ContactParams linearised(const LawSelection& laws, const ContactParams& p, const ContactBodies& bodies,
+                         const ContactKinematics& k) {
+  ContactParams q = p;
+  if (laws.normal == "hertz") q = NormalHertz::linearised(p, bodies, k);
+  if (laws.tangential == "mindlin") {
+    q.k_s = TangentialMindlin::stiffness(p, k);
+    q.zeta_t = -0.5 * NormalHertz::kDashpot * p.beta;
+  }
+  return q;
+}
+
 }  // namespace
 
-double contact_critical_step(const LawSelection& laws, const ContactParams& p, const ContactBody& a,
-                             const ContactBody& b, std::string* mode) {
+double contact_critical_step(const LawSelection& laws, const ContactParams& p_in, const ContactBody& a,
+                             const ContactBody& b, std::string* mode, double max_overlap) {
   const bool wall = std::isinf(b.m);
   const ContactBodies bodies = wall ? disc_wall_bodies(a.m, a.I) : disc_disc_bodies(a.m, b.m, a.I, b.I);
   const double m_eff = bodies.m_eff;
+  ContactKinematics at_limit = contact_geometry(a.R, b.R, wall);
+  if (laws.normal == "hertz") at_limit.u_n = max_overlap * (wall ? a.R : std::min(a.R, b.R));
+  const ContactParams p = linearised(laws, p_in, bodies, at_limit);
   Best best;
   const double w_n = std::sqrt(p.k_n / m_eff);
   best.consider(mode_limit(w_n, NormalLinear::c_n(p, bodies) / (2.0 * std::sqrt(m_eff * p.k_n))), "normal");
@@ -44,8 +63,7 @@ double contact_critical_step(const LawSelection& laws, const ContactParams& p, c
     zeta_t = spring->zeta * std::sqrt(m_eff * G);
     best.consider(mode_limit(std::sqrt(w2_t), zeta_t), "tangential");
   }
-  const RollingSpring roll =
-      rolling_spring(laws, p, bodies, contact_geometry(a.R, b.R, wall)).value_or(RollingSpring{});
+  const RollingSpring roll = rolling_spring(laws, p, bodies, at_limit).value_or(RollingSpring{});
   if (roll.K > 0.0) {
     const double w2_r = roll.K * H;
     const double zeta_r = roll.C * std::sqrt(H / roll.K) / 2.0;
@@ -64,7 +82,8 @@ double contact_critical_step(const LawSelection& laws, const ContactParams& p, c
 }
 
 CriticalStep critical_time_step(const LawSelection& laws, const ContactParamTable& params,
-                                const std::vector<MaterialInfo>& materials, bool has_walls) {
+                                const std::vector<MaterialInfo>& materials, bool has_walls,
+                                const CriticalOptions& options) {
   CriticalStep best{INFINITY, "", ""};
   auto radii = [](const MaterialInfo& m) {
     std::vector<double> out{m.R_min};
@@ -74,32 +93,50 @@ CriticalStep critical_time_step(const LawSelection& laws, const ContactParamTabl
     return out;
   };
   auto body = [](const MaterialInfo& mat, double R) {
-    const double m = mat.density * std::numbers::pi * R * R * mat.thickness;
-    return ContactBody{m, 0.5 * m * R * R, R};
+    Material m;
+    m.density = mat.density, m.thickness = mat.thickness, m.body = mat.body;
+    const double mass = m.mass(R);
+    return ContactBody{mass, m.inertia(mass, R), R};
   };
-  auto label = [](std::size_t index, double R) {
+  auto label = [&materials](std::size_t index, double R) {
     std::ostringstream s;
-    s << "material " << index << " R=" << R;
+    s << "material " << (materials[index].name.empty() ? std::to_string(index) : materials[index].name) << " R=" << R;
     return s.str();
   };
   const ContactBody wall{INFINITY, INFINITY, INFINITY};
+  const double u = options.max_overlap;
   for (std::size_t a = 0; a < materials.size(); ++a) {
     if (materials[a].R_max <= 0.0) continue;  // no disc of this material in the scene
     for (double Ra : radii(materials[a])) {
       const ContactBody A = body(materials[a], Ra);
       std::string mode;
-      if (has_walls) {
-        const double dt = contact_critical_step(laws, params.wall(a), A, wall, &mode);
-        if (dt < best.dt) best = {dt, mode, label(a, Ra) + " / wall"};
+      for (int w : has_walls ? options.wall_materials : std::vector<int>{}) {
+        const double dt = contact_critical_step(laws, params.wall(a, static_cast<std::size_t>(w)), A, wall, &mode, u);
+        if (dt < best.dt) best = {dt, mode, label(a, Ra) + " / wall", 0.0};
       }
       for (std::size_t b = 0; b < materials.size(); ++b) {
         if (materials[b].R_max <= 0.0) continue;
         for (double Rb : radii(materials[b])) {
-          const double dt = contact_critical_step(laws, params.pair(a, b), A, body(materials[b], Rb), &mode);
-          if (dt < best.dt) best = {dt, mode, label(a, Ra) + " / " + label(b, Rb)};
+          const double dt = contact_critical_step(laws, params.pair(a, b), A, body(materials[b], Rb), &mode, u);
+          if (dt < best.dt) best = {dt, mode, label(a, Ra) + " / " + label(b, Rb), 0.0};
         }
       }
     }
+  }
+  if (laws.normal == "hertz") {
+    // The Rayleigh step of the smallest disc, which the commercial codes and LIGGGHTS users quote.
+    best.rayleigh = INFINITY;
+    for (const MaterialInfo& m : materials) {
+      if (m.R_max <= 0.0 || m.youngs_modulus <= 0.0) continue;
+      const double G = m.youngs_modulus / (2.0 * (1.0 + m.poisson_ratio));
+      best.rayleigh = std::min(
+          best.rayleigh, std::numbers::pi * m.R_min * std::sqrt(m.density / G) / (0.1631 * m.poisson_ratio + 0.8766));
+    }
+    std::ostringstream s;
+    s.precision(6);
+    s << "; Hertz-Mindlin stiffness at u_n = " << u << " of the smaller radius (run.max_overlap); Rayleigh step "
+      << best.rayleigh << " s";
+    best.pair += s.str();
   }
   return best;
 }

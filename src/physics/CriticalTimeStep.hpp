@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/ContactParams.hpp"
+#include "core/Material.hpp"
 #include "physics/LawRegistry.hpp"
 
 namespace rondel {
@@ -23,14 +24,26 @@ namespace rondel {
 struct MaterialInfo {
   double density = 0.0;
   double thickness = 1.0;
-  double R_min = 0.0;  // smallest and largest radius of this material in the scene
+  double R_min = 0.0;  // smallest and largest radius of this material in the scene (0: no disc of it)
   double R_max = 0.0;
+  Material::Body body = Material::Body::disc;
+  double youngs_modulus = 0.0, poisson_ratio = 0.0;  // for the Rayleigh step of a Hertz-Mindlin run
+  std::string name;                                  // in the report ("" = "material INDEX")
+};
+
+// What the search covers besides the materials: the overlap at which a stiffening contact (hertz, mindlin)
+// is linearised, as a fraction of the smaller radius (run.max_overlap), and the materials of the walls.
+struct CriticalOptions {
+  double max_overlap = 0.1;
+  std::vector<int> wall_materials{0};
 };
 
 struct CriticalStep {
   double dt = 0.0;
-  std::string mode;  // "normal", "tangential", "rolling", "tangential+rolling"
-  std::string pair;  // which bodies, e.g. "material 0 R=0.005 / material 0 R=0.005" or "... / wall"
+  std::string mode;       // "normal", "tangential", "rolling", "tangential+rolling"
+  std::string pair;       // which bodies, e.g. "material 0 R=0.005 / material 0 R=0.005" or "... / wall"; a
+                          // Hertz-Mindlin run adds the overlap assumed and the Rayleigh step
+  double rayleigh = 0.0;  // Hertz-Mindlin: pi R sqrt(rho/G)/(0.1631 nu + 0.8766) of the smallest disc; else 0
 };
 
 // A body of a contact: a disc, or a wall (m = I = R = inf).
@@ -41,11 +54,13 @@ struct ContactBody {
 // Stability limit of one mode.
 double mode_limit(double omega, double zeta);
 
-// The critical step of one contact (its most limiting mode); `mode` receives the mode's name.
+// The critical step of one contact (its most limiting mode); `mode` receives the mode's name. A hertz or
+// mindlin contact is linearised at the overlap max_overlap x the smaller radius (docs/physics.md section 6).
 double contact_critical_step(const LawSelection& laws, const ContactParams& p, const ContactBody& a,
-                             const ContactBody& b, std::string* mode = nullptr);
+                             const ContactBody& b, std::string* mode = nullptr, double max_overlap = 0.1);
 
 CriticalStep critical_time_step(const LawSelection& laws, const ContactParamTable& params,
-                                const std::vector<MaterialInfo>& materials, bool has_walls);
+                                const std::vector<MaterialInfo>& materials, bool has_walls,
+                                const CriticalOptions& options = {});
 
 }  // namespace rondel

@@ -39,7 +39,9 @@ template <class L>
 concept NormalLawType = DeclaredLaw<L> &&
     requires(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k) {
   { L::force(p, b, k) } -> std::same_as<double>;
-  { L::c_n(p, b) } -> std::same_as<double>;
+  { L::stored(p, k) } -> std::same_as<double>;
+  { L::linearised(p, b, k) } -> std::same_as<ContactParams>;
+  { L::kStiffening } -> std::convertible_to<bool>;
 };
 
 template <class L>
@@ -52,7 +54,7 @@ concept TangentialCalls = requires(const ContactParams& p, const ContactBodies& 
                                    double* const* h) {
   { L::kFriction } -> std::convertible_to<bool>;
   { L::force(p, b, k, 0.0, 0.0, h, std::size_t{}) } -> std::same_as<TangentialForce>;
-  { L::stored(p, h, std::size_t{}) } -> std::same_as<double>;
+  { L::stored(p, k, h, std::size_t{}) } -> std::same_as<double>;
 };
 
 template <class L>
@@ -71,6 +73,13 @@ concept RollingCalls = requires(const ContactParams& p, const ContactBodies& b, 
   { L::moment(p, b, k, 0.0, 0.0, 0.0, 0.0, h, std::size_t{}) } -> std::same_as<RollingCouple>;
   { L::stored(p, b, k, 0.0, h, std::size_t{}) } -> std::same_as<double>;
   { L::cap(p, k, 0.0) } -> std::same_as<double>;
+};
+
+// A rolling law that makes its ledger split consistent with the kernel's trapezoid (RollingJiangPlastic::split).
+template <class L>
+concept ExactRollingSplit = requires(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
+                                     RollingCouple& c) {
+  L::split(p, b, k, 0.0, 0.0, 0.0, 0.0, c);
 };
 
 template <class L>

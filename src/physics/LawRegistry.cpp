@@ -1,6 +1,8 @@
-// The registry's functions over the rows of LawRows.hpp. Every (normal, tangential, rolling) combination
-// of the step kernel is instantiated here, once.
+// The registry's functions over the rows of LawRows.hpp. Every (linear, tangential, rolling) combination of
+// the step kernel is instantiated here, once; the hertz ones in HertzKernels.cpp.
 #include "physics/LawRegistry.hpp"
+
+#include <type_traits>
 
 #include "core/ConfigSchema.hpp"
 #include "physics/LawRows.hpp"
@@ -19,11 +21,16 @@ const LawCatalog& law_catalog() {
 }
 
 KernelOps select_kernel(const LawSelection& laws) {
+  if (laws.normal == "hertz") return registry::select_hertz_kernel(laws);
   KernelOps ops;
+  // The linear normal law's kernels only, here (LawRows.hpp, select_hertz_kernel).
   registry::with_kernel_laws(laws, [&]<class N, class T, class R>() {
-    using K = ContactKernel<N, T, R>;
-    ops = KernelOps{&K::run, registry::select_initial_forces(laws), &K::stored_energy};
+    if constexpr (std::is_same_v<N, NormalLinear> && !std::is_same_v<T, TangentialMindlin>) {
+      using K = ContactKernel<N, T, R>;
+      ops = KernelOps{&K::run, registry::select_initial_forces(laws), &K::stored_energy};
+    }
   });
+  if (!ops.run) throw ConfigError("contact.tangential = mindlin needs contact.normal = hertz");
   return ops;
 }
 

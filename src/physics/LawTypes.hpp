@@ -42,6 +42,7 @@ struct RollingCouple {
   double plastic = 0.0;
   double dashpot = 0.0;
   double released = 0.0;
+  bool yielded = false;  // a spring-slider at its cap this step
 };
 
 // Tangential force on disc 1 along t, with the work dissipated by Coulomb slip this step.

@@ -24,6 +24,7 @@ inline constexpr LawBlock kLinearBlock{"linear", "normal spring-dashpot, no tens
 struct NormalLinear {
   static constexpr const char* name = "linear";
   static constexpr const LawBlock* block = &kLinearBlock;
+  static constexpr bool kStiffening = false;
   // The normal dashpot [N s/m]: its one owner (the kernel, the Jiang laws and the critical step call it).
   static double c_n(const ContactParams& p, const ContactBodies& b) {
     return p.c_n_fixed >= 0.0 ? p.c_n_fixed : 2.0 * p.zeta_n * std::sqrt(b.m_eff * p.k_n);
@@ -32,6 +33,8 @@ struct NormalLinear {
     const double f = p.k_n * k.u_n - c_n(p, b) * k.v_n;
     return f > 0.0 ? f : 0.0;
   }
+  static double stored(const ContactParams& p, const ContactKinematics& k) { return 0.5 * p.k_n * k.u_n * k.u_n; }
+  static ContactParams linearised(const ContactParams& p, const ContactBodies&, const ContactKinematics&) { return p; }
 };
 
 }  // namespace rondel

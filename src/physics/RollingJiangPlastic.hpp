@@ -39,6 +39,7 @@ inline RollingCouple jiang_spring_slider(const JiangGeometry& g, double F_n, dou
   const double before = theta_r;
   const CapResult m = cap_spring_slider(trial, F_n * g.B / 6.0, g.K_m, theta_r);
   RollingCouple c{m.value, -m.value};
+  c.yielded = m.capped;
   if (m.capped)
     c.plastic = std::fabs(m.value * (before - theta_r));
   else
@@ -67,6 +68,19 @@ struct RollingJiangPlastic {
                        double* const* hist, std::size_t row) {
     const double th = hist[0][row];
     return 0.5 * jiang_geometry(p, b, k).K_m * th * th;
+  }
+  // The ledger's split made exact (docs/physics.md section 5): the kernel integrates the couple's work with
+  // the trapezoid of last and this step's couple, so the energy the rolling spring-slider takes from the
+  // motion this step is -(M' + M)/2 thetadot_r dt; what the spring does not store, K_m (theta_r^2 -
+  // theta_r'^2)/2, is dissipated: plastic work when the couple is at its cap, dashpot work otherwise. Booked
+  // so, D_rolling_plastic + D_rolling_dashpot + the stored rolling energy equal -W_rolling to round-off.
+  static void split(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double M_prev,
+                    double theta_before, double theta_after, double dt, RollingCouple& c) {
+    const double K_m = jiang_geometry(p, b, k).K_m;
+    const double taken = -0.5 * (M_prev + c.M1) * k.thetadot_r * dt;
+    const double lost = taken - 0.5 * K_m * (theta_after * theta_after - theta_before * theta_before);
+    c.plastic = c.yielded ? lost : 0.0;
+    c.dashpot = c.yielded ? 0.0 : lost;
   }
   // The couple at yield, M0 = F_n B/6.
   static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) {

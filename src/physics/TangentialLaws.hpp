@@ -24,7 +24,7 @@ struct TangentialNone {
                                double* const*, std::size_t) {
     return {};
   }
-  static double stored(const ContactParams&, double* const*, std::size_t) { return 0.0; }
+  static double stored(const ContactParams&, const ContactKinematics&, double* const*, std::size_t) { return 0.0; }
 };
 
 inline constexpr ParamSpec kCoulombParams[] = {
@@ -50,7 +50,7 @@ struct TangentialCoulomb {
     const CapResult F = cap_spring_slider(trial, p.mu * F_n, p.k_s, xi);
     return {F.value, F.capped ? std::fabs(F.value * (before - xi)) : 0.0};
   }
-  static double stored(const ContactParams& p, double* const* hist, std::size_t row) {
+  static double stored(const ContactParams& p, const ContactKinematics&, double* const* hist, std::size_t row) {
     const double xi = hist[0][row];
     return 0.5 * p.k_s * xi * xi;
   }

@@ -1,7 +1,8 @@
 // The distributed file order of checkpoints (parallel/CanonicalOrder.hpp): records in ascending key order
 // over the ranks, each rank's first row the prefix sum of the counts before it, the records' bytes intact,
-// the ranges balanced within the sample sort's bound, the structures' bytes falling as 1/P; and errors on
-// the last rank only (a duplicate key, a bad dataset block) thrown on every rank instead of a hang.
+// the ranges balanced within the sample sort's bound, the structures' bytes falling as 1/P; errors on the
+// last rank only (a duplicate key, a bad dataset block) thrown on every rank instead of a hang; and the rows
+// of a restart routed to the owners of their discs through the distributed gid directory.
 #include <gtest/gtest.h>
 #include <mpi.h>
 #include <unistd.h>
@@ -15,10 +16,13 @@
 #include <vector>
 
 #include "ParallelTestUtil.hpp"
+#include "core/ContactTable.hpp"
+#include "core/DiscStore.hpp"
 #include "core/Errors.hpp"
 #include "parallel/CanonicalOrder.hpp"
 #include "parallel/Communicator.hpp"
 #include "parallel/Hdf5File.hpp"
+#include "parallel/StateFile.hpp"
 
 namespace rondel {
 namespace {
@@ -207,6 +211,50 @@ TEST(CanonicalOrder, ADatasetBlockFailingOnTheLastRankStopsEveryRank) {
       << "rank " << comm.rank() << " got: '" << message << "'";
   MPI_Barrier(MPI_COMM_WORLD);
   if (comm.root()) std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace rondel
+
+namespace rondel {
+namespace {
+
+// route_rows_to_owners through the distributed gid directory: gid g is owned by rank (g + 1) mod P (never
+// its home rank g mod P, from 2 ranks on); rank r starts with the rows (g, g + 1) of g = r mod P and a
+// copy of row (0, 1) everywhere, plus rows whose disc 1 (1000 + g) no rank owns. Afterwards each rank
+// holds exactly the rows of which it owns an end (disc pairs) or disc 1 (wall rows), once, with history.
+TEST(RouteRows, EveryRowReachesTheOwnersOfItsDiscsThroughTheDirectory) {
+  const Communicator comm;
+  const int ranks = comm.size(), me = comm.rank();
+  constexpr std::int64_t kDiscs = 60;
+  auto owner = [ranks](std::int64_t g) { return static_cast<int>((g + 1) % ranks); };
+  DiscStore discs;
+  for (std::int64_t g = 0; g < kDiscs; ++g)
+    if (owner(g) == me) discs.gid.push_back(g);
+  discs.set_owned_count(discs.gid.size());
+  for (const bool both_ends : {true, false}) {
+    ContactTable rows({"xi"}, false);
+    auto add = [&rows](std::int64_t lo, std::int64_t hi) {
+      rows.push({lo, hi}, -1, -1, 0);
+      rows.slot[0].back() = static_cast<double>(lo * 1000 + hi);
+    };
+    for (std::int64_t g = me; g + 1 < kDiscs; g += ranks) add(g, g + 1);
+    add(0, 1);             // on every rank: one copy survives
+    add(1000 + me, 5);     // disc 1 owned by no rank
+    add(2000 + me, 3000);  // neither disc owned: dropped
+    route_rows_to_owners(rows, both_ends, discs, comm);
+    std::vector<ContactKey> expected;
+    for (std::int64_t g = 0; g + 1 < kDiscs; ++g)
+      if (owner(g) == me || (both_ends && owner(g + 1) == me)) expected.push_back({g, g + 1});
+    for (int r = 0; r < ranks && both_ends; ++r)
+      if (owner(5) == me) expected.push_back({1000 + r, 5});
+    std::sort(expected.begin(), expected.end());
+    bool same = rows.key == expected;
+    for (std::size_t k = 0; k < rows.size(); ++k)
+      same = same && rows.slot[0][k] == static_cast<double>(rows.key[k].lo * 1000 + rows.key[k].hi);
+    EXPECT_TRUE(same) << "rank " << me << (both_ends ? " (disc pairs)" : " (wall rows)") << ": " << rows.size()
+                      << " rows, expected " << expected.size();
+  }
 }
 
 }  // namespace

@@ -334,6 +334,15 @@ TEST(Checkpoint, RestartIsBitwiseWithServoWall) {
 
 // A rough wall that shears: the discs glued to the right wall (their flags) ride up with it at 0.05 m/s
 // while the pile is pushed against them; the glue and the wall's motion continue through the restart.
+// Two materials (a light and a heavy disc fraction, steel walls) with pair blocks for the linear, coulomb and
+// wang laws: the material table and every disc's material travel through the checkpoint.
+TEST(Checkpoint, RestartIsBitwiseWithTwoMaterials) {
+  restart_cases("wang", {"--material.glass.density=2500", "--material.steel.density=7800",
+                         "--scene.materials=glass steel", "--scene.material_fractions=0.6 0.4",
+                         "--walls.material=steel", "--linear.glass.steel.zeta=0.3", "--coulomb.steel.steel.mu=0.3",
+                         "--wang.glass.wall.steel.mu_r=0.05", "--contact.steel.steel.rolling=false"});
+}
+
 TEST(Checkpoint, RestartIsBitwiseWithRoughShearingWall) {
   restart_cases("wang", {"--walls.rough=right", "--walls.rough_depth=0.0025", "--walls.control=right:shear:0.05"});
 }

@@ -72,6 +72,59 @@ TEST(RankInvariance, PeriodicPackingBitwiseEqualToOneRank) { check_scene("period
 // 1. (c) Plane shear: the packing of (b), periodic in x only, between rough walls (the bottom and top rows are
 // glued to them); the top wall is a servo and both walls shear in opposite directions, so glued discs cross
 // the periodic seam and the rank borders and free discs press on glued ghosts.
+// 1. (d) Two materials with Hertz-Mindlin contacts and the Wang rolling law with per-pair parameters: a
+// bidisperse deposition (glass and heavier steel discs, each with its own radius range) onto steel walls.
+TEST(RankInvariance, TwoMaterialHertzMindlinDepositionBitwiseEqualToOneRank) {
+  const std::string ini = R"(
+[domain]
+xlo = 0
+xhi = 0.06
+ylo = 0
+yhi = 0.12
+[gravity]
+y = -9.81
+[material.glass]
+density = 2500
+youngs_modulus = 1e10
+poisson_ratio = 0.25
+[material.steel]
+density = 7800
+youngs_modulus = 2e10
+poisson_ratio = 0.3
+[contact]
+normal = hertz
+tangential = mindlin
+rolling = wang
+[hertz]
+e = 0.6
+[hertz.glass.steel]
+e = 0.4
+[mindlin]
+mu = 0.5
+[mindlin.glass.wall.steel]
+mu = 0.2
+[wang]
+k_r = 2e5
+mu_r = 0.1
+[wang.steel.steel]
+mu_r = 0.02
+[walls]
+box = bottom left right
+material = steel
+[scene]
+type = random
+count = 200
+materials = glass steel
+material_fractions = 0.5 0.5
+material_by = area
+material_radius_min = 0.0015 0.002
+material_radius_max = 0.0025 0.003
+seed = 11
+vy = -0.5
+)";
+  check_scene("two-material hertz", ini, 8000, 500, true);
+}
+
 TEST(RankInvariance, RoughShearCellBitwiseEqualToOneRank) {
   std::string ini = periodic_ini();
   const std::string from = "periodic_y = true";

@@ -538,11 +538,14 @@ TEST(RollingWall, JiangBrittleBreaksAndNeverStops) {
 // Section 6, jiang_plastic (undamped): the rolling plastic work at the first stop equals KE0 - M0^2/(2K_m)
 // (the kinetic energy less what the spring holds there), and max_t |E_total(t) - E0|/E0 <= 2e-4.
 //
-// Tolerance of the plastic work: M0 |omega0| dt/2. The spring loads within the first step (theta_r0/|omega0|
-// = 7e-6 s), where the law books the slip of the whole step, M0 (|omega0| dt - M0/K_m), while the couple,
-// 0 at t = 0, acted only in that step's second half-kick (trapezoid work M0 |omega0| dt/2): the split books
-// M0 |omega0| dt/2 - M0^2/(2 K_m) more than the couple did (1e-5 J, 6e-5 of KE0; O(dt)). That is also the
-// size of max |E_total - E0|, inside the 2e-4 of docs/validation.md.
+// The split is exact (docs/physics.md section 5): the law books as dissipation what the trapezoid work of the
+// couple, -(M' + M)/2 thetadot_r dt, leaves after the change of the stored K_m theta_r^2/2, so
+// D_r_plastic + D_r_dashpot + the stored rolling energy = -W_rolling to round-off, and the plastic work at the
+// first stop differs from KE0 - M0^2/(2K_m) only by what the motion's integration leaves (the ledger residual)
+// and the energy of the other springs. Measured: 4.8e-8 J (3e-7 of KE0), max |E_total - E0|/E0 = 3.3e-9. (Booked
+// with the end-of-step couple, as before, the first step's slip overshot by M0 |omega0| dt/2 - M0^2/(2K_m) =
+// 1e-5 J, 6e-5 of KE0, and D_other went negative.) Every dissipation term stays >= 0 throughout, and D_other,
+// measured from its start, within the ledger residual.
 
 TEST(RollingWall, JiangPlasticLedgerPlasticWorkAndEnergyBalance) {
   const DiscOnWall d;
@@ -550,24 +553,39 @@ TEST(RollingWall, JiangPlasticLedgerPlasticWorkAndEnergyBalance) {
   WallRun run(law);
   Simulation& sim = run.sim();
   const double E0 = energy_total(sim.diagnostics());
+  // D_other = -W_c - E_stored - the dissipations counts the springs' energy at t = 0 (the static overlap) as
+  // if it had been taken from the motion: it starts at -E_stored(0).
+  const double E_stored0 = sim.diagnostics().E_stored;
   std::vector<double> plastic;
-  double worst = 0.0;
+  double worst = 0.0, lowest = INFINITY, split = 0.0, lowest_other = INFINITY, residual = 0.0;
   const Trace tr = run_trace(run, kDuration, [&](std::size_t) {
     const DiagnosticsRow row = sim.diagnostics();
     plastic.push_back(row.D_r_plastic);
     worst = std::max(worst, std::fabs(energy_total(row) - E0) / E0);
+    lowest = std::min({lowest, row.D_r_plastic, row.D_r_dashpot, row.D_slip});
+    lowest_other = std::min(lowest_other, row.D_other);
+    residual = std::max(residual, sim.ledger().absolute_residual(sim.kinetic_energy()));
+    const EnergyLedger& L = sim.ledger();
+    split = std::max(split, std::fabs(L.D_r_plastic + L.D_r_dashpot + sim.last_contacts().rolling + L.W_r));
   });
   ASSERT_GT(tr.first_zero, 0u);
   const double KE0 = d.KE0(kV0);
   const double expected = KE0 - law.M * law.M / (2 * law.K);
-  const double tol = 0.5 * law.M * std::fabs(d.omega0(kV0)) * kDt;
+  const double tol = 1e-6 * KE0;
   const double got = plastic[tr.first_stop()];
   std::printf("  jiang_plastic ledger (E0 = %.9e J, KE0 = %.9e J)\n", E0, KE0);
   print("D_r_plastic at the first stop [J]", got, expected);
-  std::printf("    tolerance M0 |omega0| dt/2 = %.3e J; max |E_total - E0|/E0 = %.3e (limit 2e-4)\n", tol, worst);
+  std::printf(
+      "    tolerance 1e-6 KE0 = %.3e J; max |E_total - E0|/E0 = %.3e (limit 1e-6); rolling split off by "
+      "%.3e J; smallest dissipation term %.3e J; smallest D_other %.3e J (largest residual %.3e J)\n",
+      tol, worst, split, lowest, lowest_other, residual);
   print_residual(tr);
   EXPECT_NEAR(got, expected, tol);
-  EXPECT_LE(worst, 2e-4);
+  EXPECT_LE(worst, 1e-6);
+  EXPECT_LE(split, 1e-12 * KE0) << "D_r_plastic + D_r_dashpot + stored rolling energy = -W_rolling";
+  EXPECT_GE(lowest, -1e-12 * KE0) << "every dissipation term is non-negative";
+  EXPECT_GE(lowest_other + E_stored0, -(residual + 1e-12 * KE0))
+      << "D_other (the dashpots) is non-negative but for the integration error";
   EXPECT_LE(tr.residual_max, 1e-3);
 }
 

@@ -1,0 +1,291 @@
+// [material] or [material.NAME], the materials of walls, and the pair blocks [BLOCK.A.B] / [BLOCK.A.wall.W]
+// that override the run's default law parameters for one unordered pair of materials (docs/physics.md
+// section 7). Their section names are chosen by the user, so the schema learns them from the keys given
+// (dynamic_sections) before the parse.
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <set>
+#include <sstream>
+
+#include "core/ConfigRead.hpp"
+#include "core/ConfigSchema.hpp"
+
+namespace rondel {
+
+namespace po = boost::program_options;
+
+namespace {
+
+std::vector<std::string> split_dots(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  for (std::size_t dot; (dot = s.find('.', start)) != std::string::npos; start = dot + 1)
+    out.push_back(s.substr(start, dot - start));
+  out.push_back(s.substr(start));
+  return out;
+}
+
+const LawBlock* find_block(const LawCatalog& laws, const std::string& section) {
+  for (const LawBlock* b : laws.blocks())
+    if (section == b->section) return b;
+  return nullptr;
+}
+
+void add_material_keys(po::options_description& d, const std::string& prefix, bool named) {
+  const std::string p = prefix + ".";
+  auto key = [&p](const char* k) { return p + k; };
+  if (named)
+    d.add_options()(key("density").c_str(), po::value<double>(), "[kg/m^3] density (required)");
+  else
+    d.add_options()(key("density").c_str(), po::value<double>()->default_value(2650.0, "2650"), "[kg/m^3] density");
+  d.add_options()(key("thickness").c_str(), po::value<double>()->default_value(1.0, "1"),
+                  "[m] disc thickness t (forces and energies are per t; the same for every material)")(
+      key("body").c_str(), po::value<std::string>()->default_value("disc"),
+      "[-] disc (m = rho pi R^2 t, I = m R^2/2) | sphere (m = 4/3 pi rho R^3, I = 2/5 m R^2)")(
+      key("youngs_modulus").c_str(), po::value<double>(),
+      "[Pa] Young's modulus E (required with contact.normal = hertz)")(
+      key("poisson_ratio").c_str(), po::value<double>(),
+      "[-] Poisson's ratio nu, in (-1, 0.5) (required with contact.normal = hertz)");
+}
+
+void add_pair_keys(po::options_description& d, const LawCatalog& laws, const std::string& section) {
+  const std::string block = section.substr(0, section.find('.'));
+  if (block == "contact") {
+    d.add_options()((section + ".rolling").c_str(), po::value<bool>(),
+                    "[-] false: no rolling resistance at this pair (rolling = none here)");
+    return;
+  }
+  for (const ParamSpec& p : find_block(laws, block)->params) {
+    const std::string help =
+        std::string("[").append(p.unit).append("] ").append(p.help).append(", ").append(p.range.text());
+    d.add_options()((section + "." + p.key).c_str(), po::value<double>(), help.c_str());
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> ini_keys(const std::string& ini_text) {
+  std::vector<std::string> out;
+  std::istringstream in(ini_text);
+  std::string section, line;
+  while (std::getline(in, line)) {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#' || line[first] == ';') continue;
+    line = line.substr(first);
+    if (line[0] == '[') {
+      section = line.substr(1, line.find(']') - 1);
+      continue;
+    }
+    const auto eq = line.find('=');
+    if (eq == std::string::npos) continue;
+    std::string key = line.substr(0, eq);
+    key.erase(key.find_last_not_of(" \t") + 1);
+    out.push_back(section.empty() ? key : section + "." + key);
+  }
+  return out;
+}
+
+std::vector<std::string> argument_keys(const std::vector<std::string>& args) {
+  std::vector<std::string> out;
+  for (const std::string& a : args)
+    if (a.rfind("--", 0) == 0) out.push_back(a.substr(2, a.find('=') - 2));
+  return out;
+}
+
+DynamicSections dynamic_sections(const LawCatalog& laws, const std::vector<std::string>& full_keys) {
+  std::set<std::string> materials, pairs;
+  for (const std::string& key : full_keys) {
+    const auto parts = split_dots(key);
+    if (parts.size() == 3 && parts[0] == "material") materials.insert(parts[1]);
+    const bool block = parts[0] == "contact" || find_block(laws, parts[0]);
+    if (block && parts.size() == 4) pairs.insert(parts[0] + "." + parts[1] + "." + parts[2]);
+    if (block && parts.size() == 5 && parts[2] == "wall") pairs.insert(parts[0] + "." + parts[1] + ".wall." + parts[3]);
+  }
+  return {{materials.begin(), materials.end()}, {pairs.begin(), pairs.end()}};
+}
+
+po::options_description config_schema(const LawCatalog& laws, const DynamicSections& dynamic, bool help) {
+  po::options_description all = config_schema(laws);
+  if (help) {
+    po::options_description m(
+        "[material.NAME] one material of several (instead of [material]; NAME: letters, "
+        "digits, _; materials are numbered in name order)");
+    add_material_keys(m, "material.NAME", true);
+    po::options_description p(
+        "[BLOCK.A.B] disc-disc and [BLOCK.A.wall.W] disc-wall parameters of one unordered material pair: any key "
+        "of the selected law's block BLOCK, replacing the default (e.g. [linear.glass.steel] k_n = 2e6); "
+        "[contact.A.B] and [contact.A.wall.W] hold the key below");
+    add_pair_keys(p, laws, "contact.A.B");
+    all.add(m).add(p);
+    return all;
+  }
+  for (const std::string& name : dynamic.materials) {
+    po::options_description m("[material." + name + "]");
+    add_material_keys(m, "material." + name, true);
+    all.add(m);
+  }
+  for (const std::string& section : dynamic.pairs) {
+    po::options_description p("[" + section + "]");
+    add_pair_keys(p, laws, section);
+    all.add(p);
+  }
+  return all;
+}
+
+namespace config {
+
+namespace {
+
+Material read_material(const Reader& r, const std::string& prefix, const std::string& name) {
+  Material m;
+  m.name = name;
+  const std::string density = prefix + ".density";
+  r.required(density, " (every material has a density)");
+  positive(r, density);
+  positive(r, prefix + ".thickness");
+  m.density = r.get<double>(density);
+  m.thickness = r.get<double>(prefix + ".thickness");
+  const std::string body = r.get<std::string>(prefix + ".body");
+  check(body == "disc" || body == "sphere", prefix + ".body", "disc | sphere", body);
+  m.body = body == "disc" ? Material::Body::disc : Material::Body::sphere;
+  if (r.vm.count(prefix + ".youngs_modulus")) {
+    positive(r, prefix + ".youngs_modulus");
+    m.youngs_modulus = r.get<double>(prefix + ".youngs_modulus");
+  }
+  if (r.vm.count(prefix + ".poisson_ratio")) {
+    m.poisson_ratio = r.get<double>(prefix + ".poisson_ratio");
+    check(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5, prefix + ".poisson_ratio", "must be in (-1, 0.5)",
+          num(m.poisson_ratio));
+  }
+  return m;
+}
+
+// The Hertz-Mindlin laws need E and nu of every material; mindlin needs the hertz normal law (its beta).
+void check_elastic(const Reader& r, const Config& c, bool named) {
+  if (c.tangential_law == "mindlin" && c.normal_law != "hertz")
+    throw ConfigError(
+        "key 'contact.tangential' = mindlin needs contact.normal = hertz (its damping and stiffness "
+        "come from the Hertz contact)");
+  if (c.normal_law != "hertz") return;
+  for (const Material& m : c.materials) {
+    const std::string prefix = named ? "material." + m.name : std::string("material");
+    for (const char* k : {".youngs_modulus", ".poisson_ratio"})
+      if (!r.vm.count(prefix + k))
+        throw ConfigError("missing required key '" + prefix + k + "' (contact.normal = hertz)");
+  }
+}
+
+int material_named(const Config& c, const std::string& name, const std::string& key) {
+  const int i = material_index(c.materials, name);
+  if (i >= 0) return i;
+  std::string known;
+  for (const Material& m : c.materials) known += (known.empty() ? "" : ", ") + m.name;
+  throw ConfigError((key[0] == '[' ? "section " + key : "key '" + key + "'") + " names the material '" + name +
+                    "', which is not defined (materials: " + known + ")");
+}
+
+// walls.material (every wall) and walls.materials ('side:NAME ...', box walls).
+void read_wall_materials(const Reader& r, Config& c) {
+  const std::string all = r.get<std::string>("walls.material");
+  const int base = all.empty() ? 0 : material_named(c, all, "walls.material");
+  for (Wall& w : c.walls) w.material = base;
+  std::istringstream in(r.get<std::string>("walls.materials"));
+  static const char* kSides[4] = {"bottom", "left", "right", "top"};
+  for (std::string spec; in >> spec;) {
+    const auto colon = spec.find(':');
+    if (colon == std::string::npos) throw ConfigError("key 'walls.materials': '" + spec + "' is not 'side:NAME'");
+    const std::string side = spec.substr(0, colon);
+    bool found = false;
+    for (Wall& w : c.walls)
+      if (w.box_side >= 0 && side == kSides[w.box_side])
+        w.material = material_named(c, spec.substr(colon + 1), "walls.materials"), found = true;
+    if (!found) throw ConfigError("key 'walls.materials': '" + side + "' is not a side listed in walls.box");
+  }
+}
+
+// The parameters of `section` ("BLOCK.A.B" or "BLOCK.A.wall.W") given in the INI or on the command line.
+void read_pair_block(const LawCatalog& laws, const Reader& r, const std::string& section, ContactParams& p) {
+  const std::string block = section.substr(0, section.find('.'));
+  if (block == "contact") {
+    if (r.vm.count(section + ".rolling")) p.rolling = r.get<bool>(section + ".rolling");
+    return;
+  }
+  int damping = 0;
+  for (const ParamSpec& spec : find_block(laws, block)->params) {
+    const std::string key = section + "." + spec.key;
+    if (!r.vm.count(key)) continue;
+    const double v = r.get<double>(key);
+    in_range(v, spec.range, key);
+    p.*spec.target = v;
+    if (block == "linear" && std::string(spec.key) != "k_n") {
+      ++damping;  // one damping key replaces the default's: the others are reset
+      if (std::string(spec.key) != "zeta") p.zeta_n = 0.0;
+      if (std::string(spec.key) != "c_n") p.c_n_fixed = -1.0;
+      if (std::string(spec.key) != "e") p.e_n = -1.0;
+    }
+  }
+  if (damping > 1) throw ConfigError("section [" + section + "]: give at most one of zeta, c_n, e");
+}
+
+}  // namespace
+
+void read_materials(const Reader& r, const DynamicSections& dynamic, Config& c) {
+  const bool named = !dynamic.materials.empty();
+  if (named) {
+    for (const char* k : {"material.density", "material.thickness", "material.body", "material.youngs_modulus",
+                          "material.poisson_ratio"})
+      if (r.given(k))
+        throw ConfigError(std::string("key '") + k +
+                          "': give either the single [material] section or [material.NAME] sections, not both");
+    for (const std::string& name : dynamic.materials) {
+      const bool ok = !name.empty() && name != "wall" && std::all_of(name.begin(), name.end(), [](char ch) {
+        return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
+      });
+      if (!ok)
+        throw ConfigError("section [material." + name + "]: a material name is letters, digits and _ (not 'wall')");
+      c.materials.push_back(read_material(r, "material." + name, name));
+    }
+  } else {
+    c.materials.push_back(read_material(r, "material", "default"));
+  }
+  for (const Material& m : c.materials)
+    if (m.thickness != c.materials.front().thickness)
+      throw ConfigError("key 'material." + m.name + ".thickness' = " + num(m.thickness) +
+                        ": every material has the thickness of the first (" + num(c.materials.front().thickness) +
+                        "), the thickness the stresses are per");
+  c.density = c.materials.front().density;
+  c.thickness = c.materials.front().thickness;
+}
+
+void read_pairs(const LawCatalog& laws, const Reader& r, const DynamicSections& dynamic, Config& c) {
+  check_elastic(r, c, !dynamic.materials.empty());
+  read_wall_materials(r, c);
+  const std::size_t n = c.materials.size();
+  const ContactParams disc = c.params.pair(0, 0), wall = c.params.wall(0);
+  c.params = ContactParamTable(n);
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = 0; b < n; ++b) c.params.pair(a, b) = disc, c.params.wall(a, b) = wall;
+  std::set<std::string> seen;  // "BLOCK|a|b|wall" of every block read, to refuse a pair given both ways
+  for (const std::string& section : dynamic.pairs) {
+    const auto parts = split_dots(section);
+    const bool at_wall = parts.size() == 4;
+    const std::string first = "[" + section + "]";
+    const auto a = static_cast<std::size_t>(material_named(c, parts[1], first));
+    const auto b = static_cast<std::size_t>(material_named(c, parts[at_wall ? 3 : 2], first));
+    const std::string id = parts[0] + "|" + std::to_string(std::min(a, b)) + "|" + std::to_string(std::max(a, b));
+    if (!at_wall && !seen.insert(id).second)
+      throw ConfigError("section [" + section + "]: the pair is given twice (a pair is unordered: [" + parts[0] + "." +
+                        parts[2] + "." + parts[1] + "] is the same)");
+    if (at_wall) {
+      read_pair_block(laws, r, section, c.params.wall(a, b));
+    } else {
+      read_pair_block(laws, r, section, c.params.pair(a, b));
+      c.params.pair(b, a) = c.params.pair(a, b);
+    }
+  }
+}
+
+}  // namespace config
+
+}  // namespace rondel
