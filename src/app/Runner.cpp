@@ -208,8 +208,8 @@ void Runner::finish(std::int64_t first, std::int64_t n_discs, const PhaseTimes& 
     };
     sum.collectives_per_step = per_step(c.collectives);
     sum.messages_per_step = per_step(c.messages);
-    s << "; per step and rank " << fmt(sum.collectives_per_step, 3) << " collectives, "
-      << fmt(sum.messages_per_step, 3) << " messages";
+    s << "; per step and rank " << fmt(sum.collectives_per_step, 3) << " collectives, " << fmt(sum.messages_per_step, 3)
+      << " messages";
   }
   files_.log(s.str());
   const std::string phases = phases_.line_since(at_start) + " (rank 0)";
@@ -256,7 +256,8 @@ std::string Runner::summary_json(const PhaseTimes& at_start) const {
     << ",\n  \"disc_steps_per_second\": " << num(m.disc_steps_per_second) << ",\n  \"dt\": " << num(m.dt)
     << ",\n  \"critical_dt\": " << num(m.critical.dt) << ",\n  \"critical_mode\": " << str(m.critical.mode)
     << ",\n  \"critical_pair\": " << str(m.critical.pair) << ",\n  \"ledger_residual\": " << num(m.ledger_residual)
-    << ",\n  \"neighbour_builds\": " << m.neighbour_builds << ",\n  \"collectives_per_step\": " << num(m.collectives_per_step)
+    << ",\n  \"neighbour_builds\": " << m.neighbour_builds
+    << ",\n  \"collectives_per_step\": " << num(m.collectives_per_step)
     << ",\n  \"messages_per_step\": " << num(m.messages_per_step) << ",\n  \"phase_seconds_rank0\": {";
   for (int p = 0; p < PhaseTimes::count; ++p) {
     const auto phase = static_cast<PhaseTimes::Phase>(p);
