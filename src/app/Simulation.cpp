@@ -320,7 +320,10 @@ void Simulation::step() {
   // 1. Half kick and drift of owned discs (wrapping into the periodic box); the drift books gravity's work.
   const double W_g = Integrator::half_kick_drift(discs_, config_.domain, dt_, config_.gravity);
   phases_.lap(PhaseTimes::integrate);
-  const double moved = neighbours_.max_displacement(discs_, config_.domain);
+  double moved = neighbours_.max_displacement(discs_, config_.domain);
+  // A position gone NaN or inf is this rank's error, agreed at the next reduction (always before a rebuild
+  // could migrate the disc); the reduction sees it as an infinite displacement.
+  if (!std::isfinite(moved) && !pending_error_) pending_error_ = motion_error(moved);
   phases_.lap(PhaseTimes::neighbour);
   // 2. The step's one reduction (docs/scaling.md), when due: with controlled walls every step, before they
   //    steer from the last step's exact loads; otherwise when the motion bound, a balance check or the
@@ -331,10 +334,19 @@ void Simulation::step() {
   phases_.lap(PhaseTimes::communication);
   if (controlled_walls_) boundaries_.steer(walls_, config_.domain, config_.thickness, dt_);
   for (auto& w : walls_) w.move(dt_);
-  if (rough_walls_) Boundaries::move_glued(discs_, walls_, config_.domain, dt_);
+  if (rough_walls_) {
+    // Glued discs move after the displacement was measured: this step's wall motion is added (the same on
+    // every rank), as the old order (measure after moving them) had it.
+    Boundaries::move_glued(discs_, walls_, config_.domain, dt_);
+    double v_wall = 0.0;
+    for (const Wall& w : walls_) v_wall = std::max(v_wall, std::sqrt(dot(w.velocity, w.velocity)));
+    disp += v_wall * dt_, moved += v_wall * dt_;
+  }
   phases_.lap(PhaseTimes::integrate);
   if (!reduced && neighbours_.needs_rebuild(predicted_ / 0.9, walls_)) disp = reduce(moved), reduced = true;
-  if (!reduced && moved > 0.5 * neighbours_.skin() && !pending_error_) pending_error_ = motion_error(moved);
+  // Without a reduction, this rank's own discs (with the walls' motion) must not need a new list: if the
+  // motion bound was wrong, that is an error rather than a missed contact.
+  if (!reduced && !pending_error_ && neighbours_.needs_rebuild(moved, walls_)) pending_error_ = motion_error(moved);
   phases_.lap(PhaseTimes::communication);
   // 3. Rebuild the neighbour list when a disc (global max) has moved more than half the skin.
   const bool repartitioned = rebalance_due_;
@@ -428,6 +440,7 @@ double Simulation::reduce(double moved) {
 std::pair<double, double> Simulation::motion_bounds() const {
   double v2 = 0.0, a2 = 0.0;
   for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
+    if (discs_.flags[i] & kFlagFixed) continue;  // prescribed: moved by its wall (the walls' term)
     const Vec2 v = discs_.velocity[i], a = (1.0 / discs_.mass[i]) * discs_.force[i];
     v2 = std::max(v2, dot(v, v));
     a2 = std::max(a2, dot(a, a));
@@ -461,7 +474,8 @@ std::exception_ptr Simulation::motion_error(double moved) const {
   return std::make_exception_ptr(InstabilityError(
       "step " + std::to_string(step_ + 1) + ": a disc moved " + fmt(moved) +
       " m since the last neighbour build, more than half the skin (" + fmt(0.5 * neighbours_.skin()) +
-      " m), between two displacement checks: its motion outgrew the bound the checks are spaced by. Set "
+      " m, or with the walls' motion more than the skin), between two displacement checks, or its position is "
+      "not finite: its motion outgrew the bound the checks are spaced by. Set "
       "parallel.check_every = 1 (a check every step), or lower run.dt if the run became unstable"));
 }
 

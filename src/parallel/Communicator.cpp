@@ -75,24 +75,21 @@ double Communicator::exact_sum(ExactSum local) const {
 }
 
 std::vector<ByteBuffer> Communicator::all_to_all(const std::vector<ByteBuffer>& out) const {
-  std::vector<int> send_counts(size_), recv_counts(size_), send_displs(size_), recv_displs(size_);
-  for (int r = 0; r < size_; ++r) send_counts[r] = static_cast<int>(out[r].bytes.size());
+  // 64-bit counts, then the data point to point (in 1 GiB pieces) with the ranks that send or receive any.
+  std::vector<std::uint64_t> send_counts(static_cast<std::size_t>(size_)), recv_counts(static_cast<std::size_t>(size_));
+  for (int r = 0; r < size_; ++r) send_counts[r] = out[r].bytes.size();
   ++stats_.collectives;
-  MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm_);
-  std::vector<char> send, recv;
+  MPI_Alltoall(send_counts.data(), 1, MPI_UINT64_T, recv_counts.data(), 1, MPI_UINT64_T, comm_);
+  std::vector<int> to, from;
+  std::vector<ByteBuffer> sends;
+  std::vector<std::size_t> sizes;
   for (int r = 0; r < size_; ++r) {
-    send_displs[r] = static_cast<int>(send.size());
-    send.insert(send.end(), out[r].bytes.begin(), out[r].bytes.end());
+    if (send_counts[r] > 0) to.push_back(r), sends.push_back(out[r]);
+    if (recv_counts[r] > 0) from.push_back(r), sizes.push_back(recv_counts[r]);
   }
-  int total = 0;
-  for (int r = 0; r < size_; ++r) recv_displs[r] = total, total += recv_counts[r];
-  recv.resize(static_cast<std::size_t>(total));
-  ++stats_.collectives;
-  MPI_Alltoallv(send.data(), send_counts.data(), send_displs.data(), MPI_BYTE, recv.data(), recv_counts.data(),
-                recv_displs.data(), MPI_BYTE, comm_);
+  auto received = exchange(to, sends, from, sizes);
   std::vector<ByteBuffer> in(static_cast<std::size_t>(size_));
-  for (int r = 0; r < size_; ++r)
-    in[r].bytes.assign(recv.begin() + recv_displs[r], recv.begin() + recv_displs[r] + recv_counts[r]);
+  for (std::size_t k = 0; k < from.size(); ++k) in[from[k]] = std::move(received[k]);
   return in;
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 #include <set>
+#include <stdexcept>
 
 #include "core/Errors.hpp"
 #include "parallel/Partitioner.hpp"
@@ -163,7 +164,9 @@ void Decomposition::clamp_into(std::vector<std::pair<std::uint64_t, std::uint64_
   // A disc that has drifted into a neighbour's cell since the last migration is counted in this range's
   // first or last cell, so the walk of weighted_cuts() stays inside the range.
   const std::uint64_t below_lo = curve_.count_below(lo), below_hi = curve_.count_below(hi);
-  if (cells.empty() || below_hi == below_lo) return;
+  if (cells.empty()) return;
+  // A rank without cells holds no discs after the migration that follows every change of map.
+  if (below_hi == below_lo) throw std::logic_error("Decomposition: discs on a rank whose key range holds no cell");
   const std::uint64_t first = curve_.key_of_cell_number(below_lo), last = curve_.key_of_cell_number(below_hi - 1);
   std::vector<std::pair<std::uint64_t, std::uint64_t>> out;
   for (auto [key, extra] : cells) {

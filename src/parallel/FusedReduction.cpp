@@ -3,6 +3,7 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace rondel {
@@ -28,7 +29,8 @@ void fused_op(void* in, void* inout, int* len, MPI_Datatype* type) {
 
 std::size_t FusedReduction::max(double non_negative) {
   std::int64_t bits = 0;
-  const double v = non_negative > 0.0 ? non_negative : 0.0;  // NaN and -0 become 0; NaN is caught elsewhere
+  // -0 and negatives become 0, NaN becomes inf (a displacement that is not finite must trigger everything).
+  const double v = std::isnan(non_negative) ? INFINITY : (non_negative > 0.0 ? non_negative : 0.0);
   std::memcpy(&bits, &v, sizeof bits);
   max_.push_back(bits);
   return max_.size() - 1;

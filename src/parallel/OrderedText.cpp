@@ -24,8 +24,11 @@ std::string mpi_error(int code) {
 
 void write_ordered_text(const std::string& path, const std::string& header, const CanonicalOrder& order,
                         const std::function<void(std::size_t, std::string&)>& line, const Communicator& comm) {
-  std::string text = comm.root() ? header : std::string();
-  for (std::size_t k = 0; k < order.count(); ++k) line(k, text);
+  std::string text;
+  agree(comm, [&] {
+    text = comm.root() ? header : std::string();
+    for (std::size_t k = 0; k < order.count(); ++k) line(k, text);
+  });
   std::uint64_t length = text.size(), offset = 0, pieces = (length + kPiece - 1) / kPiece;
   if (comm.size() > 1) {
     comm.count_collective();
@@ -39,7 +42,12 @@ void write_ordered_text(const std::string& path, const std::string& header, cons
   std::exception_ptr error;
   if (rc != MPI_SUCCESS)
     error = std::make_exception_ptr(IoError("cannot open '" + path + "' for writing: " + mpi_error(rc)));
-  settle(comm, error);  // every rank opened it, or every rank throws
+  try {
+    settle(comm, error);  // every rank opened it, or every rank throws
+  } catch (...) {
+    if (comm.root()) std::remove(path.c_str());
+    throw;
+  }
   rc = MPI_File_set_size(file, 0);
   comm.count_collective();
   // Every rank makes the same number of collective writes (an empty one when its block is done).
