@@ -180,7 +180,8 @@ FileRows time_reads(const std::string& path, std::int64_t step, const rondel::Co
       rondel::DiscStore discs;
       rondel::read_state_discs(path, discs, comm);
       const rondel::LawSelection laws{"linear", "coulomb", "wang"};
-      rondel::ContactTable pairs = rondel::make_contact_table(laws), walls = rondel::make_contact_table(laws);
+      rondel::ContactTable pairs = rondel::make_contact_table(laws, false),
+                           walls = rondel::make_contact_table(laws, true);
       rondel::read_state_rows(path, pairs, walls, comm);
       comm.barrier();
       read.runs.push_back(comm.max(seconds_since(t0)));

@@ -16,7 +16,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from rondel import (EXIT_FAILED, FORMAT_VERSION, RondelFileError, checksum, decode,  # noqa: E402,F401
+from rondel import (EXIT_FAILED, FORMAT_VERSION, READABLE_VERSIONS, RondelFileError, checksum, decode,  # noqa: E402,F401
                     open_file)
 from rondel.cli import ArgumentParser, run_tool  # noqa: E402
 
@@ -72,8 +72,9 @@ def report(args):
     f = open_file(args.file, allow_incomplete=True, allow_version=True)
     print(f"{f.path}: Rondel {f.kind}, format version {f.format_version}")
     status = 0
-    if f.format_version != FORMAT_VERSION:
-        print(f"  WARNING: format version {f.format_version}; this tool knows version {FORMAT_VERSION}")
+    if f.format_version not in READABLE_VERSIONS:
+        print(f"  WARNING: format version {f.format_version}; this tool knows versions "
+              f"{READABLE_VERSIONS[0]} to {READABLE_VERSIONS[-1]}")
         status = EXIT_FAILED
     if not f.complete:
         print("  WARNING: incomplete (no complete = 1 attribute): the writer was interrupted; Rondel refuses it")

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/RowGeometry.hpp"
 #include "core/ExactSum.hpp"
 
 namespace rondel {
@@ -24,8 +25,8 @@ bool Boundaries::any_rough(const WallSet& walls) {
   return std::any_of(walls.begin(), walls.end(), [](const Wall& w) { return w.rough; });
 }
 
-WallLoads Boundaries::local_loads(const WallSet& walls, const DiscStore& discs, const ContactTable& pairs,
-                                  const ContactTable& wall_rows) {
+WallLoads Boundaries::local_loads(const WallSet& walls, const DiscStore& discs, const Domain& domain,
+                                  const ContactTable& pairs, const ContactTable& wall_rows) {
   const std::size_t n_owned = discs.n_owned();
   WallLoads loads;
   loads.sums.resize(walls.size());
@@ -38,7 +39,8 @@ WallLoads Boundaries::local_loads(const WallSet& walls, const DiscStore& discs, 
       const std::uint32_t a = discs.flags[pairs.i1[r]], b = discs.flags[pairs.i2[r]];
       if (is_attached(a) == is_attached(b)) continue;  // free-free, or two glued discs (of different walls)
       const std::size_t w = attached_wall(is_attached(a) ? a : b);
-      const Vec2 on_wall = is_attached(a) ? pairs.f1[r] : -pairs.f1[r];
+      const Vec2 f1 = RowGeometry::pair_force(discs, domain, pairs, r);
+      const Vec2 on_wall = is_attached(a) ? f1 : -f1;
       sums[w][0] += on_wall.x;
       sums[w][1] += on_wall.y;
       sums[w][2] += -dot(on_wall, walls[w].normal);
@@ -72,10 +74,10 @@ void Boundaries::apply(WallSet& walls, const FusedReduction& r, const std::vecto
   }
 }
 
-void Boundaries::measure(WallSet& walls, const DiscStore& discs, const ContactTable& pairs,
+void Boundaries::measure(WallSet& walls, const DiscStore& discs, const Domain& domain, const ContactTable& pairs,
                          const ContactTable& wall_rows, const Communicator& comm) const {
   FusedReduction r;
-  const auto slots = local_loads(walls, discs, pairs, wall_rows).add_to(r);
+  const auto slots = local_loads(walls, discs, domain, pairs, wall_rows).add_to(r);
   r.reduce(comm);
   apply(walls, r, slots);
 }

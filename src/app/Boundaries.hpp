@@ -51,12 +51,12 @@ class Boundaries {
   static bool any_rough(const WallSet& walls);
   // A wall's load: its own contacts plus, for a rough wall, the contacts of free discs with the discs glued
   // to it (the pair rows with exactly one glued disc), each counted once over the ranks (booked rows).
-  void measure(WallSet& walls, const DiscStore& discs, const ContactTable& pairs, const ContactTable& wall_rows,
-               const Communicator& comm) const;
+  void measure(WallSet& walls, const DiscStore& discs, const Domain& domain, const ContactTable& pairs,
+               const ContactTable& wall_rows, const Communicator& comm) const;
   // The same in two halves, so that the sums ride in the step's fused reduction: local_loads() then, after
   // the reduction, apply() with the slots that add_to() returned.
-  static WallLoads local_loads(const WallSet& walls, const DiscStore& discs, const ContactTable& pairs,
-                               const ContactTable& wall_rows);
+  static WallLoads local_loads(const WallSet& walls, const DiscStore& discs, const Domain& domain,
+                               const ContactTable& pairs, const ContactTable& wall_rows);
   static void apply(WallSet& walls, const FusedReduction& r, const std::vector<std::array<std::size_t, 4>>& slots);
   void steer(WallSet& walls, const Domain& domain, double thickness, double dt) const;
   static BoxGeometry box(const WallSet& walls, const Domain& domain);
@@ -65,7 +65,7 @@ class Boundaries {
   // `depth` of a rough wall (the first one) is glued to it: it moves with that wall, does not rotate and is
   // integrated no more. move_glued(): the glued discs' step with their walls' velocities.
   // glued_work_half(): half of the trapezoid of the walls' work on the free discs through the glued ones,
-  // -F.v dt / 2 summed over the owned glued discs (F: the free discs' force on them, ForceAssembly).
+  // -F.v dt / 2 summed over the owned glued discs (F: the free discs' force on them, their contact sum).
   // glued_counts(): owned discs glued to each wall; one entry more counts those glued to a wall index
   // beyond `n_walls` (a damaged file).
   static void glue(DiscStore& discs, const WallSet& walls, double depth);

@@ -91,7 +91,7 @@ void Measures::love_weber(MeasuresRow& m, const DiscStore& discs, const ContactT
   for (std::size_t r = 0; r < pairs.size(); ++r) {
     if (static_cast<std::size_t>(pairs.i1[r]) >= n_owned || !(pairs.F_n[r] > 0.0)) continue;
     const Vec2 d = domain_.separation(discs.position[pairs.i1[r]], discs.position[pairs.i2[r]]);
-    const Vec2 f = pairs.f1[r];
+    const Vec2 f = RowGeometry::pair_force(discs, domain_, pairs, static_cast<std::size_t>(r));
     xx += d.x * f.x, yy += d.y * f.y, xy += d.x * f.y, yx += d.y * f.x;
   }
   for (std::size_t r = 0; r < wall_rows.size(); ++r) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "core/ContactTable.hpp"
 #include "core/DiscStore.hpp"
 #include "core/Domain.hpp"
 #include "core/Wall.hpp"
@@ -18,6 +19,14 @@ struct RowGeometry {
     const Vec2 d = domain.separation(discs.position[i], discs.position[j]);
     return disc_disc_kinematics(d, std::sqrt(dot(d, d)), discs.radius[i], discs.radius[j], discs.velocity[i],
                                 discs.velocity[j], discs.omega[i], discs.omega[j]);
+  }
+  // The force of pair row r's last evaluation on its disc 1, f1 = F_t t - F_n n (disc 2 gets -f1), formed
+  // as the kernel forms it: the same bits while the discs stay where the kernel saw them (the kernel keeps
+  // only F_n and F_t of a pair row).
+  static Vec2 pair_force(const DiscStore& discs, const Domain& domain, const ContactTable& pairs, std::size_t r) {
+    const ContactKinematics k =
+        pair(discs, domain, static_cast<std::size_t>(pairs.i1[r]), static_cast<std::size_t>(pairs.i2[r]));
+    return pairs.F_t[r] * k.t - pairs.F_n[r] * k.n;
   }
   // Disc i against a wall.
   static ContactKinematics wall(const DiscStore& discs, const Wall& w, std::size_t i) {

@@ -34,8 +34,8 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
   agree(comm_, [&] {
     laws_ = law_selection(config_);
     kernel_ = select_kernel(laws_);
-    pairs_ = make_contact_table(laws_);
-    wall_rows_ = make_contact_table(laws_);
+    pairs_ = make_contact_table(laws_, false);
+    wall_rows_ = make_contact_table(laws_, true);
     walls_ = config_.walls;
     controlled_walls_ = Boundaries::controlled(walls_);
     rough_walls_ = Boundaries::any_rough(walls_);
@@ -61,16 +61,18 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
   if (restart) {
     // Forces, history and ledger come from the file (no recomputation before the first kick); the first
     // step's reduction sums the walls' loads from the rows read, as the interrupted run's step would have.
-    if (controlled_walls_) loads_ = Boundaries::local_loads(walls_, discs_, pairs_, wall_rows_);
+    if (controlled_walls_) loads_ = Boundaries::local_loads(walls_, discs_, config_.domain, pairs_, wall_rows_);
     return;
   }
   // Forces at t = 0 for the first half kick: the kernel at the initial state with a zero increment,
   // committing no history and booking no work (KernelOps::initial).
-  kernel_.initial(KernelContext{discs_, config_.domain, walls_, config_.params, 0.0}, pairs_, wall_rows_);
-  assembly_.assemble(discs_, BodyForce{config_.gravity}, pairs_, wall_rows_);
+  ForceAssembly::begin(discs_, BodyForce{config_.gravity});
+  kernel_.initial(KernelContext{discs_, config_.domain, walls_, config_.params, 0.0}, pairs_, wall_rows_,
+                  ForceSums::of(discs_));
+  assembly_.finish(discs_);
   if (controlled_walls_) {
-    boundaries_.measure(walls_, discs_, pairs_, wall_rows_, comm_);
-    loads_ = Boundaries::local_loads(walls_, discs_, pairs_, wall_rows_);
+    boundaries_.measure(walls_, discs_, config_.domain, pairs_, wall_rows_, comm_);
+    loads_ = Boundaries::local_loads(walls_, discs_, config_.domain, pairs_, wall_rows_);
   }
   ledger_.start(kinetic_energy());
 }
@@ -267,9 +269,9 @@ void Simulation::resolve_time_step() {
 }
 
 void Simulation::check_initial_state() {
-  ContactTable pairs = make_contact_table(laws_), walls = make_contact_table(laws_);
+  ContactTable pairs = make_contact_table(laws_, false), walls = make_contact_table(laws_, true);
   NeighbourList probe(neighbours_.skin());
-  probe.build(discs_, config_.domain, walls_, config_.params, pairs, pairs, walls, walls);
+  probe.build(discs_, config_.domain, walls_, config_.params, pairs, walls);
   std::int64_t count = 0;
   double worst = 0.0;
   std::string where;
@@ -312,7 +314,7 @@ void Simulation::load_checkpoint(const std::string& path) {
   time_ = h.time;
   make_decomposition(false);
   // Discs read by file block go to the owners of an equal-cell cut (any rank), then to the weighted cut.
-  ContactTable no_pairs = make_contact_table(laws_), no_walls = make_contact_table(laws_);
+  ContactTable no_pairs = make_contact_table(laws_, false), no_walls = make_contact_table(laws_, true);
   exchange_.migrate(discs_, no_pairs, no_walls, *decomposition_, comm_, true);
   decomposition_->migrated();
   if (decomposition_->repartition(discs_, no_pairs)) {
@@ -347,7 +349,7 @@ DiagnosticsRow Simulation::diagnostics() {
 }
 
 MeasuresRow Simulation::measures(const ContactSummary& contacts) {
-  boundaries_.measure(walls_, discs_, pairs_, wall_rows_, comm_);
+  boundaries_.measure(walls_, discs_, config_.domain, pairs_, wall_rows_, comm_);
   return Measures(config_.domain, config_.thickness, comm_)
       .row(step_, time_, discs_, pairs_, wall_rows_, walls_, box0_, contacts);
 }

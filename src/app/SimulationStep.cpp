@@ -21,9 +21,8 @@ void Simulation::rebuild() {
   migrated_ += moved.sent;
   exchange_.build_ghosts(discs_, *decomposition_, comm_);
   phases_.lap(PhaseTimes::communication);
-  const ContactTable old_pairs = pairs_, old_walls = wall_rows_;
-  neighbours_.build(discs_, config_.domain, walls_, config_.params, old_pairs, pairs_, old_walls, wall_rows_);
-  assembly_.build(discs_, pairs_, wall_rows_);
+  neighbours_.build(discs_, config_.domain, walls_, config_.params, pairs_, wall_rows_);
+  assembly_.build(discs_);
   rebalance_due_ = false;
   base_disp_ = predicted_ = 0.0;
   phases_.lap(PhaseTimes::neighbour);
@@ -34,9 +33,11 @@ void Simulation::step() {
   const CommStats before = comm_.stats();
   stop_agreed_ = 0;
   // 1. Half kick and drift of owned discs (wrapping into the periodic box); the drift books gravity's work.
-  const double W_g = Integrator::half_kick_drift(discs_, config_.domain, dt_, config_.gravity);
-  phases_.lap(PhaseTimes::integrate);
-  double moved = neighbours_.max_displacement(discs_, config_.domain);
+  //    The same pass measures the largest displacement since the last neighbour build.
+  const Integrator::Drift drift =
+      Integrator::half_kick_drift(discs_, config_.domain, dt_, config_.gravity, neighbours_.positions_at_build());
+  const double W_g = drift.W_g;
+  double moved = drift.max_displacement;
   // A position gone NaN or inf is this rank's error, agreed at the next reduction (always before a rebuild
   // could migrate the disc); the reduction sees it as an infinite displacement.
   if (!std::isfinite(moved) && !pending_error_) pending_error_ = motion_error(moved);
@@ -72,21 +73,28 @@ void Simulation::step() {
     exchange_.update_ghosts(discs_, comm_);
     phases_.lap(PhaseTimes::communication);
   }
-  // 4. Body forces (gravity): the first term of each disc's sum in step 6.
-  const BodyForce body{config_.gravity};
-  // 5. Contact kernel over every row. An overlap beyond run.max_overlap is this rank's error until the next
-  //    reduction (or output) agrees on it; on one rank it stops the step at once.
+  // The wall's work on the glued discs with the last step's reaction forces, taken before the sums start anew
+  // (booked after the kernel's terms, as in step 6).
+  const double W_glued_last = rough_walls_ ? Boundaries::glued_work_half(discs_, dt_) : 0.0;
+  // 4. Body forces (gravity): the first term of each disc's sum.
+  ForceAssembly::begin(discs_, BodyForce{config_.gravity});
   LedgerStep work;
+  // 5. Contact kernel over every row, adding each row's terms to its discs' sums in ascending partner gid
+  //    (step 6). An overlap beyond run.max_overlap is this rank's error until the next reduction (or
+  //    output) agrees on it; on one rank it stops the step at once.
   kernel_.run(KernelContext{discs_, config_.domain, walls_, config_.params, dt_, config_.max_overlap}, pairs_,
-              wall_rows_, work);
+              wall_rows_, ForceSums::of(discs_), work);
   phases_.lap(PhaseTimes::force);
   if (work.worst_overlap > 0.0 && !pending_error_) pending_error_ = overlap_error(work);
   if (pending_error_ && comm_.size() == 1) std::rethrow_exception(pending_error_);
-  // 6. Per-disc sums in ascending partner gid, walls last.
-  if (rough_walls_) work.W_w += Boundaries::glued_work_half(discs_, dt_);  // the last step's reaction forces
-  assembly_.assemble(discs_, body, pairs_, wall_rows_);
-  if (rough_walls_) work.W_w += Boundaries::glued_work_half(discs_, dt_);  // this step's reaction forces
-  if (controlled_walls_) loads_ = Boundaries::local_loads(walls_, discs_, pairs_, wall_rows_);
+  // 6. The per-disc sums are complete (the kernel added the terms in ascending partner gid, walls last);
+  //    fixed discs are finished.
+  assembly_.finish(discs_);
+  if (rough_walls_) {
+    work.W_w += W_glued_last;
+    work.W_w += Boundaries::glued_work_half(discs_, dt_);  // this step's reaction forces
+  }
+  if (controlled_walls_) loads_ = Boundaries::local_loads(walls_, discs_, config_.domain, pairs_, wall_rows_);
   phases_.lap(PhaseTimes::force);
   // 7. Second half kick (diagnostics and output on their schedules: Runner).
   Integrator::half_kick(discs_, dt_);
@@ -168,7 +176,7 @@ void Simulation::settle_errors() {
   // Before any output: every rank's pending error is agreed (one small collective), and with controlled
   // walls their loads are those of this step, as a checkpoint or a measure expects.
   if (comm_.size() > 1) settle(comm_, pending_error_);
-  if (controlled_walls_) boundaries_.measure(walls_, discs_, pairs_, wall_rows_, comm_);
+  if (controlled_walls_) boundaries_.measure(walls_, discs_, config_.domain, pairs_, wall_rows_, comm_);
 }
 
 std::exception_ptr Simulation::overlap_error(const LedgerStep& work) const {

@@ -5,9 +5,16 @@
 
 namespace rondel {
 
-ContactTable::ContactTable(std::vector<std::string> slot_names, bool has_moment)
-    : slot(slot_names.size()), slot_names_(std::move(slot_names)), has_moment_(has_moment) {
+ContactTable::ContactTable(std::vector<std::string> slot_names, int couples, bool wall_rows)
+    : slot(slot_names.size()),
+      slot_names_(std::move(slot_names)),
+      couples_(static_cast<std::uint8_t>(couples)),
+      wall_rows_(wall_rows) {
   for (const auto& s : slot_names_) slot_columns_.push_back("history/" + s);
+}
+
+void ContactTable::reserve(std::size_t rows) {
+  for_each_column([rows](std::string_view, unsigned, auto& column) { column.reserve(rows); });
 }
 
 void ContactTable::clear() {
@@ -53,7 +60,8 @@ void ContactTable::sort_unique_by_key() {
   std::vector<std::size_t> order(size());
   for (std::size_t r = 0; r < order.size(); ++r) order[r] = r;
   std::stable_sort(order.begin(), order.end(), [this](std::size_t a, std::size_t b) { return key[a] < key[b]; });
-  ContactTable sorted(slot_names_, has_moment_);
+  ContactTable sorted = empty_like();
+  sorted.reserve(order.size());
   for (std::size_t k = 0; k < order.size(); ++k) {
     if (k > 0 && key[order[k]] == key[order[k - 1]]) continue;
     sorted.push_copy(*this, order[k]);

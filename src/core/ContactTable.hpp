@@ -28,7 +28,6 @@ enum ContactColumnUse : unsigned {
   kColumnInherit = 2u,     // copied by key from the old table when the table is rebuilt
   kColumnState = 4u,       // nonzero means the row carries state worth keeping (has_state)
   kColumnLocalIndex = 8u,  // a local disc or wall index: -1 in a copied or read row until it is rebuilt
-  kColumnScratch = 16u,    // rewritten by every force evaluation (torques); zero in a read row
 };
 
 // The value a column not carried by a record takes in a copied or read row: -1 for a local index (not
@@ -40,26 +39,37 @@ T unset_column_value(unsigned uses) {
 }
 
 // One row per candidate pair (within the interaction range plus skin), structure of arrays, rows in
-// ascending key order. History slots exist only for the laws selected (their names come from the laws),
-// the rolling couples only with a rolling law. The force columns hold this step's result for the per-disc
-// sums and the previous step's scalars for the trapezoidal work of the energy ledger.
+// ascending key order: the contact kernel adds each row's force to its discs' sums in row order, which is
+// the order of ascending partner gid for every disc (docs/design.md section 5). History slots exist only for
+// the laws selected (their names come from the laws), the rolling couples only with a rolling law: M1 alone
+// for a law whose couple on disc 2 is -M1 (every objective law), M1 and M2 for a law that gives each disc a
+// couple of its own. The scalars are those of the last evaluation: the state of the spring-sliders and the
+// previous step's values for the trapezoidal work of the energy ledger. Wall rows also keep the force on
+// the disc, f1, for the wall's work and load (a pair's force follows from F_n, F_t and the geometry).
 class ContactTable {
  public:
   ContactTable() = default;
-  ContactTable(std::vector<std::string> slot_names, bool has_moment);
+  // couples: the rolling couple columns, 0 (no rolling law), 1 (M1) or 2 (M1 and M2); wall_rows: a table of
+  // disc-wall rows (with the column f1).
+  ContactTable(std::vector<std::string> slot_names, int couples, bool wall_rows = false);
 
   std::vector<ContactKey> key;
   std::vector<std::int32_t> i1, i2;       // local disc indices (a wall row: i2 is the wall index)
   std::vector<std::int32_t> param;        // index into the parameter table
   std::vector<std::vector<double>> slot;  // history, slot[k][row]
   std::vector<double> F_n, F_t;           // scalars of the last evaluation
-  std::vector<double> M1, M2;             // rolling couples on disc 1 and 2 (only with a rolling law)
-  std::vector<Vec2> f1;                   // force on disc 1 (disc 2 gets -f1)
-  std::vector<double> tq1, tq2;           // torques on disc 1 and disc 2
+  std::vector<double> M1, M2;             // rolling couples on disc 1 and 2 (see couples())
+  std::vector<Vec2> f1;                   // force on disc 1 (wall rows only)
 
   std::size_t size() const { return key.size(); }
   const std::vector<std::string>& slot_names() const { return slot_names_; }
-  bool has_moment() const { return has_moment_; }
+  bool has_moment() const { return couples_ > 0; }
+  // The rolling couple columns: 0, 1 (M1; the couple on disc 2 is -M1) or 2 (M1 and M2).
+  int couples() const { return couples_; }
+  bool wall_rows() const { return wall_rows_; }
+  // An empty table with the same columns.
+  ContactTable empty_like() const { return ContactTable(slot_names_, couples_, wall_rows_); }
+  void reserve(std::size_t rows);
   void clear();
   std::size_t memory_bytes() const;
 
@@ -91,14 +101,11 @@ class ContactTable {
       visit(std::string_view(first.slot_columns_[k]), kKept, tables.slot[k]...);
     visit(std::string_view("F_n"), kKept, tables.F_n...);
     visit(std::string_view("F_t"), kKept, tables.F_t...);
-    if (first.has_moment_) {
-      visit(std::string_view("M1"), kKept, tables.M1...);
-      visit(std::string_view("M2"), kKept, tables.M2...);
-    }
-    // The last force only feeds the wall-work trapezoid: it is kept, but is no state by itself.
-    visit(std::string_view("f1"), kColumnRecord | kColumnInherit, tables.f1...);
-    visit(std::string_view("tq1"), kColumnScratch, tables.tq1...);
-    visit(std::string_view("tq2"), kColumnScratch, tables.tq2...);
+    if (first.couples_ > 0) visit(std::string_view("M1"), kKept, tables.M1...);
+    if (first.couples_ > 1) visit(std::string_view("M2"), kKept, tables.M2...);
+    // The last force only feeds the wall-work trapezoid and the wall's load: it is kept, but is no state by
+    // itself.
+    if (first.wall_rows_) visit(std::string_view("f1"), kColumnRecord | kColumnInherit, tables.f1...);
   }
   template <class Visitor>
   void for_each_column(Visitor&& visit) {
@@ -117,7 +124,8 @@ class ContactTable {
 
   std::vector<std::string> slot_names_;
   std::vector<std::string> slot_columns_;  // "history/<slot>", the slots' column names
-  bool has_moment_ = false;
+  std::uint8_t couples_ = 0;
+  bool wall_rows_ = false;
 };
 
 }  // namespace rondel

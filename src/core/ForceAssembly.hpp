@@ -3,30 +3,38 @@
 #include <vector>
 
 #include "core/BodyForce.hpp"
-#include "core/ContactTable.hpp"
 #include "core/DiscStore.hpp"
 #include "core/Vec2.hpp"
 
 namespace rondel {
 
-// Sums each owned disc's contact contributions in a fixed order: ascending partner gid, then walls by
-// wall id (docs/design.md section 4, step 6). The order is built once per neighbour-list build, so the sum does
-// not depend on storage order, rank count or when the list was rebuilt.
+// Where the contact kernel adds each row's force and torques: the discs' sums, indexed by local disc (owned
+// discs and ghosts; a ghost's entries are scratch that nothing reads).
+struct ForceSums {
+  Vec2* force;
+  double* torque;
+  static ForceSums of(DiscStore& discs) { return {discs.force.data(), discs.torque.data()}; }
+};
+
+// Each owned disc's force and torque are summed in a fixed order: the body force, then its contact terms in
+// ascending partner gid, then its walls by wall id (docs/design.md sections 4 and 5, step 6). The contact
+// kernel adds the contact terms in that order as it goes (rows are in ascending key order,
+// physics/ContactKernel.hpp); this class starts the sums and finishes them, so the result does not depend
+// on storage order, rank count or when the list was rebuilt.
 class ForceAssembly {
  public:
-  void build(const DiscStore& discs, const ContactTable& pairs, const ContactTable& wall_rows);
-  // Step 6: force = the body force (step 4, the first term of the sum) + the contributions, torque = the
-  // contributions. Fixed discs then get zero, except that a disc glued to a wall keeps its contact force (no
-  // gravity, no torque). The body force enters here rather than in a pass of its own: at 160,000 discs a
-  // separate pass writing every force and reading it back cost 7 % of the benchmark's step.
-  void assemble(DiscStore& discs, const BodyForce& body, const ContactTable& pairs,
-                const ContactTable& wall_rows) const;
+  // Once per neighbour-list build: remembers the owned fixed discs (their sums are finished specially).
+  void build(const DiscStore& discs);
+  // Before the kernel: force = the body force (step 4, the first term of each sum), torque = 0, for every
+  // owned disc; the ghosts' entries zero.
+  static void begin(DiscStore& discs, const BodyForce& body);
+  // After the kernel: a fixed disc does not move under its load, so it gets zero force and torque, except
+  // that a disc glued to a wall keeps its contact force (the reaction the wall carries, used by the energy
+  // ledger), without gravity.
+  void finish(DiscStore& discs) const;
 
  private:
-  enum Side : std::uint8_t { kAsDisc1 = 0, kAsDisc2 = 1, kWall = 2 };
-  std::vector<std::uint32_t> start_;
-  std::vector<std::uint32_t> row_;
-  std::vector<std::uint8_t> side_;
+  std::vector<std::uint32_t> fixed_;  // the owned fixed discs
 };
 
 }  // namespace rondel

@@ -1,24 +1,50 @@
 #include "core/Integrator.hpp"
 
+#include <cmath>
+
 namespace rondel {
 
-double Integrator::half_kick_drift(DiscStore& discs, const Domain& domain, double dt, Vec2 gravity) {
+namespace {
+// m = max(m, x), where a NaN x sticks (std::max would drop it).
+inline void note_max(double& m, double x) {
+  if (x > m || std::isnan(x)) m = x;
+}
+}  // namespace
+
+Integrator::Drift Integrator::half_kick_drift(DiscStore& discs, const Domain& domain, double dt, Vec2 gravity,
+                                              const std::vector<Vec2>& since) {
   const double h = 0.5 * dt;
-  double W_g = 0.0;
-  for (std::size_t i = 0; i < discs.n_owned(); ++i) {
-    if (discs.flags[i] & kFlagFixed) continue;
-    const double m = discs.mass[i];
-    Vec2& v = discs.velocity[i];
-    v.x += h * discs.force[i].x / m;
-    v.y += h * discs.force[i].y / m;
-    discs.omega[i] += h * discs.torque[i] / discs.inertia[i];
-    const Vec2 dx = dt * v;
-    discs.position[i] += dx;
-    discs.theta[i] += dt * discs.omega[i];
-    domain.wrap(discs.position[i]);
-    W_g += m * dot(gravity, dx);
+  const std::size_t n = discs.n_owned();
+  const bool measure = since.size() == n;
+  // Local copies and plain pointers: a store to a disc cannot make the compiler reload them.
+  const Domain box = domain;
+  const MinimumImage image(box);
+  const Vec2* const x0 = since.data();
+  const std::uint32_t* const flags = discs.flags.data();
+  const double *const mass = discs.mass.data(), *const inertia = discs.inertia.data();
+  const Vec2* const force = discs.force.data();
+  const double* const torque = discs.torque.data();
+  Vec2 *const position = discs.position.data(), *const velocity = discs.velocity.data();
+  double *const omega = discs.omega.data(), *const theta = discs.theta.data();
+  double W_g = 0.0, moved2 = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(flags[i] & kFlagFixed)) {
+      const double m = mass[i];
+      Vec2& v = velocity[i];
+      v.x += h * force[i].x / m;
+      v.y += h * force[i].y / m;
+      omega[i] += h * torque[i] / inertia[i];
+      const Vec2 dx = dt * v;
+      position[i] += dx;
+      theta[i] += dt * omega[i];
+      box.wrap(position[i]);
+      W_g += m * dot(gravity, dx);
+    }
+    // Fixed discs too: they move with their walls (Boundaries::move_glued).
+    if (measure) note_max(moved2, squared_displacement(image, x0[i], position[i]));
   }
-  return W_g;
+  // A position gone NaN (or inf) makes the displacement infinite: the step reports it (Simulation::step).
+  return {W_g, measure && !std::isnan(moved2) ? std::sqrt(moved2) : INFINITY};
 }
 
 void Integrator::half_kick(DiscStore& discs, double dt) {

@@ -40,8 +40,7 @@ long NeighbourList::bin_of(int cx, int cy) const {
 }
 
 void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet& walls, const ContactParamTable& params,
-                          const ContactTable& old_pairs, ContactTable& pairs, const ContactTable& old_walls,
-                          ContactTable& wall_rows) {
+                          ContactTable& pairs, ContactTable& wall_rows) {
   double R_max = 0.0;
   for (double R : discs.radius) R_max = std::max(R_max, R);
   bin(discs, domain, R_max);
@@ -76,16 +75,21 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
     }
   }
   std::sort(found.begin(), found.end(), [](const auto& x, const auto& y) { return std::get<0>(x) < std::get<0>(y); });
-  pairs.clear();
-  for (const auto& [k, i, j] : found)
-    pairs.push(k, i, j, static_cast<std::int32_t>(params.pair_index(discs.material[i], discs.material[j])));
-  pairs.inherit_history(old_pairs);
+  {
+    const ContactTable old_pairs = std::move(pairs);
+    pairs = old_pairs.empty_like();
+    pairs.reserve(found.size());
+    for (const auto& [k, i, j] : found)
+      pairs.push(k, i, j, static_cast<std::int32_t>(params.pair_index(discs.material[i], discs.material[j])));
+    pairs.inherit_history(old_pairs);
+  }
 
   // Wall rows: every owned disc against every wall, in (gid, wall id) order.
   std::vector<std::size_t> order(n_owned);
   for (std::size_t i = 0; i < n_owned; ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return discs.gid[a] < discs.gid[b]; });
-  wall_rows.clear();
+  const ContactTable old_walls = std::move(wall_rows);
+  wall_rows = old_walls.empty_like();
   for (std::size_t i : order) {
     if (is_attached(discs.flags[i])) continue;  // a glued disc is part of a wall: walls do not meet walls
     for (std::size_t w = 0; w < walls.size(); ++w) {
@@ -104,11 +108,10 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
 
 double NeighbourList::max_displacement(const DiscStore& discs, const Domain& domain) const {
   if (position_at_build_.size() != discs.n_owned()) return INFINITY;
+  const MinimumImage image(domain);
   double m2 = 0.0;
-  for (std::size_t i = 0; i < discs.n_owned(); ++i) {
-    const Vec2 d = domain.separation(position_at_build_[i], discs.position[i]);
-    m2 = std::max(m2, dot(d, d));
-  }
+  for (std::size_t i = 0; i < discs.n_owned(); ++i)
+    m2 = std::max(m2, squared_displacement(image, position_at_build_[i], discs.position[i]));
   return std::sqrt(m2);
 }
 

@@ -23,14 +23,18 @@ class NeighbourList {
   // Interaction range for a largest radius: the cell side must be at least this.
   double range(double R_max) const { return 2.0 * R_max + skin_; }
 
-  // Fills `pairs` and `wall_rows` (cleared first, history carried over from `old_*` by key) from the
-  // discs (owned and ghosts). Rows whose two discs are both ghosts are left out.
+  // Fills `pairs` and `wall_rows` from the discs (owned and ghosts), in ascending key order. The rows they
+  // hold on entry are the history source: each new row takes the history of the old row of its key, and
+  // the old rows are dropped (no copy of the tables is made). Rows whose two discs are both ghosts are
+  // left out.
   void build(const DiscStore& discs, const Domain& domain, WallSet& walls, const ContactParamTable& params,
-             const ContactTable& old_pairs, ContactTable& pairs, const ContactTable& old_walls,
-             ContactTable& wall_rows);
+             ContactTable& pairs, ContactTable& wall_rows);
 
-  // Largest displacement of an owned disc since the last build (minimum image).
+  // Largest displacement of an owned disc since the last build (minimum image); infinite before a build.
+  // The step measures it in the drift's pass (Integrator::half_kick_drift with positions_at_build()).
   double max_displacement(const DiscStore& discs, const Domain& domain) const;
+  // The owned discs' positions at the last build, in their storage order.
+  const std::vector<Vec2>& positions_at_build() const { return position_at_build_; }
   // True when the local discs and walls have moved enough to need a new list.
   bool needs_rebuild(double max_disc_disp, const WallSet& walls) const;
 

@@ -240,9 +240,9 @@ StateHeader read_header(const Hdf5File& f, const std::string& path) {
   if (!f.has_attribute("/", "format") || f.read_string_attribute("/", "format") != "rondel")
     throw InputError("'" + path + "' is not a Rondel checkpoint or snapshot (no format = rondel attribute)");
   const std::int64_t version = f.read_int_attribute("/", "format_version");
-  if (version != kStateFormatVersion)
-    throw InputError("'" + path + "' has format version " + std::to_string(version) + "; this Rondel reads version " +
-                     std::to_string(kStateFormatVersion));
+  if (version < kOldestReadableFormatVersion || version > kStateFormatVersion)
+    throw InputError("'" + path + "' has format version " + std::to_string(version) + "; this Rondel reads versions " +
+                     std::to_string(kOldestReadableFormatVersion) + " to " + std::to_string(kStateFormatVersion));
   if (!f.has_attribute("/", "complete")) throw InputError("'" + path + "' is incomplete (its writer was interrupted)");
   StateHeader h;
   h.kind = f.read_string_attribute("/", "kind");

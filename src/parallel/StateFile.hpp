@@ -18,7 +18,10 @@ class Hdf5File;
 // The HDF5 layout of checkpoints and snapshots (FORMAT.md). Written collectively by every rank into one
 // file; discs in ascending gid and contact rows in ascending key, so the content does not depend on the rank
 // count (run metadata under /run_metadata and the ledger under /ledger excepted).
-inline constexpr std::int64_t kStateFormatVersion = 1;
+inline constexpr std::int64_t kStateFormatVersion = 2;
+// The oldest version a reader takes: version 2 only dropped datasets of version 1 (a pair's f1, tq1, tq2, and
+// M2 of an objective rolling law), so a version 1 file holds everything a restart reads.
+inline constexpr std::int64_t kOldestReadableFormatVersion = 1;
 
 struct StateHeader {
   std::string kind;  // "checkpoint" or "snapshot"

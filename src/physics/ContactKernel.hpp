@@ -1,8 +1,13 @@
 #pragma once
 // The fused contact kernel: one pass over the contact rows, templated on the selected (normal,
 // tangential, rolling) laws so that a `none` law compiles to nothing (docs/design.md section 3). Every row is
-// evaluated in its canonical frame from the discs' positions and half-step velocities; its forces go to
-// the row's columns and are summed per disc afterwards (ForceAssembly), in ascending partner gid.
+// evaluated in its canonical frame from the discs' positions and half-step velocities, and its force and
+// torques are added at once to its two discs' sums (ForceSums). The rows are in ascending key order (lower
+// gid, higher gid), so each disc receives its terms in ascending partner gid: first the rows where it is
+// disc 2 (partners of lower gid, in ascending order), then the rows where it is disc 1 (ascending higher gid),
+// then its wall rows (the wall table comes after the pair table, in wall id order). That is the order of
+// docs/design.md section 5, whatever the storage order of the discs, the rank count or when the list was
+// built; ForceAssembly starts each sum with the body force and finishes the fixed discs.
 //
 // Energy ledger (docs/physics.md section 5): the work of each contact on the relative motion is integrated
 // with the half-step velocities and the trapezoid of last and this step's force,
@@ -12,6 +17,7 @@
 // so a border pair computed on two ranks counts once.
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -22,6 +28,7 @@
 #include "core/ContactTable.hpp"
 #include "core/DiscStore.hpp"
 #include "core/Domain.hpp"
+#include "core/ForceAssembly.hpp"
 #include "core/LedgerTerms.hpp"
 #include "core/Wall.hpp"
 #include "physics/ContactKinematics.hpp"
@@ -59,19 +66,21 @@ template <class Normal, class Tangential, class Rolling>
 struct ContactKernel {
   static constexpr std::size_t kTSlots = Tangential::slots.size();
   static constexpr std::size_t kRSlots = Rolling::slots.size();
+  static constexpr int kCouples = couple_columns<Rolling>();
 
-  static void run(const KernelContext& c, ContactTable& pairs, ContactTable& wall_rows, LedgerStep& ledger) {
-    run_rows<false>(c, pairs, ledger);
-    run_rows<true>(c, wall_rows, ledger);
+  static void run(const KernelContext& c, ContactTable& pairs, ContactTable& wall_rows, ForceSums sums,
+                  LedgerStep& ledger) {
+    run_rows<false>(c, pairs, sums, ledger);
+    run_rows<true>(c, wall_rows, sums, ledger);
   }
 
   // The forces of the initial state for the first half kick (c.dt = 0): the laws see a copy of each
   // row's history, so a capping rule that resets a spring (a dashpot alone above the cap) commits
   // nothing, and no work is booked. The run starts from the history it was given.
-  static void initial_forces(const KernelContext& c, ContactTable& pairs, ContactTable& wall_rows) {
+  static void initial_forces(const KernelContext& c, ContactTable& pairs, ContactTable& wall_rows, ForceSums sums) {
     LedgerStep unused;
-    run_rows<false, false>(c, pairs, unused);
-    run_rows<true, false>(c, wall_rows, unused);
+    run_rows<false, false>(c, pairs, sums, unused);
+    run_rows<true, false>(c, wall_rows, sums, unused);
   }
 
   static ContactSummary stored_energy(const KernelContext& c, ContactTable& pairs, ContactTable& wall_rows) {
@@ -117,67 +126,94 @@ struct ContactKernel {
   template <bool kCommit>
   using History = std::conditional_t<kCommit, CommittedHistory, ScratchHistory>;
 
+  // The discs' columns the kernel reads, as plain pointers taken once per pass (a store to a row or a sum
+  // cannot make the compiler reload them).
+  struct DiscView {
+    const Vec2 *x, *v;
+    const double *w, *R, *m, *I;
+    std::size_t n_owned;
+    explicit DiscView(const DiscStore& D)
+        : x(D.position.data()),
+          v(D.velocity.data()),
+          w(D.omega.data()),
+          R(D.radius.data()),
+          m(D.mass.data()),
+          I(D.inertia.data()),
+          n_owned(D.n_owned()) {}
+  };
+
+  // One row's motion: the kinematics in the canonical frame, the bodies, both spins and the wall's velocity.
   struct Row {
     ContactKinematics k;
     ContactBodies b;
     double w1 = 0.0, w2 = 0.0;
     Vec2 v_wall;
-    bool coincident = false;
   };
+  enum class Found { apart, contact, coincident };
 
-  // Kinematics of row r; false when the discs are apart and the row carries no force (nothing to do).
+  // Kinematics of row r; `apart` when the discs are apart and the row carries no force (nothing to do),
+  // `coincident` when two centres coincide (no normal exists: reported as a failed run).
   template <bool kWall>
-  static bool kinematics(const KernelContext& c, const ContactTable& tab, std::size_t r, Row& row) {
-    const DiscStore& D = c.discs;
-    row.coincident = false;
+  [[gnu::always_inline]] static Found kinematics(const DiscView& D, const MinimumImage& image, const WallSet& walls,
+                                                 const ContactTable& tab, std::size_t r, Row& row) {
     const auto i = static_cast<std::size_t>(tab.i1[r]);
     const auto j = static_cast<std::size_t>(tab.i2[r]);
     const bool loaded = tab.F_n[r] != 0.0 || tab.F_t[r] != 0.0;
-    row.w1 = D.omega[i];
     if constexpr (kWall) {
-      const Wall& w = c.walls[j];
-      const Wall::Proximity prox = w.proximity(D.position[i]);
-      if (prox.dist >= D.radius[i] && !loaded) return false;
+      const Wall& w = walls[j];
+      const Wall::Proximity prox = w.proximity(D.x[i]);
+      if (prox.dist >= D.R[i] && !loaded) return Found::apart;
+      row.w1 = D.w[i];
       row.v_wall = w.velocity;
-      row.k = disc_wall_kinematics(prox.n, prox.dist, D.radius[i], D.velocity[i], w.velocity, row.w1);
-      row.b = disc_wall_bodies(D.mass[i], D.inertia[i]);
+      row.k = disc_wall_kinematics(prox.n, prox.dist, D.R[i], D.v[i], w.velocity, row.w1);
+      row.b = disc_wall_bodies(D.m[i], D.I[i]);
     } else {
-      const Vec2 d = c.domain.separation(D.position[i], D.position[j]);
+      const Vec2 d = image.separation(D.x[i], D.x[j]);
       const double dist2 = dot(d, d);
-      const double Rs = D.radius[i] + D.radius[j];
-      if (dist2 >= Rs * Rs && !loaded) return false;
-      if (dist2 == 0.0) return !(row.coincident = true);  // no normal exists: reported as a failed run
-      row.w2 = D.omega[j];
-      row.k = disc_disc_kinematics(d, std::sqrt(dist2), D.radius[i], D.radius[j], D.velocity[i], D.velocity[j], row.w1,
-                                   row.w2);
-      row.b = disc_disc_bodies(D.mass[i], D.mass[j], D.inertia[i], D.inertia[j]);
+      const double R1 = D.R[i], R2 = D.R[j];
+      const double Rs = R1 + R2;
+      if (dist2 >= Rs * Rs && !loaded) return Found::apart;
+      if (dist2 == 0.0) return Found::coincident;
+      row.w1 = D.w[i];
+      row.w2 = D.w[j];
+      row.k = disc_disc_kinematics(d, std::sqrt(dist2), R1, R2, D.v[i], D.v[j], row.w1, row.w2);
+      row.b = disc_disc_bodies(D.m[i], D.m[j], D.I[i], D.I[j]);
     }
-    return true;
+    return Found::contact;
   }
 
-  template <bool kCommit>
+  // A row whose contact is open carries no force and no history. Only the values that are not +0 already
+  // are written: most open rows stay open from step to step, and then the row costs no store.
+  static void clear(double& x) {
+    if (std::bit_cast<std::uint64_t>(x) != 0) x = 0.0;
+  }
+  template <bool kWall, bool kCommit>
   static void open_row(ContactTable& tab, std::size_t r, const Slots& h) {
     if constexpr (kCommit) {
-      for (std::size_t s = 0; s < kTSlots; ++s) h.t[s][r] = 0.0;
-      for (std::size_t s = 0; s < kRSlots; ++s) h.r[s][r] = 0.0;
+      for (std::size_t s = 0; s < kTSlots; ++s) clear(h.t[s][r]);
+      for (std::size_t s = 0; s < kRSlots; ++s) clear(h.r[s][r]);
     }
-    tab.F_n[r] = 0.0;
-    tab.F_t[r] = 0.0;
-    if constexpr (Rolling::kActive) {
-      tab.M1[r] = 0.0;
-      tab.M2[r] = 0.0;
-    }
-    tab.f1[r] = {};
-    tab.tq1[r] = 0.0;
-    tab.tq2[r] = 0.0;
+    clear(tab.F_n[r]);
+    clear(tab.F_t[r]);
+    if constexpr (kCouples > 0) clear(tab.M1[r]);
+    if constexpr (kCouples > 1) clear(tab.M2[r]);
+    if constexpr (kWall) clear(tab.f1[r].x), clear(tab.f1[r].y);
+  }
+
+  // The last step's couple on disc 2: its own column, or -M1 (the same bits as the law's -M).
+  static double last_M2(const ContactTable& tab, std::size_t r) {
+    if constexpr (kCouples > 1)
+      return tab.M2[r];
+    else
+      return -tab.M1[r];
   }
 
   // The worst overlap above the context's limit (u_n / smaller radius), and where.
   template <bool kWall>
-  [[gnu::always_inline]] static void note_overlap(const KernelContext& c, const ContactKinematics& k,
+  [[gnu::always_inline]] static void note_overlap(double overlap_limit, const ContactKinematics& k,
                                                   const ContactKey& key, LedgerStep& L) {
     const double R_small = kWall ? k.R1 : std::min(k.R1, k.R2);
-    if (k.u_n > c.overlap_limit * R_small && k.u_n > L.worst_overlap * R_small) {
+    if (k.u_n > overlap_limit * R_small && k.u_n > L.worst_overlap * R_small) {
       L.worst_overlap = k.u_n / R_small;
       L.worst_key = key;
       L.worst_at_wall = kWall;
@@ -195,7 +231,7 @@ struct ContactKernel {
     L.W_t += 0.5 * (tab.F_t[r] + T.F_t) * k.V_s * dt;
     L.D_slip += T.slip;
     if constexpr (Rolling::kActive) {
-      L.W_r += 0.5 * ((tab.M1[r] + M.M1) * row.w1 + (tab.M2[r] + M.M2) * row.w2) * dt;
+      L.W_r += 0.5 * ((tab.M1[r] + M.M1) * row.w1 + (last_M2(tab, r) + M.M2) * row.w2) * dt;
       L.D_r_plastic += M.plastic;
       L.D_r_dashpot += M.dashpot;
       L.E_r_break += M.released;
@@ -203,19 +239,15 @@ struct ContactKernel {
     if constexpr (kWall) L.W_w += 0.5 * dot(tab.f1[r] + f1, row.v_wall) * dt;
   }
 
-  // This step's result into the row's columns (the per-disc sums read f1, tq1, tq2).
+  // This step's result into the row's columns: the state the next step starts from.
   template <bool kWall>
-  [[gnu::always_inline]] static void store_row(ContactTable& tab, std::size_t r, const ContactKinematics& k, double F_n,
-                                               const TangentialForce& T, const RollingCouple& M, Vec2 f1) {
+  [[gnu::always_inline]] static void store_row(ContactTable& tab, std::size_t r, double F_n, const TangentialForce& T,
+                                               const RollingCouple& M, Vec2 f1) {
     tab.F_n[r] = F_n;
     tab.F_t[r] = T.F_t;
-    if constexpr (Rolling::kActive) {
-      tab.M1[r] = M.M1;
-      tab.M2[r] = M.M2;
-    }
-    tab.f1[r] = f1;
-    tab.tq1[r] = k.a1 * T.F_t + M.M1;
-    if constexpr (!kWall) tab.tq2[r] = k.a2 * T.F_t + M.M2;
+    if constexpr (kCouples > 0) tab.M1[r] = M.M1;
+    if constexpr (kCouples > 1) tab.M2[r] = M.M2;
+    if constexpr (kWall) tab.f1[r] = f1;
   }
 
   // The rolling law's couple; a law with an exact ledger split (ExactRollingSplit) then books its dissipation
@@ -235,46 +267,51 @@ struct ContactKernel {
   }
 
   template <bool kWall, bool kCommit = true>
-  static void run_rows(const KernelContext& c, ContactTable& tab, LedgerStep& ledger) {
-    const std::size_t n_owned = c.discs.n_owned();
-    const double dt = c.dt;
+  static void run_rows(const KernelContext& c, ContactTable& tab, ForceSums sums, LedgerStep& ledger) {
+    const DiscView D(c.discs);
+    const MinimumImage image(c.domain);
+    const double dt = c.dt, overlap_limit = c.overlap_limit;
     const Slots h(tab);
-    const std::vector<ContactParams>& params = kWall ? c.params.walls() : c.params.pairs();
+    const ContactParams* const params = (kWall ? c.params.walls() : c.params.pairs()).data();
+    Vec2* const sum_F = sums.force;
+    double* const sum_T = sums.torque;
     LedgerStep L;
-    Row row;
-    for (std::size_t r = 0; r < tab.size(); ++r) {
-      if (!kinematics<kWall>(c, tab, r, row)) {
-        if (row.coincident) {
+    const std::size_t n_rows = tab.size();
+    for (std::size_t r = 0; r < n_rows; ++r) {
+      Row row;
+      const Found found = kinematics<kWall>(D, image, c.walls, tab, r, row);
+      if (found != Found::contact) {
+        if (found == Found::coincident) {
           L.worst_overlap = INFINITY;  // coincident centres: the run has failed
           L.worst_key = tab.key[r];
         }
-        open_row<kCommit>(tab, r, h);
+        open_row<kWall, kCommit>(tab, r, h);
         continue;
       }
       const ContactKinematics& k = row.k;
-      const bool book = static_cast<std::size_t>(tab.i1[r]) < n_owned;
+      const auto i = static_cast<std::size_t>(tab.i1[r]);
+      const bool book = i < D.n_owned;
       if (k.u_n <= 0.0) {
         // The contact opened this step: book the last half of the trapezoid, then forget its history.
         if (book) {
           L.W_n += 0.5 * tab.F_n[r] * k.v_n * dt;
           L.W_t += 0.5 * tab.F_t[r] * k.V_s * dt;
-          if constexpr (Rolling::kActive) L.W_r += 0.5 * (tab.M1[r] * row.w1 + tab.M2[r] * row.w2) * dt;
+          if constexpr (Rolling::kActive) L.W_r += 0.5 * (tab.M1[r] * row.w1 + last_M2(tab, r) * row.w2) * dt;
           if constexpr (kWall) L.W_w += 0.5 * dot(tab.f1[r], row.v_wall) * dt;
         }
-        open_row<kCommit>(tab, r, h);
+        open_row<kWall, kCommit>(tab, r, h);
         continue;
       }
 
-      note_overlap<kWall>(c, k, tab.key[r], L);
-      const ContactParams& p = params[static_cast<std::size_t>(tab.param[r])];
+      note_overlap<kWall>(overlap_limit, k, tab.key[r], L);
+      const ContactParams& p = params[tab.param[r]];
       const double F_n = Normal::force(p, row.b, k);
       History<kCommit> hist(h, r);
       const TangentialForce T = Tangential::force(p, row.b, k, F_n, dt, hist.t(), hist.row);
       RollingCouple M;
       if constexpr (Rolling::kActive) {
         if (p.rolling) {
-          // The plain call for the linear normal law and a law without an exact split: the code of the
-          // kernels that existed before the Hertz-Mindlin laws, unchanged.
+          // The plain call for the linear normal law and a law without an exact split.
           if constexpr (Normal::kStiffening) {  // the rolling law sees this contact's normal stiffness
             M = rolling_moment(Normal::linearised(p, row.b, k), tab, r, row, F_n, dt, hist);
           } else if constexpr (ExactRollingSplit<Rolling>) {
@@ -286,7 +323,16 @@ struct ContactKernel {
       }
       const Vec2 f1 = T.F_t * k.t - F_n * k.n;
       if (book) book_work<kWall>(tab, r, row, F_n, T, M, f1, dt, L);
-      store_row<kWall>(tab, r, k, F_n, T, M, f1);
+      store_row<kWall>(tab, r, F_n, T, M, f1);
+      // The row's terms of its discs' sums, in row order (see the header): +f1 and its torque on disc 1,
+      // -f1 and its torque on disc 2. An open row adds nothing.
+      sum_F[i] += f1;
+      sum_T[i] += k.a1 * T.F_t + M.M1;
+      if constexpr (!kWall) {
+        const auto j = static_cast<std::size_t>(tab.i2[r]);
+        sum_F[j] -= f1;
+        sum_T[j] += k.a2 * T.F_t + M.M2;
+      }
     }
     ledger.add_terms(L, kTermKernel);
     if (L.worst_overlap > ledger.worst_overlap) {
@@ -300,10 +346,12 @@ struct ContactKernel {
   static void stored_rows(const KernelContext& c, ContactTable& tab, ContactSummary& e) {
     const Slots h(tab);
     const std::vector<ContactParams>& params = kWall ? c.params.walls() : c.params.pairs();
-    Row row;
+    const DiscView D(c.discs);
+    const MinimumImage image(c.domain);
     for (std::size_t r = 0; r < tab.size(); ++r) {
       if (static_cast<std::size_t>(tab.i1[r]) >= c.discs.n_owned()) continue;
-      if (!kinematics<kWall>(c, tab, r, row) || row.k.u_n <= 0.0) continue;
+      Row row;
+      if (kinematics<kWall>(D, image, c.walls, tab, r, row) != Found::contact || row.k.u_n <= 0.0) continue;
       const ContactParams& p = params[static_cast<std::size_t>(tab.param[r])];
       e.normal += Normal::stored(p, row.k);
       e.tangential += Tangential::stored(p, row.k, h.t.data(), r);

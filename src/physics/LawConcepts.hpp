@@ -86,4 +86,20 @@ template <class L>
 concept RollingLawType = DeclaredLaw<L> && HistoryLaw<L> && RollingCalls<L> &&
     (RollingAPrioriSpring<L> || DeclaresNoSpring<L>);
 
+// A rolling law whose couple on disc 2 is not -M1 declares `kOwnCouples = true` (force_proportional: each
+// disc's couple comes from its own spin); its rows keep both couples. Every other law's rows keep M1 only.
+template <class L>
+constexpr bool own_couples() {
+  if constexpr (requires { L::kOwnCouples; })
+    return L::kOwnCouples;
+  else
+    return false;
+}
+
+// The rolling couple columns of a law's rows (ContactTable::couples()): 0, 1 or 2.
+template <class L>
+constexpr int couple_columns() {
+  return !L::kActive ? 0 : (own_couples<L>() ? 2 : 1);
+}
+
 }  // namespace rondel

@@ -43,10 +43,10 @@ std::vector<std::string> history_slots(const LawSelection& laws) {
   return out;
 }
 
-ContactTable make_contact_table(const LawSelection& laws) {
-  bool rolling = false;
-  with_laws(laws, [&rolling]<class T, class R>() { rolling = R::kActive; });
-  return ContactTable(history_slots(laws), rolling);
+ContactTable make_contact_table(const LawSelection& laws, bool wall_rows) {
+  int couples = 0;
+  with_laws(laws, [&couples]<class T, class R>() { couples = couple_columns<R>(); });
+  return ContactTable(history_slots(laws), couples, wall_rows);
 }
 
 std::optional<TangentialSpring> tangential_spring(const LawSelection& laws, const ContactParams& p) {

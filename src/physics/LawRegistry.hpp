@@ -25,11 +25,12 @@ struct LawSelection {
 inline LawSelection law_selection(const Config& c) { return {c.normal_law, c.tangential_law, c.rolling_law}; }
 
 // The kernel and the stored-energy pass instantiated for the selected laws, chosen once at set-up (no
-// per-contact dispatch). `initial` computes the forces of the initial state (a zero increment) without
+// per-contact dispatch). `run` and `initial` add every row's force and torques to the discs' sums (begun and
+// finished by ForceAssembly). `initial` computes the forces of the initial state (a zero increment) without
 // committing any history and without booking work: the forces of the first half kick.
 struct KernelOps {
-  void (*run)(const KernelContext&, ContactTable&, ContactTable&, LedgerStep&) = nullptr;
-  void (*initial)(const KernelContext&, ContactTable&, ContactTable&) = nullptr;
+  void (*run)(const KernelContext&, ContactTable&, ContactTable&, ForceSums, LedgerStep&) = nullptr;
+  void (*initial)(const KernelContext&, ContactTable&, ContactTable&, ForceSums) = nullptr;
   ContactSummary (*stored)(const KernelContext&, ContactTable&, ContactTable&) = nullptr;
 };
 
@@ -37,8 +38,9 @@ struct KernelOps {
 KernelOps select_kernel(const LawSelection& laws);
 // History slot names of the selected laws, in kernel order (tangential, then rolling).
 std::vector<std::string> history_slots(const LawSelection& laws);
-// An empty contact table with exactly the columns the selected laws need.
-ContactTable make_contact_table(const LawSelection& laws);
+// An empty contact table with exactly the columns the selected laws need: of disc-disc rows, or of
+// disc-wall rows (wall_rows, with the force column f1).
+ContactTable make_contact_table(const LawSelection& laws, bool wall_rows);
 
 // The springs of the selected laws for the critical step of one contact (docs/physics.md section 4); none
 // for a law that declares no a-priori spring, and no rolling spring where p.rolling is false.

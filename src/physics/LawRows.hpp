@@ -89,7 +89,7 @@ void with_kernel_laws(const LawSelection& laws, F&& f) {
 
 // KernelOps::initial of the selected laws, instantiated in its own translation unit (InitialForces.cpp)
 // so that it does not change how GCC inlines the laws into the step kernel (LawRegistry.cpp).
-using InitialForces = void (*)(const KernelContext&, ContactTable&, ContactTable&);
+using InitialForces = void (*)(const KernelContext&, ContactTable&, ContactTable&, ForceSums);
 InitialForces select_initial_forces(const LawSelection& laws);
 
 // The step kernels of normal = hertz, instantiated in their own translation unit (HertzKernels.cpp): next to

@@ -26,6 +26,7 @@ struct RollingForceProportional {
   static constexpr const LawBlock* block = &kForceProportionalBlock;
   static constexpr const char* no_spring = "a friction couple without a spring";
   static constexpr bool kActive = true;
+  static constexpr bool kOwnCouples = true;  // M2 is not -M1: the rows keep both couples
   static constexpr std::array<const char*, 0> slots{};
 
   static RollingCouple moment(const ContactParams& p, const ContactBodies&, const ContactKinematics& k, double F_n,

@@ -19,7 +19,9 @@
 namespace rondel {
 namespace {
 
-ContactTable rolling_table() { return ContactTable({"xi", "x_r"}, true); }
+ContactTable rolling_table() { return ContactTable({"xi", "x_r"}, 1); }
+// A rolling law of its own couples (force_proportional), with wall rows (the column f1).
+ContactTable own_couples_wall_table() { return ContactTable({"xi"}, 2, true); }
 
 // Every column of row r (but the key) set to values that depend on the row and the column, none zero.
 void fill_row(ContactTable& t, std::size_t r) {
@@ -42,15 +44,15 @@ void expect_consistent(const ContactTable& t) {
 }
 
 TEST(ContactTable, ColumnsPresentFollowTheLaws) {
-  EXPECT_EQ(column_names(ContactTable()),
-            (std::vector<std::string>{"key", "i1", "i2", "param", "F_n", "F_t", "f1", "tq1", "tq2"}));
+  EXPECT_EQ(column_names(ContactTable()), (std::vector<std::string>{"key", "i1", "i2", "param", "F_n", "F_t"}));
   EXPECT_EQ(column_names(rolling_table()),
-            (std::vector<std::string>{"key", "i1", "i2", "param", "history/xi", "history/x_r", "F_n", "F_t", "M1", "M2",
-                                      "f1", "tq1", "tq2"}));
+            (std::vector<std::string>{"key", "i1", "i2", "param", "history/xi", "history/x_r", "F_n", "F_t", "M1"}));
+  EXPECT_EQ(column_names(own_couples_wall_table()),
+            (std::vector<std::string>{"key", "i1", "i2", "param", "history/xi", "F_n", "F_t", "M1", "M2", "f1"}));
 }
 
 TEST(ContactTable, PushAppendsAZeroRowAndClearEmptiesEveryColumn) {
-  for (ContactTable t : {ContactTable(), rolling_table()}) {
+  for (ContactTable t : {ContactTable(), rolling_table(), own_couples_wall_table()}) {
     t.push({1, 2}, 0, 1, 3);
     t.push({1, 5}, 0, 4, 2);
     ASSERT_EQ(t.size(), 2u);
@@ -69,13 +71,11 @@ TEST(ContactTable, PushAppendsAZeroRowAndClearEmptiesEveryColumn) {
 }
 
 TEST(ContactTable, HasStateLooksAtHistoryAndLastScalarsOnly) {
-  ContactTable t = rolling_table();
+  ContactTable t = own_couples_wall_table();
   t.push({1, 2}, 0, 1, 0);
   t.f1[0] = {1.0, 2.0};  // the last force alone is no state (it only feeds the wall-work trapezoid)
-  t.tq1[0] = 3.0;
-  t.tq2[0] = 4.0;
   EXPECT_FALSE(t.has_state(0));
-  for (auto* column : {&t.slot[0], &t.slot[1], &t.F_n, &t.F_t, &t.M1, &t.M2}) {
+  for (auto* column : {&t.slot[0], &t.F_n, &t.F_t, &t.M1, &t.M2}) {
     (*column)[0] = -1e-300;
     EXPECT_TRUE(t.has_state(0));
     (*column)[0] = 0.0;
@@ -84,7 +84,7 @@ TEST(ContactTable, HasStateLooksAtHistoryAndLastScalarsOnly) {
 }
 
 TEST(ContactTable, SortUniqueByKeyKeepsTheFirstOfEqualKeysWithAllItsColumns) {
-  for (const ContactTable& empty : {ContactTable({"xi"}, false), rolling_table()}) {
+  for (const ContactTable& empty : {ContactTable({"xi"}, 0), rolling_table(), own_couples_wall_table()}) {
     ContactTable t = empty;
     const std::vector<ContactKey> keys = {{3, 4}, {1, 9}, {1, 2}, {3, 4}, {2, 3}};
     for (std::size_t r = 0; r < keys.size(); ++r) {
@@ -100,10 +100,10 @@ TEST(ContactTable, SortUniqueByKeyKeepsTheFirstOfEqualKeysWithAllItsColumns) {
 }
 
 TEST(ContactTable, PushCopyCopiesEveryColumnButTheLocalIndices) {
-  ContactTable src = rolling_table();
+  ContactTable src = own_couples_wall_table();
   src.push({1, 2}, 5, 6, 0);
   fill_row(src, 0);
-  ContactTable t = rolling_table();
+  ContactTable t = src.empty_like();
   t.push_copy(src, 0);
   expect_consistent(t);
   EXPECT_EQ(row_text(t, 0, ~kColumnLocalIndex), row_text(src, 0, ~kColumnLocalIndex));
@@ -112,10 +112,10 @@ TEST(ContactTable, PushCopyCopiesEveryColumnButTheLocalIndices) {
 }
 
 TEST(ContactTable, InheritHistoryCopiesTheKeptColumnsOfMatchingKeys) {
-  ContactTable old = rolling_table();
+  ContactTable old = own_couples_wall_table();
   for (ContactKey k : {ContactKey{1, 2}, ContactKey{1, 3}, ContactKey{2, 5}}) old.push(k, 0, 0, 0);
   for (std::size_t r = 0; r < old.size(); ++r) fill_row(old, r);
-  ContactTable t = rolling_table();
+  ContactTable t = old.empty_like();
   t.push({1, 3}, 7, 8, 1);
   t.push({2, 4}, 7, 9, 1);
   t.push({2, 5}, 8, 9, 2);
@@ -123,28 +123,30 @@ TEST(ContactTable, InheritHistoryCopiesTheKeptColumnsOfMatchingKeys) {
   expect_consistent(t);
   EXPECT_EQ(row_text(t, 0, kColumnInherit), row_text(old, 1, kColumnInherit));
   EXPECT_EQ(row_text(t, 2, kColumnInherit), row_text(old, 2, kColumnInherit));
-  for (std::size_t r : {0u, 2u}) {
+  for (std::size_t r : {0u, 2u})
     EXPECT_EQ(t.param[r], r == 0 ? 1 : 2) << "the parameter index comes from the new build";
-    EXPECT_EQ(t.tq1[r], 0.0) << "torques are not inherited";
-  }
   EXPECT_FALSE(t.has_state(1)) << "a new candidate starts without history";
   EXPECT_EQ(t.i1[2], 8);
 }
 
 TEST(ContactTable, MemoryBytesCountsEveryColumnsCapacity) {
-  for (const ContactTable& empty : {ContactTable(), ContactTable({"xi"}, false), rolling_table()}) {
+  for (const ContactTable& empty :
+       {ContactTable(), ContactTable({"xi"}, 0), rolling_table(), own_couples_wall_table()}) {
     ContactTable t = empty;
     for (std::int64_t k = 0; k < 5; ++k) t.push({k, k + 1}, 0, 0, 0);
+    EXPECT_EQ(t.M1.size(), t.couples() > 0 ? 5u : 0u);
+    EXPECT_EQ(t.M2.size(), t.couples() > 1 ? 5u : 0u);
+    EXPECT_EQ(t.f1.size(), t.wall_rows() ? 5u : 0u);
     std::size_t expected = t.key.capacity() * sizeof(ContactKey) + t.f1.capacity() * sizeof(Vec2);
     for (const auto* c : {&t.i1, &t.i2, &t.param}) expected += c->capacity() * sizeof(std::int32_t);
-    for (const auto* c : {&t.F_n, &t.F_t, &t.M1, &t.M2, &t.tq1, &t.tq2}) expected += c->capacity() * sizeof(double);
+    for (const auto* c : {&t.F_n, &t.F_t, &t.M1, &t.M2}) expected += c->capacity() * sizeof(double);
     for (const auto& s : t.slot) expected += s.capacity() * sizeof(double);
     EXPECT_EQ(t.memory_bytes(), expected);
   }
 }
 
 TEST(ContactTable, RowRecordCarriesExactlyTheRecordColumns) {
-  for (const ContactTable& empty : {ContactTable(), rolling_table()}) {
+  for (const ContactTable& empty : {ContactTable(), rolling_table(), own_couples_wall_table()}) {
     ContactTable t = empty;
     t.push({4, 7}, 2, 3, 1);
     fill_row(t, 0);
@@ -164,19 +166,18 @@ TEST(ContactTable, RowRecordCarriesExactlyTheRecordColumns) {
     EXPECT_EQ(row_text(back, 0, kColumnRecord), row_text(t, 0, kColumnRecord));
     EXPECT_EQ(back.i1[0], -1);
     EXPECT_EQ(back.i2[0], -1);
-    EXPECT_EQ(back.tq1[0], 0.0);
-    EXPECT_EQ(back.tq2[0], 0.0);
   }
 }
 
 // A vector member added to ContactTable changes its size: this fails until the column table (and so every
 // row operation) knows the new column.
 TEST(ContactTable, EveryMemberIsInTheColumnTable) {
-  const ContactTable t({}, true);
+  const ContactTable t({}, 2, true);
   std::size_t columns = 0;
   t.for_each_column([&](std::string_view, unsigned, const auto&) { ++columns; });
   constexpr std::size_t kVector = sizeof(std::vector<double>);
-  // The visited columns, the slot vector, the slot names and their column names, and the has_moment flag.
+  // The visited columns, the slot vector, the slot names and their column names, and the couples and
+  // wall_rows flags (in one padded word).
   EXPECT_EQ(sizeof(ContactTable), (columns + 3) * kVector + alignof(std::vector<double>))
       << "ContactTable has a member that ContactTable::visit_columns does not visit";
 }

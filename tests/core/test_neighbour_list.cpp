@@ -152,14 +152,13 @@ void expect_pair_rows_consistent(const ContactTable& t, const DiscStore& s) {
 }
 
 struct Built {
-  ContactTable pairs{{"xi"}, false}, walls{{"xi"}, false};
+  ContactTable pairs{{"xi"}, 0}, walls{{"xi"}, 0, true};
 };
 
 Built build_once(NeighbourList& nl, const DiscStore& s, const Domain& d, WallSet& walls) {
   const ContactParamTable params(1);
-  const ContactTable empty({"xi"}, false);
   Built b;
-  nl.build(s, d, walls, params, empty, b.pairs, empty, b.walls);
+  nl.build(s, d, walls, params, b.pairs, b.walls);
   return b;
 }
 
@@ -356,8 +355,8 @@ TEST(NeighbourList, HistoryFollowsItsKeyAcrossARebuildWithPermutedStorage) {
   }
   for (std::size_t k = discs.size(); k > 1; --k) std::swap(discs[k - 1], discs[rng.next() % k]);
   const DiscStore second = make_store(discs);
-  Built now;
-  nl.build(second, d, walls, params, old.pairs, now.pairs, old.walls, now.walls);
+  Built now = old;  // the history source: build() replaces the rows it holds
+  nl.build(second, d, walls, params, now.pairs, now.walls);
   EXPECT_EQ(difference(brute_pairs(second, d, skin), keys_of(now.pairs)), "");
   expect_pair_rows_consistent(now.pairs, second);
 

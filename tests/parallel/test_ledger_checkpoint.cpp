@@ -51,7 +51,7 @@ void fill_row(ContactTable& t, std::size_t r) { test::fill_row(t, r, column_valu
 
 // Row r read back: its record columns are what fill_row wrote, its local indices unset, its torques zero.
 void expect_read_row(const ContactTable& t, std::size_t r) {
-  ContactTable written(t.slot_names(), t.has_moment());
+  ContactTable written = t.empty_like();
   written.push(t.key[r], -1, -1, 0);
   fill_row(written, 0);
   EXPECT_EQ(test::row_text(t, r), test::row_text(written, 0));
@@ -60,7 +60,7 @@ void expect_read_row(const ContactTable& t, std::size_t r) {
 struct Written {
   StateHeader header;
   DiscStore discs;
-  ContactTable pairs = ContactTable({"xi", "theta_r"}, true), walls = ContactTable({"xi", "theta_r"}, true);
+  ContactTable pairs = ContactTable({"xi", "theta_r"}, 1), walls = ContactTable({"xi", "theta_r"}, 1, true);
 };
 
 // Rank r owns disc r + 1 and books two pair rows and one wall row of it; it also holds a row without state

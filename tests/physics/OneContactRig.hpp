@@ -1,8 +1,8 @@
 #pragma once
 // A single contact (two discs, or a disc on a wall) integrated with the library's own pieces, in the order
 // of Simulation::step (docs/design.md section 4): Integrator::half_kick_drift, the fused contact kernel selected
-// by select_kernel, ForceAssembly, Integrator::half_kick. No neighbour list: the one row is always present.
-// Used by the frequency tests and stability test F4 (docs/validation.md section 5).
+// by select_kernel with the per-disc sums of ForceAssembly, Integrator::half_kick. No neighbour list: the one row is
+// always present. Used by the frequency tests and stability test F4 (docs/validation.md section 5).
 //
 // Geometry (docs/physics.md section 1 conventions):
 //  - two discs: disc 1 (gid 1, radius R1) at the origin, disc 2 (gid 2, radius R2) at (R1 + R2 - u0, 0),
@@ -38,8 +38,8 @@ class OneContactRig {
     params_.pair(0, 0) = p;
     params_.wall(0) = p;
     ops_ = select_kernel(laws);
-    pairs_ = make_contact_table(laws);
-    wall_rows_ = make_contact_table(laws);
+    pairs_ = make_contact_table(laws, false);
+    wall_rows_ = make_contact_table(laws, true);
     domain_ = Domain{-10.0, 10.0, -10.0, 10.0, false, false};
     if (wall_) {
       n = {0.0, -1.0};
@@ -60,23 +60,25 @@ class OneContactRig {
     t = perp(n);
     x0_ = discs_.position;
     d0_ = separation();
-    assembly_.build(discs_, pairs_, wall_rows_);
+    assembly_.build(discs_);
   }
 
   // Call after setting the initial velocities: forces at t = 0 with a zero increment, committing no
   // history (KernelOps::initial, as the Simulation constructor does), and the reference for the energy.
   void start(double dt) {
     dt_ = dt;
-    ops_.initial(KernelContext{discs_, domain_, walls_, params_, 0.0}, pairs_, wall_rows_);
-    assemble();
+    ForceAssembly::begin(discs_, BodyForce{gravity_});
+    ops_.initial(KernelContext{discs_, domain_, walls_, params_, 0.0}, pairs_, wall_rows_, ForceSums::of(discs_));
+    finish();
     stored0_ = stored();
   }
 
   void step() {
-    Integrator::half_kick_drift(discs_, domain_, dt_, gravity_);
+    Integrator::half_kick_drift(discs_, domain_, dt_, gravity_, {});
     LedgerStep unused;
-    ops_.run(KernelContext{discs_, domain_, walls_, params_, dt_}, pairs_, wall_rows_, unused);
-    assemble();
+    ForceAssembly::begin(discs_, BodyForce{gravity_});
+    ops_.run(KernelContext{discs_, domain_, walls_, params_, dt_}, pairs_, wall_rows_, ForceSums::of(discs_), unused);
+    finish();
     Integrator::half_kick(discs_, dt_);
   }
 
@@ -121,8 +123,9 @@ class OneContactRig {
   double stored() {
     return ops_.stored(KernelContext{discs_, domain_, walls_, params_, dt_}, pairs_, wall_rows_).total();
   }
-  void assemble() {
-    assembly_.assemble(discs_, BodyForce{gravity_}, pairs_, wall_rows_);
+  // The sums after the kernel: the fixed discs finished, then the preload.
+  void finish() {
+    assembly_.finish(discs_);
     if (wall_) {
       discs_.force[0] += preload_ * walls_[0].proximity(discs_.position[0]).n;
     } else {

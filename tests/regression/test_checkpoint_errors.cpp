@@ -275,14 +275,17 @@ TEST_F(CheckpointErrors, CorruptedDiscData) {
 }
 
 TEST_F(CheckpointErrors, AnotherFormatVersion) {
-  const fs::path file = copy("version2.h5");
-  H5(file).set_int("/", "format_version", 2);
-  const std::string m = restart_refusal<InputError>(file, out("version2"));
+  const std::int64_t next = kStateFormatVersion + 1;
+  const fs::path file = copy("next-version.h5");
+  H5(file).set_int("/", "format_version", next);
+  const std::string m = restart_refusal<InputError>(file, out("next-version"));
   EXPECT_TRUE(test::names(m, file.string()));
-  EXPECT_TRUE(test::names(m, "format version 2"));
-  EXPECT_TRUE(test::names(m, "version " + std::to_string(kStateFormatVersion)));
-  EXPECT_FALSE(fs::exists(out("version2")));
-  EXPECT_TRUE(test::names(scene_file_refusal(file, out("version2-scene")), "format version 2"));
+  EXPECT_TRUE(test::names(m, "format version " + std::to_string(next)));
+  EXPECT_TRUE(test::names(
+      m, "versions " + std::to_string(kOldestReadableFormatVersion) + " to " + std::to_string(kStateFormatVersion)));
+  EXPECT_FALSE(fs::exists(out("next-version")));
+  EXPECT_TRUE(
+      test::names(scene_file_refusal(file, out("next-version-scene")), "format version " + std::to_string(next)));
 
   // A file made by hand: the two identifying attributes only, version 99: refused on the version first.
   const fs::path hand = *dir_ / "by-hand.h5";

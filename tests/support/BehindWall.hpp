@@ -67,7 +67,7 @@ inline std::filesystem::path write_behind_wall_checkpoint(const std::filesystem:
   h.config = config.resolved_text;
   std::filesystem::create_directories(dir);
   const std::filesystem::path path = dir / "checkpoint_0000000005.h5";
-  const ContactTable pairs = make_contact_table(laws), wall_rows = make_contact_table(laws);
+  const ContactTable pairs = make_contact_table(laws, false), wall_rows = make_contact_table(laws, true);
   write_state_file(path.string(), h, discs, pairs, wall_rows, config.walls, Communicator::self(), {}, 0.0);
   return path;
 }

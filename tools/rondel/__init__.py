@@ -11,11 +11,12 @@ the HDF5 files, h5py (Debian: python3-numpy python3-h5py, run by /usr/bin/python
 """
 from .config import Config
 from .errors import EXIT_FAILED, EXIT_INPUT, EXIT_OK, CheckFailed, RondelError, RondelFileError, UsageError
-from .h5 import FLAG_FIXED, FLAG_GLUED, FORMAT_VERSION, StateFile, checksum, decode, open_file, step_of_name
+from .h5 import (FLAG_FIXED, FLAG_GLUED, FORMAT_VERSION, READABLE_VERSIONS, StateFile, checksum, decode, open_file,
+                 step_of_name)
 from .run import Run, open_any, open_run
 from .tables import Table, parse_number, read_csv, require
 
 __all__ = ["Config", "EXIT_FAILED", "EXIT_INPUT", "EXIT_OK", "CheckFailed", "RondelError", "RondelFileError",
-           "UsageError", "FLAG_FIXED", "FLAG_GLUED", "FORMAT_VERSION", "StateFile", "checksum", "decode",
-           "open_file", "step_of_name", "Run", "open_any", "open_run", "Table", "parse_number", "read_csv",
+           "UsageError", "FLAG_FIXED", "FLAG_GLUED", "FORMAT_VERSION", "READABLE_VERSIONS", "StateFile", "checksum",
+           "decode", "open_file", "step_of_name", "Run", "open_any", "open_run", "Table", "parse_number", "read_csv",
            "require"]

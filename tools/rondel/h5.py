@@ -7,7 +7,9 @@ import numpy as np
 from .config import Config
 from .errors import RondelFileError
 
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2
+# Versions this reader takes: 2 only dropped contact datasets of 1 that the tools do not read.
+READABLE_VERSIONS = (1, 2)
 FLAG_FIXED = 1
 FLAG_GLUED = 2
 M64 = (1 << 64) - 1
@@ -98,9 +100,9 @@ class StateFile:
                                   "(no format = rondel attribute)")
         self.attrs = a
         self.format_version = a.get("format_version")
-        if self.format_version != FORMAT_VERSION and not allow_version:
+        if self.format_version not in READABLE_VERSIONS and not allow_version:
             raise RondelFileError(self.path, f"has format version {self.format_version}; this reader reads "
-                                  f"version {FORMAT_VERSION}")
+                                  f"versions {READABLE_VERSIONS[0]} to {READABLE_VERSIONS[-1]}")
         self.complete = a.get("complete") == 1
         if not self.complete and not allow_incomplete:
             raise RondelFileError(self.path, "is incomplete (no complete = 1 attribute: the writer was cut short)")
