@@ -6,9 +6,10 @@
 // Without --file it reads bench/jammed10k.csv of the working directory (a clone's root) and, when that is
 // missing, the one of the source tree it was built from (RONDEL_SOURCE_DIR, set by CMakeLists.txt), so it runs
 // from a build directory as well; the packing is described in bench/README.md.
-// Rolling parameters follow the benchmark README (wang k_r = 2/7 k_n, mu_r = 0.1; jiang_* delta = 0.5); the
-// other laws get the equivalent cap for the mean radius (iwashita_oda K_r = k_r R*^2, eta = mu_r R*;
-// force_proportional mu_r = 0.1; constant_torque and displacement_damping mu_r = 0.05).
+// Rolling parameters follow the benchmark README (wang k_r = 2/7 k_n, mu_r = 0.1, which alonso_marroquin reads
+// from the same [wang] block; jiang_* delta = 0.5); the other laws get the equivalent cap for the mean radius
+// (iwashita_oda K_r = k_r R*^2, eta = mu_r R*; force_proportional mu_r = 0.1; constant_torque and
+// displacement_damping mu_r = 0.05).
 #include <chrono>
 #include <cmath>
 #include <cstdio>

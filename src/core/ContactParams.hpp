@@ -24,9 +24,9 @@ struct ContactParams {
   // rolling laws (docs/physics.md section 3)
   bool rolling = true;        // false: no rolling resistance at this pair (e.g. frictionless walls)
   double delta = 0.0;         // jiang_*: contact width B = delta r
-  double k_r = 0.0;           // wang
-  double mu_r = 0.0;          // wang, force_proportional, constant_torque, displacement_damping
-  double c_r = 0.0;           // wang rolling dashpot
+  double k_r = 0.0;           // wang, alonso_marroquin
+  double mu_r = 0.0;          // wang, alonso_marroquin, force_proportional, constant_torque, displacement_damping
+  double c_r = 0.0;           // wang, alonso_marroquin rolling dashpot
   double K_r = 0.0;           // iwashita_oda
   double C_r = 0.0;           // iwashita_oda
   double eta = 0.0;           // iwashita_oda

@@ -11,6 +11,7 @@
 #include "physics/LawRegistry.hpp"
 #include "physics/NormalHertz.hpp"
 #include "physics/NormalLinear.hpp"
+#include "physics/RollingAlonsoMarroquin.hpp"
 #include "physics/RollingConstantTorque.hpp"
 #include "physics/RollingDisplacementDamping.hpp"
 #include "physics/RollingForceProportional.hpp"
@@ -60,8 +61,8 @@ using TangentialLaws = LawList<TangentialRow, TangentialCoulomb, TangentialNone,
 // The tangential laws of the linear normal law's step kernels (mindlin needs hertz: ConfigLaws refuses it).
 using LinearTangentialLaws = LawList<TangentialRow, TangentialCoulomb, TangentialNone>;
 using RollingLaws =
-    LawList<RollingRow, RollingNone, RollingJiangPlastic, RollingJiangBrittle, RollingWang, RollingIwashitaOda,
-            RollingForceProportional, RollingConstantTorque, RollingDisplacementDamping>;
+    LawList<RollingRow, RollingNone, RollingJiangPlastic, RollingJiangBrittle, RollingWang, RollingAlonsoMarroquin,
+            RollingIwashitaOda, RollingForceProportional, RollingConstantTorque, RollingDisplacementDamping>;
 
 [[noreturn]] inline void unknown(const LawKind& kind, const std::string& keyword) {
   throw ConfigError("contact." + std::string(kind.kind) + " = " + keyword + " is not one of " + kind.keywords());

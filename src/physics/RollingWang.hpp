@@ -20,7 +20,8 @@ inline constexpr ParamSpec kWangParams[] = {
     {"mu_r", "-", Presence::required, 0.0, kNonNegative, "rolling friction: cap mu_r F_n on T_r", &ContactParams::mu_r},
     {"c_r", "N s/m", Presence::defaulted, 0.0, kNonNegative, "rolling dashpot", &ContactParams::c_r},
 };
-inline constexpr LawBlock kWangBlock{"wang", "Wang et al. 2015 spring-slider on the objective rolling displacement",
+// Shared with alonso_marroquin (RollingAlonsoMarroquin.hpp), the same spring-slider on W15's "model 2" velocity.
+inline constexpr LawBlock kWangBlock{"wang", "Wang et al. 2015 rolling spring-slider (wang, alonso_marroquin)",
                                      kWangParams};
 
 struct RollingWang {

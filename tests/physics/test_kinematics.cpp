@@ -15,6 +15,7 @@
 #include "physics/ContactKinematics.hpp"
 #include "physics/LawTypes.hpp"
 #include "physics/NormalLinear.hpp"
+#include "physics/RollingAlonsoMarroquin.hpp"
 #include "physics/RollingWang.hpp"
 #include "physics/TangentialLaws.hpp"
 
@@ -98,6 +99,7 @@ ContactBodies bodies(const Instant& s) {
 
 // Laws with their dashpots on, so that v_n, V_s and V_r enter the forces directly. The rolling couple M comes
 // from `wang` (W15 Eq. 28), the law built on the objective V_r; docs/validation.md's K6 lists M among the scalars.
+// M_am is the couple of `alonso_marroquin` (the same spring-slider on W15's model-2 velocity, section 10).
 ContactParams law_params() {
   ContactParams p;
   p.k_n = 1e6;
@@ -114,18 +116,21 @@ ContactParams law_params() {
 struct StepResult {
   Instant s;  // the state handed to the routine (in the observer's frame)
   ContactKinematics k;
-  double F_n = 0.0, F_t = 0.0, xi = 0.0, M = 0.0;
+  double F_n = 0.0, F_t = 0.0, xi = 0.0, M = 0.0, M_am = 0.0;
   // Magnitudes of the terms that make up each scalar, so that scalars which are zero by cancellation can be
   // compared "relative" to something: floating point leaves them at ~eps times these.
   double mag_v = 0.0;  // |v1| + |v2| (v_n and V_t are projections of their difference)
   double mag_s = 0.0;  // mag_v + |a1 w1| + |a2 w2|
   double mag_w = 0.0;  // |w1| + |w2|
   double mag_Fn = 0.0, mag_Ft = 0.0, mag_M = 0.0;
+  double mag_am = 0.0;  // R1 |w1| + R2 |w2| + 2 mag_v (a wall: R1 |w1| + mag_v), the terms of s1 and s2
+  double mag_M_am = 0.0;
 };
 
 struct Integrated {
   double dU_r = 0.0, dU_s = 0.0;
   double mag_r = 0.0, mag_s = 0.0;  // integrals of R*(|w1| + |w2|) and of the step's mag_s
+  double mag_am = 0.0;              // integral of the step's mag_am
   std::vector<StepResult> steps;
 };
 
@@ -133,9 +138,10 @@ Integrated integrate(const Motion& m, const Frame& f = {}) {
   Integrated out;
   const double dt = m.T / m.steps;
   const ContactParams p = law_params();
-  double xi = 0.0, x_r = 0.0;
+  double xi = 0.0, x_r = 0.0, x_r_am = 0.0;
   double* hist[1] = {&xi};
   double* rolling_hist[1] = {&x_r};
+  double* am_hist[1] = {&x_r_am};
   for (int n = 0; n < m.steps; ++n) {
     const double t = (n + 0.5) * dt;
     StepResult r;
@@ -147,6 +153,7 @@ Integrated integrate(const Motion& m, const Frame& f = {}) {
     r.F_t = TangentialCoulomb::force(p, b, r.k, r.F_n, dt, hist, 0).F_t;
     r.xi = xi;
     r.M = RollingWang::moment(p, b, r.k, r.F_n, dt, s.w1, s.w2, rolling_hist, 0).M1;
+    r.M_am = RollingAlonsoMarroquin::moment(p, b, r.k, r.F_n, dt, s.w1, s.w2, am_hist, 0).M1;
     out.dU_r += r.k.V_r * dt;
     out.dU_s += r.k.V_s * dt;
     // v2 - v1 is formed from the velocities in this frame: its rounding scales with |v1| + |v2|.
@@ -158,6 +165,10 @@ Integrated integrate(const Motion& m, const Frame& f = {}) {
     r.mag_Fn = p.k_n * std::fabs(r.k.u_n) + NormalLinear::c_n(p, b) * r.mag_v;
     r.mag_Ft = p.k_s * out.mag_s + 2.0 * p.zeta_t * std::sqrt(b.m_eff * p.k_s) * r.mag_s + p.mu * r.mag_Fn;
     r.mag_M = r.k.R_star * (p.k_r * out.mag_r + p.c_r * r.k.R_star * r.mag_w + p.mu_r * r.mag_Fn);
+    r.mag_am =
+        s.wall ? s.R1 * std::fabs(s.w1) + r.mag_v : s.R1 * std::fabs(s.w1) + s.R2 * std::fabs(s.w2) + 2.0 * r.mag_v;
+    out.mag_am += r.mag_am * dt;
+    r.mag_M_am = r.k.R_star * (p.k_r * out.mag_am + p.c_r * r.mag_am + p.mu_r * r.mag_Fn);
     out.steps.push_back(r);
   }
   return out;
@@ -458,6 +469,8 @@ void expect_same(const Integrated& ref, const Integrated& got, bool spun, const 
     EXPECT_TRUE(near_rel(b.F_t, a.F_t, kObjTol, std::max(a.mag_Ft, b.mag_Ft)))
         << at << ": F_t " << b.F_t << " vs " << a.F_t;
     EXPECT_TRUE(near_rel(b.M, a.M, kObjTol, std::max(a.mag_M, b.mag_M))) << at << ": M " << b.M << " vs " << a.M;
+    EXPECT_TRUE(near_rel(b.M_am, a.M_am, kObjTol, std::max(a.mag_M_am, b.mag_M_am)))
+        << at << ": M_am " << b.M_am << " vs " << a.M_am;
   }
 }
 
@@ -476,10 +489,13 @@ TEST(Kinematics, K6_ObjectiveUnderRotationDriftAndRigidSpin) {
 
   const double deg = kPi / 180.0;
   const Vec2 c{0.0123, -0.0071}, U{0.3, -0.7};
-  int forces_seen = 0;
+  int forces_seen = 0, am_seen = 0;
   for (const Motion& m : pair_cases) {
     const Integrated ref = integrate(m);
-    for (const StepResult& s : ref.steps) forces_seen += (s.F_n > 0.0 && s.F_t != 0.0 && s.M != 0.0);
+    for (const StepResult& s : ref.steps) {
+      forces_seen += (s.F_n > 0.0 && s.F_t != 0.0 && s.M != 0.0);
+      am_seen += std::fabs(s.M_am) > 1e-6 * s.mag_M_am;
+    }
     for (double alpha : {37 * deg, 137 * deg}) {
       expect_same(ref, integrate(m, {alpha, 0.0, c, {}}), false, m.name + " rotated");
       expect_same(ref, integrate(m, {alpha, 0.0, c, U}), false, m.name + " rotated+drift");
@@ -489,13 +505,19 @@ TEST(Kinematics, K6_ObjectiveUnderRotationDriftAndRigidSpin) {
   }
   for (const Motion& m : wall_cases) {
     const Integrated ref = integrate(m);
-    for (const StepResult& s : ref.steps) forces_seen += (s.F_n > 0.0 && s.F_t != 0.0 && s.M != 0.0);
+    for (const StepResult& s : ref.steps) {
+      forces_seen += (s.F_n > 0.0 && s.F_t != 0.0 && s.M != 0.0);
+      am_seen += std::fabs(s.M_am) > 1e-6 * s.mag_M_am;
+    }
     for (double alpha : {37 * deg, 137 * deg}) {
       expect_same(ref, integrate(m, {alpha, 0.0, c, {}}), false, m.name + " rotated");
       expect_same(ref, integrate(m, {alpha, 0.0, c, U}), false, m.name + " rotated+drift");
     }
   }
   EXPECT_GT(forces_seen, 10);  // the force comparisons compared non-zero forces
+  // alonso_marroquin acts in the four K4 pair cases (s1 and s2 of one sign, F_n > 0); K1 and K1b roll at F_n = 0
+  // and the other cases have V_r2 = 0. test_rolling_alonso_marroquin.cpp checks its objectivity in more states.
+  EXPECT_GE(am_seen, 4);
 }
 
 TEST(Kinematics, K6_SpinChangesTheNonObjectiveCentreVelocity) {

@@ -93,10 +93,12 @@ TEST(LawRegistry, RollingSpringGivesTheCriticalStepOfPhysicsSection4) {
   p.C_r = 0.01;
   const double I_red = I * I / (I + I), m_eff = 0.5 * m, r = R;  // r = 2 R1 R2/(R1 + R2)
   const double c_n = 2.0 * p.zeta_n * std::sqrt(m_eff * p.k_n), B = p.delta * r, R_star = 0.5 * R;
-  const std::map<std::string, RollingSpring> formula = {{"jiang_plastic", {p.k_n * B * B / 12.0, c_n * B * B / 12.0}},
-                                                        {"jiang_brittle", {p.k_n * B * B / 12.0, c_n * B * B / 12.0}},
-                                                        {"wang", {p.k_r * R_star * R_star, p.c_r * R_star * R_star}},
-                                                        {"iwashita_oda", {p.K_r, p.C_r}}};
+  const std::map<std::string, RollingSpring> formula = {
+      {"jiang_plastic", {p.k_n * B * B / 12.0, c_n * B * B / 12.0}},
+      {"jiang_brittle", {p.k_n * B * B / 12.0, c_n * B * B / 12.0}},
+      {"wang", {p.k_r * R_star * R_star, p.c_r * R_star * R_star}},
+      {"alonso_marroquin", {p.k_r * R_star * R_star, p.c_r * R_star * R_star}},
+      {"iwashita_oda", {p.K_r, p.C_r}}};
   int with_spring = 0;
   for (const LawInfo& law : law_catalog().rolling.laws) {
     SCOPED_TRACE(law.keyword);

@@ -34,6 +34,7 @@
 #include "physics/ContactKinematics.hpp"
 #include "physics/LawTypes.hpp"
 #include "physics/NormalLinear.hpp"
+#include "physics/RollingAlonsoMarroquin.hpp"
 #include "physics/RollingConstantTorque.hpp"
 #include "physics/RollingDisplacementDamping.hpp"
 #include "physics/RollingForceProportional.hpp"
@@ -72,9 +73,9 @@ ContactParams k7_params() {
   p.zeta_t = 0.2;
   p.mu = 0.5;
   p.delta = 0.3;  // jiang_*: B = 4e-3 m, K_m = 1.3e-2 N m/rad, M0 = 6.7e-5 N m
-  p.k_r = 300.0;  // wang: k_r R*^2 = 1.3e-2 N m/rad
+  p.k_r = 300.0;  // wang, alonso_marroquin: k_r R*^2 = 1.3e-2 N m/rad
   p.c_r = 2.0;
-  p.mu_r = 0.1;    // wang, force_proportional; constant_torque and displacement_damping too
+  p.mu_r = 0.1;    // wang, alonso_marroquin, force_proportional; constant_torque, displacement_damping
   p.K_r = 1.3e-2;  // iwashita_oda
   p.C_r = 1e-4;
   p.eta = 6.7e-4;
@@ -232,15 +233,15 @@ void check_all_k7(bool perturbed) {
 }
 
 TEST(RollingObjectivity, K7_RigidSpinConservesAngularMomentumExceptForceProportional) {
-  check_all_k7<RollingNone, RollingJiangPlastic, RollingJiangBrittle, RollingWang, RollingIwashitaOda,
-               RollingConstantTorque, RollingDisplacementDamping, RollingForceProportional>(false);
+  check_all_k7<RollingNone, RollingJiangPlastic, RollingJiangBrittle, RollingWang, RollingAlonsoMarroquin,
+               RollingIwashitaOda, RollingConstantTorque, RollingDisplacementDamping, RollingForceProportional>(false);
 }
 
 // The same with a relative spin on top of the rigid spin, so that every law's couple acts (springs load, caps
 // are reached, constant_torque switches on, jiang_brittle breaks): M2 = -M1 keeps L exact regardless.
 TEST(RollingObjectivity, K7_PerturbedSpinConservesAngularMomentumExceptForceProportional) {
-  check_all_k7<RollingNone, RollingJiangPlastic, RollingJiangBrittle, RollingWang, RollingIwashitaOda,
-               RollingConstantTorque, RollingDisplacementDamping, RollingForceProportional>(true);
+  check_all_k7<RollingNone, RollingJiangPlastic, RollingJiangBrittle, RollingWang, RollingAlonsoMarroquin,
+               RollingIwashitaOda, RollingConstantTorque, RollingDisplacementDamping, RollingForceProportional>(true);
 }
 
 // ---------------------------------------------------------------------------------------------------------

@@ -89,6 +89,17 @@ LawSetup wang(bool damped) {
   if (damped) s.overrides.push_back("--wang.c_r=100");  // c_r R^2 = 2.5e-3 N m s
   return s;
 }
+// alonso_marroquin: wang's spring-slider and [wang] block on W15's model-2 rolling velocity (docs/physics.md
+// section 3). Its rolling dashpot does not damp the undamped tangential spring of set S: near rest the spring's
+// ripple gives s1 = R omega and s2 = -V_t different signs, and then the law has no couple change and no dashpot
+// (docs/validation.md section 10). So `damped` damps the tangential spring too (coulomb.zeta_t = 0.5), which
+// changes neither the static state nor rolling without slip.
+LawSetup alonso_marroquin(bool damped) {
+  LawSetup s = wang(damped);
+  s.name = "alonso_marroquin";
+  if (damped) s.overrides.push_back("--coulomb.zeta_t=0.5");
+  return s;
+}
 LawSetup iwashita_oda(bool damped) {
   return {"iwashita_oda",
           {"--iwashita_oda.K_r=" + num(kIoKr), "--iwashita_oda.eta=" + num(kIoEta),
@@ -256,8 +267,8 @@ TEST(Incline, CriticalAngleFormula) {
   const double fp_c = critical_angle(force_proportional()) / kDeg;
   EXPECT_NEAR(jiang_c, 5.71175, 1e-5);
   EXPECT_NEAR(fp_c, 5.71059, 1e-5);
-  for (const LawSetup& law : {wang(false), iwashita_oda(false), constant_torque(), displacement_damping(false),
-                              jiang("jiang_brittle", false)})
+  for (const LawSetup& law : {wang(false), alonso_marroquin(false), iwashita_oda(false), constant_torque(),
+                              displacement_damping(false), jiang("jiang_brittle", false)})
     EXPECT_NEAR(critical_angle(law) / kDeg, jiang_c, 1e-9) << law.name;
   // The lever and the static overlap of docs/validation.md section 0 (beta = 0).
   EXPECT_NEAR(kWeight, 2.0417603, 1e-7);
@@ -266,13 +277,16 @@ TEST(Incline, CriticalAngleFormula) {
 }
 
 // Static hold of the elastic-plastic laws (with rolling damping, so that they settle):
-// x = m g sin(beta) (1/k_s + a^2/K) and theta = -m g a sin(beta)/K to 1e-4 relative.
+// x = m g sin(beta) (1/k_s + a^2/K) and theta = -m g a sin(beta)/K to 1e-4 relative. alonso_marroquin to 1e-2:
+// its spring moves by V_r2 = the smaller of s1 = R omega and s2 = -V_t, so while the load comes on (the tangential
+// spring stretching) x_r gains less than R theta, and the disc turns further before the spring holds it
+// (measured 0.3 % at both angles).
 TEST(Incline, StaticHoldBelowCriticalAngle) {
   const double dt = 5e-5;
   for (double beta_deg : {2.0, 4.0}) {
     const double beta = beta_deg * kDeg;
     for (const LawSetup& law : {jiang("jiang_plastic", true), jiang("jiang_brittle", true), wang(true),
-                                iwashita_oda(true), displacement_damping(true)}) {
+                                alonso_marroquin(true), iwashita_oda(true), displacement_damping(true)}) {
       SCOPED_TRACE(law.name + " beta = " + num(beta_deg));
       // displacement_damping's spring is 26x softer (rolling mode 61 rad/s): it needs longer to settle.
       const double T = law.name == "displacement_damping" ? 1.5 : 0.4;
@@ -283,8 +297,9 @@ TEST(Incline, StaticHoldBelowCriticalAngle) {
       const double th_exp = -drive(beta) / K;
       std::printf("hold %-22s beta %.1f: x = %.9e (exp %.9e, rel %+.1e)  theta = %.9e (exp %.9e, rel %+.1e)\n",
                   law.name.c_str(), beta_deg, r.x, x_exp, r.x / x_exp - 1, r.theta, th_exp, r.theta / th_exp - 1);
-      EXPECT_NEAR(r.x, x_exp, 1e-4 * x_exp);
-      EXPECT_NEAR(r.theta, th_exp, 1e-4 * std::fabs(th_exp));
+      const double tol = law.name == "alonso_marroquin" ? 1e-2 : 1e-4;
+      EXPECT_NEAR(r.x, x_exp, tol * x_exp);
+      EXPECT_NEAR(r.theta, th_exp, tol * std::fabs(th_exp));
       EXPECT_LT(std::fabs(r.v), 1e-6 * x_exp / T);  // at rest
     }
   }
@@ -299,8 +314,8 @@ TEST(Incline, StaticHoldBelowCriticalAngle) {
 //  - above: rolling with dv/dt = (m g a^2 sin(beta) - M_max a)/(I + m a^2) (1e-4 relative).
 TEST(Incline, CriticalAngleBracket) {
   const double dt = 5e-5, T = 1.5, fit_from = 1.0, dbeta = 0.015 * kDeg;
-  for (const LawSetup& law : {jiang("jiang_plastic", true), wang(true), iwashita_oda(true), displacement_damping(true),
-                              constant_torque(), force_proportional()}) {
+  for (const LawSetup& law : {jiang("jiang_plastic", true), wang(true), alonso_marroquin(true), iwashita_oda(true),
+                              displacement_damping(true), constant_torque(), force_proportional()}) {
     SCOPED_TRACE(law.name);
     const double beta_c = critical_angle(law);
     const bool rigid_plastic = law.name == "constant_torque" || law.name == "force_proportional";
@@ -361,9 +376,10 @@ TEST(Incline, JiangBrittleHoldsBelowAndBreaksAboveCriticalAngle) {
 // averages out).
 TEST(Incline, RollingAccelerationAboveCriticalAngle) {
   const double beta = 10.0 * kDeg, dt = 5e-5;
-  for (const LawSetup& law : {jiang("jiang_plastic", true), wang(true), iwashita_oda(true), displacement_damping(true),
-                              constant_torque(), force_proportional(), jiang("jiang_plastic", false), wang(false),
-                              iwashita_oda(false), displacement_damping(false)}) {
+  for (const LawSetup& law :
+       {jiang("jiang_plastic", true), wang(true), alonso_marroquin(true), iwashita_oda(true),
+        displacement_damping(true), constant_torque(), force_proportional(), jiang("jiang_plastic", false), wang(false),
+        alonso_marroquin(false), iwashita_oda(false), displacement_damping(false)}) {
     SCOPED_TRACE(law.name);
     const double A = rolling_acceleration(law, beta);
     const Trace r = run_for(law, beta, dt, 0.5, 0.1);
@@ -407,14 +423,15 @@ TEST(Incline, RigidPlasticLawsCreepAtASpeedProportionalToDt) {
       EXPECT_NEAR(r.v, v_exp, 1e-6 * v_exp);
     }
   }
-  for (const LawSetup& law :
-       {jiang("jiang_plastic", true), wang(true), iwashita_oda(true), displacement_damping(true)}) {
+  for (const LawSetup& law : {jiang("jiang_plastic", true), wang(true), alonso_marroquin(true), iwashita_oda(true),
+                              displacement_damping(true)}) {
     SCOPED_TRACE(law.name);
     const Trace r = run_for(law, beta, dt, T, 1.0, late);
     std::printf("creep %-22s (damped): %.3e m/s\n", law.name.c_str(), r.creep);
     EXPECT_LT(std::fabs(r.creep), 1e-9 * reference);
   }
-  for (const LawSetup& law : {jiang("jiang_plastic", false), wang(false), iwashita_oda(false)}) {
+  for (const LawSetup& law :
+       {jiang("jiang_plastic", false), wang(false), alonso_marroquin(false), iwashita_oda(false)}) {
     SCOPED_TRACE(law.name);
     // Undamped, the disc oscillates about its rest point: the window means differ by a bounded amount, so the
     // apparent creep falls with the distance between the windows instead of persisting.
