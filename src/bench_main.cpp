@@ -1,20 +1,22 @@
-// rondel_bench: the standard speed benchmark (bench/README.md). Loads the jammed periodic
-// packing of 10,000 discs, or its exact periodic copies (40,000 = 2 x 2, 160,000 = 4 x 4), runs the
-// warm-up and the timed steps with linear contacts and friction, and prints disc-steps per second,
-// contacts per disc and memory per disc.
-//   rondel_bench [--discs 10000|40000|160000] [--steps 5000] [--warmup 1000] [--rolling LAW] [--file PATH]
+// rondel_bench: the standard speed benchmark (bench/README.md). Loads the jammed periodic packing of 10,000
+// discs, or nx x ny exact periodic copies of it (--discs 10000 times the copy count; nx and ny as close to
+// square as the count allows, nx >= ny: 30,000 = 3 x 1, 160,000 = 4 x 4, 1,000,000 = 10 x 10,
+// 10,000,000 = 40 x 25), runs the warm-up and the timed steps with linear contacts and friction, and prints
+// disc-steps per second, contacts per disc and memory per disc.
+//   rondel_bench [--discs 10000 x k] [--steps 5000] [--warmup 1000] [--rolling LAW] [--file PATH]
 // Without --file it reads bench/jammed10k.csv of the working directory (a clone's root) and, when that is
 // missing, the one of the source tree it was built from (RONDEL_SOURCE_DIR, set by CMakeLists.txt), so it runs
-// from a build directory as well; the packing is described in bench/README.md.
+// from a build directory as well; the packing is described in bench/README.md. With --file, --discs counts
+// copies of that file's discs.
 // Rolling parameters follow the benchmark README (wang k_r = 2/7 k_n, mu_r = 0.1; jiang_* delta = 0.5); the
 // other laws get the equivalent cap for the mean radius (iwashita_oda K_r = k_r R*^2, eta = mu_r R*;
 // force_proportional mu_r = 0.1; constant_torque and displacement_damping mu_r = 0.05).
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <string>
+#include <utility>
 
 #include "BenchSupport.hpp"
 #include "app/Simulation.hpp"
@@ -38,9 +40,39 @@ Options parse(int argc, char** argv) {
                                {"--warmup", &o.warmup},
                                {"--rolling", &o.rolling},
                                {"--file", &o.file}});
-  if (o.discs != 10000 && o.discs != 40000 && o.discs != 160000)
-    throw rondel::ConfigError("rondel_bench: --discs must be 10000, 40000 or 160000 (copies of the 10k packing)");
   return o;
+}
+
+// The discs of a packing file: its rows that start with a number (not the comments, not the header).
+long count_discs(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw rondel::InputError("rondel_bench: cannot read '" + file + "' (use --file PATH)");
+  long n = 0;
+  for (std::string line; std::getline(in, line);) {
+    const auto first = line.find_first_not_of(" \t");
+    if (first == std::string::npos) continue;
+    const char c = line[first];
+    if ((c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.') ++n;
+  }
+  if (n == 0) throw rondel::InputError("rondel_bench: '" + file + "' holds no disc");
+  return n;
+}
+
+// The periodic copies nx x ny of a packing of `base` discs that make `discs`: nx ny = discs / base, ny the
+// largest divisor of the count not above its square root (as square as the count allows, nx >= ny).
+std::pair<long, long> copies_of(long discs, long base) {
+  if (discs <= 0 || discs % base != 0) {
+    const std::string b = std::to_string(base);
+    throw rondel::ConfigError("rondel_bench: --discs must be " + b +
+                              " (the discs of the packing) times a whole number of periodic copies nx x ny, e.g. " + b +
+                              ", " + std::to_string(3 * base) + " (3 x 1), " + std::to_string(16 * base) +
+                              " (4 x 4), " + std::to_string(100 * base) + " (10 x 10); not " + std::to_string(discs));
+  }
+  const long k = discs / base;
+  long ny = 1;
+  for (long d = 1; d * d <= k; ++d)
+    if (k % d == 0) ny = d;
+  return {k / ny, ny};
 }
 
 // The benchmark's value of each rolling parameter it sets, by key; the others keep their defaults.
@@ -106,17 +138,17 @@ int main(int argc, char** argv) {
   try {
     Options o = parse(argc, argv);
     if (o.file.empty()) o.file = default_packing();
+    const auto [nx, ny] = copies_of(o.discs, count_discs(o.file));
     double lo = 0, hi = 0;
     box_of(o.file, lo, hi);
-    const int copies = static_cast<int>(std::lround(std::sqrt(o.discs / 10000.0)));
     const double L = hi - lo;
     char ini[4096];
     std::snprintf(ini, sizeof ini,
                   "[run]\ndt = 3e-4\nsteps = 0\n[domain]\nxlo = %.17g\nxhi = %.17g\nylo = %.17g\nyhi = %.17g\n"
                   "periodic_x = true\nperiodic_y = true\n[material]\ndensity = 1\n[linear]\nk_n = 1e5\nzeta = 0.3\n"
-                  "[coulomb]\nk_s = 28571.43\nmu = 0.5\n[scene]\ntype = csv\nfile = %s\nreplicate_x = %d\n"
-                  "replicate_y = %d\nmax_initial_overlap = 0.2\n",
-                  lo, lo + copies * L, lo, lo + copies * L, o.file.c_str(), copies, copies);
+                  "[coulomb]\nk_s = 28571.43\nmu = 0.5\n[scene]\ntype = csv\nfile = %s\nreplicate_x = %ld\n"
+                  "replicate_y = %ld\nmax_initial_overlap = 0.2\n",
+                  lo, lo + static_cast<double>(nx) * L, lo, lo + static_cast<double>(ny) * L, o.file.c_str(), nx, ny);
     rondel::Simulation sim(rondel::parse_config_text(std::string(ini) + rolling_block(o.rolling)), comm, false);
     for (long s = 0; s < o.warmup; ++s) sim.step();
     const std::size_t builds0 = sim.neighbour_builds();
@@ -141,17 +173,17 @@ int main(int argc, char** argv) {
     const double rss = comm.sum(static_cast<double>(rondel::peak_rss_kib()) * 1024.0);
     if (comm.root())
       std::printf(
-          "rondel_bench: %ld discs, rolling %s, %ld timed steps (after %ld warm-up), dt %.3g s "
+          "rondel_bench: %ld discs (%ld x %ld copies), rolling %s, %ld timed steps (after %ld warm-up), dt %.3g s "
           "(critical %.3g s, %s mode), %d rank(s)\n"
           "  wall time             %.3f s\n  disc-steps per second %.4g\n"
           "  contacts per disc     %.3f (coordination %.3f)\n  candidate rows/disc   %.3f\n"
           "  neighbour builds      %zu\n  memory per disc       %.0f B in discs and contact rows, %.0f B peak RSS\n"
           "  communication         %.3f s (%.1f %% of the wall time, slowest rank)\n"
           "  ghosts per disc       %.4f\n  rows computed twice   %.2f %% of all rows (border pairs)\n",
-          o.discs, o.rolling.c_str(), o.steps, o.warmup, sim.dt(), sim.critical().dt, sim.critical().mode.c_str(),
-          comm.size(), secs, n * o.steps / secs, all_contacts / n, 2.0 * all_contacts / n, rows / n,
-          sim.neighbour_builds() - builds0, store / n, rss / n, comm_time, 100.0 * comm_time / secs, ghosts / n,
-          100.0 * twice / rows);
+          o.discs, nx, ny, o.rolling.c_str(), o.steps, o.warmup, sim.dt(), sim.critical().dt,
+          sim.critical().mode.c_str(), comm.size(), secs, n * o.steps / secs, all_contacts / n, 2.0 * all_contacts / n,
+          rows / n, sim.neighbour_builds() - builds0, store / n, rss / n, comm_time, 100.0 * comm_time / secs,
+          ghosts / n, 100.0 * twice / rows);
     return 0;
   } catch (const std::exception& e) {
     if (comm.root()) std::cerr << e.what() << '\n';
