@@ -2,7 +2,8 @@
 // discs, or nx x ny exact periodic copies of it (--discs 10000 times the copy count; nx and ny as close to
 // square as the count allows, nx >= ny: 30,000 = 3 x 1, 160,000 = 4 x 4, 1,000,000 = 10 x 10,
 // 10,000,000 = 40 x 25), runs the warm-up and the timed steps with linear contacts and friction, and prints
-// disc-steps per second, contacts per disc and memory per disc.
+// disc-steps per second, contacts per disc and memory per disc; then the timed steps' wall time per phase and
+// nanoseconds per contact and step.
 //   rondel_bench [--discs 10000 x k] [--steps 5000] [--warmup 1000] [--rolling LAW] [--file PATH]
 // Without --file it reads bench/jammed10k.csv of the working directory (a clone's root) and, when that is
 // missing, the one of the source tree it was built from (RONDEL_SOURCE_DIR, set by CMakeLists.txt), so it runs
@@ -11,6 +12,7 @@
 // Rolling parameters follow the benchmark README (wang k_r = 2/7 k_n, mu_r = 0.1; jiang_* delta = 0.5); the
 // other laws get the equivalent cap for the mean radius (iwashita_oda K_r = k_r R*^2, eta = mu_r R*;
 // force_proportional mu_r = 0.1; constant_torque and displacement_damping mu_r = 0.05).
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -153,6 +155,7 @@ int main(int argc, char** argv) {
     for (long s = 0; s < o.warmup; ++s) sim.step();
     const std::size_t builds0 = sim.neighbour_builds();
     const double comm_before = sim.comm_seconds();
+    const rondel::PhaseTimes phases0 = sim.phases();
     const auto t0 = std::chrono::steady_clock::now();
     for (long s = 0; s < o.steps; ++s) sim.step();
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -171,7 +174,15 @@ int main(int argc, char** argv) {
     const double store = comm.sum(
         static_cast<double>(sim.discs().memory_bytes() + sim.pairs().memory_bytes() + sim.wall_rows().memory_bytes()));
     const double rss = comm.sum(static_cast<double>(rondel::peak_rss_kib()) * 1024.0);
-    if (comm.root())
+    // The timed steps' seconds per phase, summed over the ranks (rank-seconds).
+    std::array<double, rondel::PhaseTimes::count> phase{};
+    for (int p = 0; p < rondel::PhaseTimes::count; ++p) {
+      const auto ph = static_cast<rondel::PhaseTimes::Phase>(p);
+      phase[p] = comm.sum(sim.phases().seconds(ph) - phases0.seconds(ph));
+    }
+    const double rank_seconds = comm.sum(secs);
+    if (comm.root()) {
+      const double rate = n * static_cast<double>(o.steps) / secs;
       std::printf(
           "rondel_bench: %ld discs (%ld x %ld copies), rolling %s, %ld timed steps (after %ld warm-up), dt %.3g s "
           "(critical %.3g s, %s mode), %d rank(s)\n"
@@ -181,9 +192,21 @@ int main(int argc, char** argv) {
           "  communication         %.3f s (%.1f %% of the wall time, slowest rank)\n"
           "  ghosts per disc       %.4f\n  rows computed twice   %.2f %% of all rows (border pairs)\n",
           o.discs, nx, ny, o.rolling.c_str(), o.steps, o.warmup, sim.dt(), sim.critical().dt,
-          sim.critical().mode.c_str(), comm.size(), secs, n * o.steps / secs, all_contacts / n, 2.0 * all_contacts / n,
-          rows / n, sim.neighbour_builds() - builds0, store / n, rss / n, comm_time, 100.0 * comm_time / secs,
-          ghosts / n, 100.0 * twice / rows);
+          sim.critical().mode.c_str(), comm.size(), secs, rate, all_contacts / n, 2.0 * all_contacts / n, rows / n,
+          sim.neighbour_builds() - builds0, store / n, rss / n, comm_time, 100.0 * comm_time / secs, ghosts / n,
+          100.0 * twice / rows);
+      // Per phase: the mean over the ranks, and its share of the mean wall time.
+      const double ranks = comm.size();
+      if (comm.size() > 1) std::printf("  the phases below: mean over the %d ranks\n", comm.size());
+      for (int p = 0; p < rondel::PhaseTimes::count; ++p)
+        std::printf("  phase %-15s %.3f s (%.1f %%)\n",
+                    rondel::PhaseTimes::name(static_cast<rondel::PhaseTimes::Phase>(p)), phase[p] / ranks,
+                    rank_seconds > 0.0 ? 100.0 * phase[p] / rank_seconds : 0.0);
+      const double contact_steps = all_contacts * static_cast<double>(o.steps);
+      if (contact_steps > 0.0)
+        std::printf("  ns per contact-step   %.2f in the force phase, %.2f in all (rank-seconds / contacts x steps)\n",
+                    1e9 * phase[rondel::PhaseTimes::force] / contact_steps, 1e9 * rank_seconds / contact_steps);
+    }
     return 0;
   } catch (const std::exception& e) {
     if (comm.root()) std::cerr << e.what() << '\n';
