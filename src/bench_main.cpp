@@ -2,9 +2,11 @@
 // discs, or nx x ny exact periodic copies of it (--discs 10000 times the copy count; nx and ny as close to
 // square as the count allows, nx >= ny: 30,000 = 3 x 1, 160,000 = 4 x 4, 1,000,000 = 10 x 10,
 // 10,000,000 = 40 x 25), runs the warm-up and the timed steps with linear contacts and friction, and prints
-// disc-steps per second, contacts per disc and memory per disc; then the timed steps' wall time per phase and
-// nanoseconds per contact and step.
-//   rondel_bench [--discs 10000 x k] [--steps 5000] [--warmup 1000] [--rolling LAW] [--file PATH]
+// disc-steps per second, contacts per disc and memory per disc; then the timed steps' wall time per phase,
+// nanoseconds per contact and step, a STREAM-like triad's memory bandwidth (measured before the simulation is
+// built; --no-stream skips it), the model of the bytes a step moves per disc (traffic_model,
+// BenchSupport.hpp) and the bound on disc-steps per second that the two give.
+//   rondel_bench [--discs 10000 x k] [--steps 5000] [--warmup 1000] [--rolling LAW] [--file PATH] [--no-stream]
 // Without --file it reads bench/jammed10k.csv of the working directory (a clone's root) and, when that is
 // missing, the one of the source tree it was built from (RONDEL_SOURCE_DIR, set by CMakeLists.txt), so it runs
 // from a build directory as well; the packing is described in bench/README.md. With --file, --discs counts
@@ -32,6 +34,7 @@ struct Options {
   long discs = 10000, steps = 5000, warmup = 1000;
   std::string file;  // empty: the default packing (default_packing)
   std::string rolling = "none";
+  bool no_stream = false;
 };
 
 Options parse(int argc, char** argv) {
@@ -41,7 +44,8 @@ Options parse(int argc, char** argv) {
                                {"--steps", &o.steps},
                                {"--warmup", &o.warmup},
                                {"--rolling", &o.rolling},
-                               {"--file", &o.file}});
+                               {"--file", &o.file},
+                               {"--no-stream", &o.no_stream}});
   return o;
 }
 
@@ -143,6 +147,19 @@ int main(int argc, char** argv) {
     const auto [nx, ny] = copies_of(o.discs, count_discs(o.file));
     double lo = 0, hi = 0;
     box_of(o.file, lo, hi);
+    // Memory bandwidth first, while no simulation holds memory: every rank at once, each pass timed by the
+    // slowest rank, the ranks' shares summed.
+    constexpr std::size_t kTriadBytes = std::size_t{128} << 20;  // each of the three arrays
+    constexpr int kTriadRepeats = 5;
+    double bandwidth = 0.0;
+    bool peak_reset = true;  // the peak RSS printed is the simulation's, not the triad arrays'
+    if (!o.no_stream) {
+      bandwidth = comm.sum(rondel::stream_triad_bandwidth(kTriadBytes, kTriadRepeats, [&comm](double seconds) {
+        comm.barrier();
+        return comm.max(seconds);
+      }));
+      peak_reset = rondel::reset_peak_rss();
+    }
     const double L = hi - lo;
     char ini[4096];
     std::snprintf(ini, sizeof ini,
@@ -168,12 +185,14 @@ int main(int argc, char** argv) {
     const double n = static_cast<double>(comm.sum(static_cast<std::int64_t>(sim.discs().n_owned())));
     const double all_contacts = static_cast<double>(comm.sum(static_cast<std::int64_t>(contacts)));
     const double rows = comm.sum(static_cast<double>(sim.pairs().size()));
+    const double wall_rows = comm.sum(static_cast<double>(sim.wall_rows().size()));
     const double twice = comm.sum(static_cast<double>(border));
     const double ghosts = comm.sum(static_cast<double>(sim.ghost_count()));
     const double comm_time = comm.max(sim.comm_seconds() - comm_before);
     const double store = comm.sum(
         static_cast<double>(sim.discs().memory_bytes() + sim.pairs().memory_bytes() + sim.wall_rows().memory_bytes()));
     const double rss = comm.sum(static_cast<double>(rondel::peak_rss_kib()) * 1024.0);
+    peak_reset = !comm.any(!peak_reset);
     // The timed steps' seconds per phase, summed over the ranks (rank-seconds).
     std::array<double, rondel::PhaseTimes::count> phase{};
     for (int p = 0; p < rondel::PhaseTimes::count; ++p) {
@@ -181,6 +200,9 @@ int main(int argc, char** argv) {
       phase[p] = comm.sum(sim.phases().seconds(ph) - phases0.seconds(ph));
     }
     const double rank_seconds = comm.sum(secs);
+    const rondel::TrafficModel model = rondel::traffic_model(sim.pairs());
+    const rondel::TrafficModel wall_model = rondel::traffic_model(sim.wall_rows());
+    const double bytes = model.per_disc_step(rows / n, ghosts / n) + wall_rows / n * wall_model.row_bytes();
     if (comm.root()) {
       const double rate = n * static_cast<double>(o.steps) / secs;
       std::printf(
@@ -188,13 +210,14 @@ int main(int argc, char** argv) {
           "(critical %.3g s, %s mode), %d rank(s)\n"
           "  wall time             %.3f s\n  disc-steps per second %.4g\n"
           "  contacts per disc     %.3f (coordination %.3f)\n  candidate rows/disc   %.3f\n"
-          "  neighbour builds      %zu\n  memory per disc       %.0f B in discs and contact rows, %.0f B peak RSS\n"
+          "  neighbour builds      %zu\n  memory per disc       %.0f B in discs and contact rows, %.0f B peak RSS%s\n"
           "  communication         %.3f s (%.1f %% of the wall time, slowest rank)\n"
           "  ghosts per disc       %.4f\n  rows computed twice   %.2f %% of all rows (border pairs)\n",
           o.discs, nx, ny, o.rolling.c_str(), o.steps, o.warmup, sim.dt(), sim.critical().dt,
           sim.critical().mode.c_str(), comm.size(), secs, rate, all_contacts / n, 2.0 * all_contacts / n, rows / n,
-          sim.neighbour_builds() - builds0, store / n, rss / n, comm_time, 100.0 * comm_time / secs, ghosts / n,
-          100.0 * twice / rows);
+          sim.neighbour_builds() - builds0, store / n, rss / n,
+          peak_reset ? "" : " (with the triad's arrays: use --no-stream)", comm_time, 100.0 * comm_time / secs,
+          ghosts / n, 100.0 * twice / rows);
       // Per phase: the mean over the ranks, and its share of the mean wall time.
       const double ranks = comm.size();
       if (comm.size() > 1) std::printf("  the phases below: mean over the %d ranks\n", comm.size());
@@ -206,6 +229,19 @@ int main(int argc, char** argv) {
       if (contact_steps > 0.0)
         std::printf("  ns per contact-step   %.2f in the force phase, %.2f in all (rank-seconds / contacts x steps)\n",
                     1e9 * phase[rondel::PhaseTimes::force] / contact_steps, 1e9 * rank_seconds / contact_steps);
+      if (o.no_stream)
+        std::printf("  stream triad          not measured (--no-stream)\n");
+      else
+        std::printf("  stream triad          %.2f GB/s (3 arrays of %zu MiB per rank, best of %d; %s)\n",
+                    1e-9 * bandwidth, kTriadBytes >> 20, kTriadRepeats,
+                    comm.size() > 1 ? "every rank at once, summed" : "1 rank");
+      std::printf("  bytes per disc-step (model) %.0f B (%.3f rows x %.0f B, discs %.0f B, %.4f ghosts x %.0f B)\n",
+                  bytes, rows / n, model.row_bytes(), model.disc_bytes(), ghosts / n, model.ghost_bytes());
+      if (!o.no_stream) {
+        const double bound = bandwidth / bytes;
+        std::printf("  bandwidth bound       %.4g disc-steps/s (triad bandwidth / bytes per disc-step)\n", bound);
+        std::printf("  measured / bound      %.3f\n", rate / bound);
+      }
     }
     return 0;
   } catch (const std::exception& e) {
