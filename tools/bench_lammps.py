@@ -436,7 +436,7 @@ def main():
                 say(f"{ME}: data files, inputs and logs kept in {args.workdir}")
         say(f"{ME}: {subprocess.run(['uptime'], capture_output=True, text=True).stdout.strip()}")
     except BenchError as e:
-        print(f"{ME}: ERROR: {e}", file=sys.stderr, flush=True)
+        print(f"bench_lammps: error: {e}", file=sys.stderr, flush=True)
         return 1
     return 0
 
