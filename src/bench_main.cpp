@@ -1,21 +1,27 @@
-// rondel_bench: the standard speed benchmark (bench/README.md). Loads the jammed periodic
-// packing of 10,000 discs, or its exact periodic copies (40,000 = 2 x 2, 160,000 = 4 x 4), runs the
-// warm-up and the timed steps with linear contacts and friction, and prints disc-steps per second,
-// contacts per disc and memory per disc.
-//   rondel_bench [--discs 10000|40000|160000] [--steps 5000] [--warmup 1000] [--rolling LAW] [--file PATH]
+// rondel_bench: the standard speed benchmark (bench/README.md). Loads the jammed periodic packing of 10,000
+// discs, or nx x ny exact periodic copies of it (--discs 10000 times the copy count; nx and ny as close to
+// square as the count allows, nx >= ny: 30,000 = 3 x 1, 160,000 = 4 x 4, 1,000,000 = 10 x 10,
+// 10,000,000 = 40 x 25), runs the warm-up and the timed steps with linear contacts and friction, and prints
+// disc-steps per second, contacts per disc and memory per disc; then the timed steps' wall time per phase,
+// nanoseconds per contact and step, a STREAM-like triad's memory bandwidth (measured before the simulation is
+// built; --no-stream skips it), the model of the bytes a step moves per disc (traffic_model,
+// BenchSupport.hpp) and the bound on disc-steps per second that the two give.
+//   rondel_bench [--discs 10000 x k] [--steps 5000] [--warmup 1000] [--rolling LAW] [--file PATH] [--no-stream]
 // Without --file it reads bench/jammed10k.csv of the working directory (a clone's root) and, when that is
 // missing, the one of the source tree it was built from (RONDEL_SOURCE_DIR, set by CMakeLists.txt), so it runs
-// from a build directory as well; the packing is described in bench/README.md.
+// from a build directory as well; the packing is described in bench/README.md. With --file, --discs counts
+// copies of that file's discs.
 // Rolling parameters follow the benchmark README (wang k_r = 2/7 k_n, mu_r = 0.1, which alonso_marroquin reads
 // from the same [wang] block; jiang_* delta = 0.5); the other laws get the equivalent cap for the mean radius
 // (iwashita_oda K_r = k_r R*^2, eta = mu_r R*; force_proportional mu_r = 0.1; constant_torque and
 // displacement_damping mu_r = 0.05).
+#include <array>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <string>
+#include <utility>
 
 #include "BenchSupport.hpp"
 #include "app/Simulation.hpp"
@@ -29,6 +35,7 @@ struct Options {
   long discs = 10000, steps = 5000, warmup = 1000;
   std::string file;  // empty: the default packing (default_packing)
   std::string rolling = "none";
+  bool no_stream = false;
 };
 
 Options parse(int argc, char** argv) {
@@ -38,10 +45,41 @@ Options parse(int argc, char** argv) {
                                {"--steps", &o.steps},
                                {"--warmup", &o.warmup},
                                {"--rolling", &o.rolling},
-                               {"--file", &o.file}});
-  if (o.discs != 10000 && o.discs != 40000 && o.discs != 160000)
-    throw rondel::ConfigError("rondel_bench: --discs must be 10000, 40000 or 160000 (copies of the 10k packing)");
+                               {"--file", &o.file},
+                               {"--no-stream", &o.no_stream}});
   return o;
+}
+
+// The discs of a packing file: its rows that start with a number (not the comments, not the header).
+long count_discs(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw rondel::InputError("rondel_bench: cannot read '" + file + "' (use --file PATH)");
+  long n = 0;
+  for (std::string line; std::getline(in, line);) {
+    const auto first = line.find_first_not_of(" \t");
+    if (first == std::string::npos) continue;
+    const char c = line[first];
+    if ((c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.') ++n;
+  }
+  if (n == 0) throw rondel::InputError("rondel_bench: '" + file + "' holds no disc");
+  return n;
+}
+
+// The periodic copies nx x ny of a packing of `base` discs that make `discs`: nx ny = discs / base, ny the
+// largest divisor of the count not above its square root (as square as the count allows, nx >= ny).
+std::pair<long, long> copies_of(long discs, long base) {
+  if (discs <= 0 || discs % base != 0) {
+    const std::string b = std::to_string(base);
+    throw rondel::ConfigError("rondel_bench: --discs must be " + b +
+                              " (the discs of the packing) times a whole number of periodic copies nx x ny, e.g. " + b +
+                              ", " + std::to_string(3 * base) + " (3 x 1), " + std::to_string(16 * base) +
+                              " (4 x 4), " + std::to_string(100 * base) + " (10 x 10); not " + std::to_string(discs));
+  }
+  const long k = discs / base;
+  long ny = 1;
+  for (long d = 1; d * d <= k; ++d)
+    if (k % d == 0) ny = d;
+  return {k / ny, ny};
 }
 
 // The benchmark's value of each rolling parameter it sets, by key; the others keep their defaults.
@@ -107,21 +145,35 @@ int main(int argc, char** argv) {
   try {
     Options o = parse(argc, argv);
     if (o.file.empty()) o.file = default_packing();
+    const auto [nx, ny] = copies_of(o.discs, count_discs(o.file));
     double lo = 0, hi = 0;
     box_of(o.file, lo, hi);
-    const int copies = static_cast<int>(std::lround(std::sqrt(o.discs / 10000.0)));
+    // Memory bandwidth first, while no simulation holds memory: every rank at once, each pass timed by the
+    // slowest rank, the ranks' shares summed.
+    constexpr std::size_t kTriadBytes = std::size_t{128} << 20;  // each of the three arrays
+    constexpr int kTriadRepeats = 5;
+    double bandwidth = 0.0;
+    bool peak_reset = true;  // the peak RSS printed is the simulation's, not the triad arrays'
+    if (!o.no_stream) {
+      bandwidth = comm.sum(rondel::stream_triad_bandwidth(kTriadBytes, kTriadRepeats, [&comm](double seconds) {
+        comm.barrier();
+        return comm.max(seconds);
+      }));
+      peak_reset = rondel::reset_peak_rss();
+    }
     const double L = hi - lo;
     char ini[4096];
     std::snprintf(ini, sizeof ini,
                   "[run]\ndt = 3e-4\nsteps = 0\n[domain]\nxlo = %.17g\nxhi = %.17g\nylo = %.17g\nyhi = %.17g\n"
                   "periodic_x = true\nperiodic_y = true\n[material]\ndensity = 1\n[linear]\nk_n = 1e5\nzeta = 0.3\n"
-                  "[coulomb]\nk_s = 28571.43\nmu = 0.5\n[scene]\ntype = csv\nfile = %s\nreplicate_x = %d\n"
-                  "replicate_y = %d\nmax_initial_overlap = 0.2\n",
-                  lo, lo + copies * L, lo, lo + copies * L, o.file.c_str(), copies, copies);
+                  "[coulomb]\nk_s = 28571.43\nmu = 0.5\n[scene]\ntype = csv\nfile = %s\nreplicate_x = %ld\n"
+                  "replicate_y = %ld\nmax_initial_overlap = 0.2\n",
+                  lo, lo + static_cast<double>(nx) * L, lo, lo + static_cast<double>(ny) * L, o.file.c_str(), nx, ny);
     rondel::Simulation sim(rondel::parse_config_text(std::string(ini) + rolling_block(o.rolling)), comm, false);
     for (long s = 0; s < o.warmup; ++s) sim.step();
     const std::size_t builds0 = sim.neighbour_builds();
     const double comm_before = sim.comm_seconds();
+    const rondel::PhaseTimes phases0 = sim.phases();
     const auto t0 = std::chrono::steady_clock::now();
     for (long s = 0; s < o.steps; ++s) sim.step();
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -134,25 +186,64 @@ int main(int argc, char** argv) {
     const double n = static_cast<double>(comm.sum(static_cast<std::int64_t>(sim.discs().n_owned())));
     const double all_contacts = static_cast<double>(comm.sum(static_cast<std::int64_t>(contacts)));
     const double rows = comm.sum(static_cast<double>(sim.pairs().size()));
+    const double wall_rows = comm.sum(static_cast<double>(sim.wall_rows().size()));
     const double twice = comm.sum(static_cast<double>(border));
     const double ghosts = comm.sum(static_cast<double>(sim.ghost_count()));
     const double comm_time = comm.max(sim.comm_seconds() - comm_before);
     const double store = comm.sum(
         static_cast<double>(sim.discs().memory_bytes() + sim.pairs().memory_bytes() + sim.wall_rows().memory_bytes()));
     const double rss = comm.sum(static_cast<double>(rondel::peak_rss_kib()) * 1024.0);
-    if (comm.root())
+    peak_reset = !comm.any(!peak_reset);
+    // The timed steps' seconds per phase, summed over the ranks (rank-seconds).
+    std::array<double, rondel::PhaseTimes::count> phase{};
+    for (int p = 0; p < rondel::PhaseTimes::count; ++p) {
+      const auto ph = static_cast<rondel::PhaseTimes::Phase>(p);
+      phase[p] = comm.sum(sim.phases().seconds(ph) - phases0.seconds(ph));
+    }
+    const double rank_seconds = comm.sum(secs);
+    const rondel::TrafficModel model = rondel::traffic_model(sim.pairs());
+    const rondel::TrafficModel wall_model = rondel::traffic_model(sim.wall_rows());
+    const double bytes = model.per_disc_step(rows / n, ghosts / n) + wall_rows / n * wall_model.row_bytes();
+    if (comm.root()) {
+      const double rate = n * static_cast<double>(o.steps) / secs;
       std::printf(
-          "rondel_bench: %ld discs, rolling %s, %ld timed steps (after %ld warm-up), dt %.3g s "
+          "rondel_bench: %ld discs (%ld x %ld copies), rolling %s, %ld timed steps (after %ld warm-up), dt %.3g s "
           "(critical %.3g s, %s mode), %d rank(s)\n"
           "  wall time             %.3f s\n  disc-steps per second %.4g\n"
           "  contacts per disc     %.3f (coordination %.3f)\n  candidate rows/disc   %.3f\n"
-          "  neighbour builds      %zu\n  memory per disc       %.0f B in discs and contact rows, %.0f B peak RSS\n"
+          "  neighbour builds      %zu\n  memory per disc       %.0f B in discs and contact rows, %.0f B peak RSS%s\n"
           "  communication         %.3f s (%.1f %% of the wall time, slowest rank)\n"
           "  ghosts per disc       %.4f\n  rows computed twice   %.2f %% of all rows (border pairs)\n",
-          o.discs, o.rolling.c_str(), o.steps, o.warmup, sim.dt(), sim.critical().dt, sim.critical().mode.c_str(),
-          comm.size(), secs, n * o.steps / secs, all_contacts / n, 2.0 * all_contacts / n, rows / n,
-          sim.neighbour_builds() - builds0, store / n, rss / n, comm_time, 100.0 * comm_time / secs, ghosts / n,
-          100.0 * twice / rows);
+          o.discs, nx, ny, o.rolling.c_str(), o.steps, o.warmup, sim.dt(), sim.critical().dt,
+          sim.critical().mode.c_str(), comm.size(), secs, rate, all_contacts / n, 2.0 * all_contacts / n, rows / n,
+          sim.neighbour_builds() - builds0, store / n, rss / n,
+          peak_reset ? "" : " (with the triad's arrays: use --no-stream)", comm_time, 100.0 * comm_time / secs,
+          ghosts / n, 100.0 * twice / rows);
+      // Per phase: the mean over the ranks, and its share of the mean wall time.
+      const double ranks = comm.size();
+      if (comm.size() > 1) std::printf("  the phases below: mean over the %d ranks\n", comm.size());
+      for (int p = 0; p < rondel::PhaseTimes::count; ++p)
+        std::printf("  phase %-15s %.3f s (%.1f %%)\n",
+                    rondel::PhaseTimes::name(static_cast<rondel::PhaseTimes::Phase>(p)), phase[p] / ranks,
+                    rank_seconds > 0.0 ? 100.0 * phase[p] / rank_seconds : 0.0);
+      const double contact_steps = all_contacts * static_cast<double>(o.steps);
+      if (contact_steps > 0.0)
+        std::printf("  ns per contact-step   %.2f in the force phase, %.2f in all (rank-seconds / contacts x steps)\n",
+                    1e9 * phase[rondel::PhaseTimes::force] / contact_steps, 1e9 * rank_seconds / contact_steps);
+      if (o.no_stream)
+        std::printf("  stream triad          not measured (--no-stream)\n");
+      else
+        std::printf("  stream triad          %.2f GB/s (3 arrays of %zu MiB per rank, best of %d; %s)\n",
+                    1e-9 * bandwidth, kTriadBytes >> 20, kTriadRepeats,
+                    comm.size() > 1 ? "every rank at once, summed" : "1 rank");
+      std::printf("  bytes per disc-step (model) %.0f B (%.3f rows x %.0f B, discs %.0f B, %.4f ghosts x %.0f B)\n",
+                  bytes, rows / n, model.row_bytes(), model.disc_bytes(), ghosts / n, model.ghost_bytes());
+      if (!o.no_stream) {
+        const double bound = bandwidth / bytes;
+        std::printf("  bandwidth bound       %.4g disc-steps/s (triad bandwidth / bytes per disc-step)\n", bound);
+        std::printf("  measured / bound      %.3f\n", rate / bound);
+      }
+    }
     return 0;
   } catch (const std::exception& e) {
     if (comm.root()) std::cerr << e.what() << '\n';
