@@ -38,6 +38,7 @@ void Simulation::step() {
       Integrator::half_kick_drift(discs_, config_.domain, dt_, config_.gravity, neighbours_.positions_at_build());
   const double W_g = drift.W_g;
   double moved = drift.max_displacement;
+  phases_.lap(PhaseTimes::integrate);
   // A position gone NaN or inf is this rank's error, agreed at the next reduction (always before a rebuild
   // could migrate the disc); the reduction sees it as an infinite displacement.
   if (!std::isfinite(moved) && !pending_error_) pending_error_ = motion_error(moved);

@@ -1,15 +1,10 @@
 #include "core/Integrator.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rondel {
 
-namespace {
-// m = max(m, x), where a NaN x sticks (std::max would drop it).
-inline void note_max(double& m, double x) {
-  if (x > m || std::isnan(x)) m = x;
-}
-}  // namespace
 
 Integrator::Drift Integrator::half_kick_drift(DiscStore& discs, const Domain& domain, double dt, Vec2 gravity,
                                               const std::vector<Vec2>& since) {
@@ -41,10 +36,9 @@ Integrator::Drift Integrator::half_kick_drift(DiscStore& discs, const Domain& do
       W_g += m * dot(gravity, dx);
     }
     // Fixed discs too: they move with their walls (Boundaries::move_glued).
-    if (measure) note_max(moved2, squared_displacement(image, x0[i], position[i]));
+    if (measure) moved2 = std::max(moved2, squared_displacement(image, x0[i], position[i]));
   }
-  // A position gone NaN (or inf) makes the displacement infinite: the step reports it (Simulation::step).
-  return {W_g, measure && !std::isnan(moved2) ? std::sqrt(moved2) : INFINITY};
+  return {W_g, measure ? std::sqrt(moved2) : INFINITY};
 }
 
 void Integrator::half_kick(DiscStore& discs, double dt) {
