@@ -12,9 +12,11 @@
 // Energy ledger (docs/physics.md section 5): the work of each contact on the relative motion is integrated
 // with the half-step velocities and the trapezoid of last and this step's force,
 //   dW_n = (F_n' + F_n)/2 v_n dt,  dW_t = (F_t' + F_t)/2 V_s dt,  dW_r = sum_i (M_i' + M_i)/2 omega_i dt,
-// and a moving wall's work on a disc is (f' + f)/2 . v_wall dt. The laws report Coulomb slip, rolling
-// plastic and dashpot work and brittle-break releases. A row is booked by the rank that owns its disc 1,
-// so a border pair computed on two ranks counts once.
+// and a moving wall's work on a disc is (f' + f)/2 . v_wall dt. The rows' (F' + F) v terms are summed and
+// the sums multiplied by dt/2 once per pass; for a law whose couple on disc 2 is -M1, the rolling term is
+// (M1' + M1)(omega1 - omega2). The laws report Coulomb slip, rolling plastic and dashpot work and
+// brittle-break releases. A row is booked by the rank that owns its disc 1, so a border pair computed on
+// two ranks counts once.
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -220,23 +222,26 @@ struct ContactKernel {
     }
   }
 
-  // The ledger's share of a booked row: the trapezoid of last and this step's force and couples, and the
-  // laws' dissipation.
+  // The ledger's share of a booked row: the trapezoid of last and this step's force and couples (without
+  // the factor dt/2, applied to the pass's sums), and the laws' dissipation.
   template <bool kWall>
   [[gnu::always_inline]] static void book_work(const ContactTable& tab, std::size_t r, const Row& row, double F_n,
                                                const TangentialForce& T, const RollingCouple& M, Vec2 f1, double dt,
                                                LedgerStep& L) {
     const ContactKinematics& k = row.k;
-    L.W_n += 0.5 * (tab.F_n[r] + F_n) * k.v_n * dt;
-    L.W_t += 0.5 * (tab.F_t[r] + T.F_t) * k.V_s * dt;
+    L.W_n += (tab.F_n[r] + F_n) * k.v_n;
+    L.W_t += (tab.F_t[r] + T.F_t) * k.V_s;
     L.D_slip += T.slip;
     if constexpr (Rolling::kActive) {
-      L.W_r += 0.5 * ((tab.M1[r] + M.M1) * row.w1 + (last_M2(tab, r) + M.M2) * row.w2) * dt;
+      if constexpr (kCouples > 1)
+        L.W_r += (tab.M1[r] + M.M1) * row.w1 + (tab.M2[r] + M.M2) * row.w2;
+      else
+        L.W_r += (tab.M1[r] + M.M1) * k.thetadot_r;
       L.D_r_plastic += M.plastic;
       L.D_r_dashpot += M.dashpot;
       L.E_r_break += M.released;
     }
-    if constexpr (kWall) L.W_w += 0.5 * dot(tab.f1[r] + f1, row.v_wall) * dt;
+    if constexpr (kWall) L.W_w += dot(tab.f1[r] + f1, row.v_wall);
   }
 
   // This step's result into the row's columns: the state the next step starts from.
@@ -294,10 +299,10 @@ struct ContactKernel {
       if (k.u_n <= 0.0) {
         // The contact opened this step: book the last half of the trapezoid, then forget its history.
         if (book) {
-          L.W_n += 0.5 * tab.F_n[r] * k.v_n * dt;
-          L.W_t += 0.5 * tab.F_t[r] * k.V_s * dt;
-          if constexpr (Rolling::kActive) L.W_r += 0.5 * (tab.M1[r] * row.w1 + last_M2(tab, r) * row.w2) * dt;
-          if constexpr (kWall) L.W_w += 0.5 * dot(tab.f1[r], row.v_wall) * dt;
+          L.W_n += tab.F_n[r] * k.v_n;
+          L.W_t += tab.F_t[r] * k.V_s;
+          if constexpr (Rolling::kActive) L.W_r += tab.M1[r] * row.w1 + last_M2(tab, r) * row.w2;
+          if constexpr (kWall) L.W_w += dot(tab.f1[r], row.v_wall);
         }
         open_row<kWall, kCommit>(tab, r, h);
         continue;
@@ -334,6 +339,8 @@ struct ContactKernel {
         sum_T[j] += k.a2 * T.F_t + M.M2;
       }
     }
+    const double half_dt = 0.5 * dt;
+    L.W_n *= half_dt, L.W_t *= half_dt, L.W_r *= half_dt, L.W_w *= half_dt;
     ledger.add_terms(L, kTermKernel);
     if (L.worst_overlap > ledger.worst_overlap) {
       ledger.worst_overlap = L.worst_overlap;

@@ -38,14 +38,16 @@ struct RollingWang {
                               double dt, double, double, double* const* hist, std::size_t row) {
     double& x_r = hist[0][row];
     x_r += k.V_r * dt;
-    const double trial = -p.k_r * x_r - p.c_r * k.V_r;
+    // Without a dashpot (c_r = 0, the default) the trial is the spring alone and nothing is damped.
+    double trial = -p.k_r * x_r;
+    if (p.c_r > 0.0) trial -= p.c_r * k.V_r;
     const double before = x_r;
     const CapResult T = cap_spring_slider(trial, p.mu_r * F_n, p.k_r, x_r);
     const double M = k.R_star * T.value;
     RollingCouple c{M, -M};
     if (T.capped)
       c.plastic = std::fabs(T.value * (before - x_r));
-    else
+    else if (p.c_r > 0.0)
       c.dashpot = p.c_r * k.V_r * k.V_r * dt;
     return c;
   }

@@ -44,8 +44,10 @@ struct TangentialCoulomb {
                                double dt, double* const* hist, std::size_t row) {
     double& xi = hist[0][row];
     xi += k.V_s * dt;
-    const double c_t = p.zeta_t > 0.0 ? 2.0 * p.zeta_t * std::sqrt(b.m_eff * p.k_s) : 0.0;
-    const double trial = -p.k_s * xi - c_t * k.V_s;
+    // Without a dashpot (zeta_t = 0, the usual case) the trial is the spring alone: the same value as
+    // -k_s xi - 0 V_s but for the sign of a zero.
+    double trial = -p.k_s * xi;
+    if (p.zeta_t > 0.0) trial -= 2.0 * p.zeta_t * std::sqrt(b.m_eff * p.k_s) * k.V_s;
     const double before = xi;
     const CapResult F = cap_spring_slider(trial, p.mu * F_n, p.k_s, xi);
     return {F.value, F.capped ? std::fabs(F.value * (before - xi)) : 0.0};
