@@ -174,9 +174,10 @@ class Simulation {
   std::exception_ptr pending_error_;  // this rank's error, not yet agreed
   WallLoads loads_;                   // this rank's part of the controlled walls' loads, of the last step
   std::int64_t since_reduction_ = 0;
-  double base_disp_ = 0.0, predicted_ = 0.0;  // largest displacement at the last reduction; its bound now
-  double v_step_ = 0.0, a_step_ = 0.0;        // largest |v| dt and |F/m| dt^2 at the last reduction
-  bool bounds_known_ = false;                 // the first step (and a restart's) reduces
+  double base_disp_ = 0.0, predicted_ = 0.0;      // largest displacement at the last reduction; its bound now
+  double v_step_ = 0.0, a_step_ = 0.0;            // largest |v| dt and |F/m| dt^2 at the last reduction
+  double drift_speed_ = 0.0, drift_accel_ = 0.0;  // this rank's largest |v| and |F/m| of this step's drift
+  bool bounds_known_ = false;                     // the first step (and a restart's) reduces
   bool balance_pending_ = false, remeasure_ = false;
   std::int64_t balance_work_ = 0;
   std::int64_t stop_request_ = 0, stop_agreed_ = 0;

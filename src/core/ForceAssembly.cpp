@@ -20,6 +20,16 @@ void ForceAssembly::begin(DiscStore& discs, const BodyForce& body) {
   std::fill(discs.torque.begin() + static_cast<std::ptrdiff_t>(n), discs.torque.end(), 0.0);
 }
 
+void ForceAssembly::begin_fixed_and_ghosts(DiscStore& discs) const {
+  for (std::uint32_t i : fixed_) {
+    discs.force[i] = {};  // BodyForce::on of a fixed disc
+    discs.torque[i] = 0.0;
+  }
+  const auto n = static_cast<std::ptrdiff_t>(discs.n_owned());
+  std::fill(discs.force.begin() + n, discs.force.end(), Vec2{});
+  std::fill(discs.torque.begin() + n, discs.torque.end(), 0.0);
+}
+
 void ForceAssembly::finish(DiscStore& discs) const {
   for (std::uint32_t i : fixed_) {
     if (!is_attached(discs.flags[i])) discs.force[i] = {};

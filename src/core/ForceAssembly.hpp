@@ -28,6 +28,9 @@ class ForceAssembly {
   // Before the kernel: force = the body force (step 4, the first term of each sum), torque = 0, for every
   // owned disc; the ghosts' entries zero.
   static void begin(DiscStore& discs, const BodyForce& body);
+  // The same after the step's drift, which starts the free discs' sums itself (Integrator::half_kick_drift):
+  // the fixed discs' sums (no body force on them) and the ghosts' entries.
+  void begin_fixed_and_ghosts(DiscStore& discs) const;
   // After the kernel: a fixed disc does not move under its load, so it gets zero force and torque, except
   // that a disc glued to a wall keeps its contact force (the reaction the wall carries, used by the energy
   // ledger), without gravity.

@@ -74,9 +74,9 @@ class OneContactRig {
   }
 
   void step() {
-    Integrator::half_kick_drift(discs_, domain_, dt_, gravity_, {});
+    Integrator::half_kick_drift(discs_, domain_, dt_, BodyForce{gravity_}, {}, false);
     LedgerStep unused;
-    ForceAssembly::begin(discs_, BodyForce{gravity_});
+    assembly_.begin_fixed_and_ghosts(discs_);
     ops_.run(KernelContext{discs_, domain_, walls_, params_, dt_}, pairs_, wall_rows_, ForceSums::of(discs_), unused);
     finish();
     Integrator::half_kick(discs_, dt_);

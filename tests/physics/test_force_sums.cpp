@@ -55,7 +55,8 @@ Scene make_scene(unsigned seed, int n, const std::vector<int>& order, std::uint3
   };
   std::vector<Disc> cluster;
   for (int k = 0; k < n; ++k)
-    cluster.push_back({10 + k, 0.04 + 0.01 * (k % 3), {0.06 * u(rng), -0.94 + 0.06 * u(rng)}, {u(rng), u(rng)}, u(rng)});
+    cluster.push_back(
+        {10 + k, 0.04 + 0.01 * (k % 3), {0.06 * u(rng), -0.94 + 0.06 * u(rng)}, {u(rng), u(rng)}, u(rng)});
   Scene s;
   const double stiffness[] = {1.0, 1e16, 0.1, 7e15};
   for (std::size_t a = 0; a < 4; ++a)

@@ -130,7 +130,7 @@ TEST(AlonsoMarroquin, PureSlidingCentresFixedGivesZeroLikeWang) {
       const AlonsoMarroquinRates r = rates(s);
       EXPECT_TRUE(near(r.s1, kR1 * w));
       EXPECT_TRUE(near(r.s2, -R2 * w));
-      EXPECT_EQ(r.V_r2, 0.0);                           // different signs
+      EXPECT_EQ(r.V_r2, 0.0);                          // different signs
       EXPECT_TRUE(near(kinematics(s).V_r, 0.0, 1.0));  // wang: 0
     }
 }
@@ -452,8 +452,7 @@ TEST(AlonsoMarroquin, SpringSliderLoadsYieldsAtCapAndBooksLikeWang) {
     }
     EXPECT_EQ(first_capped, n_yield);
     EXPECT_TRUE(near(x_am, p.mu_r * F_n / p.k_r));  // held at the cap: x_r = mu_r F_n/k_r
-    EXPECT_TRUE(near(RollingAlonsoMarroquin::moment(p, b, k, F_n, dt, s.w1, s.w2, h_am, 0).M1,
-                     -R_star * p.mu_r * F_n));
+    EXPECT_TRUE(near(RollingAlonsoMarroquin::moment(p, b, k, F_n, dt, s.w1, s.w2, h_am, 0).M1, -R_star * p.mu_r * F_n));
     EXPECT_TRUE(near(RollingAlonsoMarroquin::cap(p, k, F_n), R_star * p.mu_r * F_n));
     EXPECT_TRUE(near(RollingAlonsoMarroquin::stored(p, b, k, F_n, h_am, 0), 0.5 * p.k_r * x_am * x_am));
     // The dashpot worked in the elastic steps only.
