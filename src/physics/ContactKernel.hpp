@@ -238,8 +238,8 @@ struct ContactKernel {
       else
         L.W_r += (tab.M1[r] + M.M1) * k.thetadot_r;
       L.D_r_plastic += M.plastic;
-      L.D_r_dashpot += M.dashpot;
-      L.E_r_break += M.released;
+      if (M.dashpot != 0.0) L.D_r_dashpot += M.dashpot;  // (a law without a rolling dashpot books none)
+      if constexpr (breaks<Rolling>()) L.E_r_break += M.released;
     }
     if constexpr (kWall) L.W_w += dot(tab.f1[r] + f1, row.v_wall);
   }

@@ -96,6 +96,16 @@ constexpr bool own_couples() {
     return false;
 }
 
+// A rolling law that releases stored energy when a contact breaks declares `kBreaks = true` (jiang_brittle);
+// the kernel books E_r_break for it only.
+template <class L>
+constexpr bool breaks() {
+  if constexpr (requires { L::kBreaks; })
+    return L::kBreaks;
+  else
+    return false;
+}
+
 // The rolling couple columns of a law's rows (ContactTable::couples()): 0, 1 or 2.
 template <class L>
 constexpr int couple_columns() {

@@ -19,6 +19,7 @@ struct RollingJiangBrittle {
     return RollingJiangPlastic::spring(p, b, k);
   }
   static constexpr bool kActive = true;
+  static constexpr bool kBreaks = true;  // books the stored energy released at a break (E_r_break)
   static constexpr std::array<const char*, 2> slots{"theta_r", "broken"};
 
   static RollingCouple moment(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double F_n,
