@@ -222,26 +222,44 @@ struct ContactKernel {
     }
   }
 
-  // The ledger's share of a booked row: the trapezoid of last and this step's force and couples (without
-  // the factor dt/2, applied to the pass's sums), and the laws' dissipation.
+  // The ledger's sums of a pass, two to a 16-byte register: the kernel's loop has more live values than the
+  // processor has registers, and sums kept in memory cost a load and a store per row each. A packed addition
+  // adds each lane exactly as a scalar one would (the same bits). The works are without the factor dt/2
+  // (applied to the pass's totals, see the header); every dissipation term is >= 0.
+  using Pair = double __attribute__((vector_size(16)));
+  struct PassSums {
+    Pair work{0.0, 0.0};  // W_n, W_t
+    Pair roll{0.0, 0.0};  // W_r, D_slip
+    Pair loss{0.0, 0.0};  // D_r_plastic, D_r_dashpot
+    double W_w = 0.0, E_r_break = 0.0;
+    // Into this pass's ledger terms, with the works' factor dt/2.
+    void book(double dt, LedgerStep& L) const {
+      const double half_dt = 0.5 * dt;
+      L.W_n += half_dt * work[0], L.W_t += half_dt * work[1], L.W_r += half_dt * roll[0];
+      L.W_w += half_dt * W_w;
+      L.D_slip += roll[1], L.D_r_plastic += loss[0], L.D_r_dashpot += loss[1], L.E_r_break += E_r_break;
+    }
+  };
+
+  // The ledger's share of a booked row: the trapezoid of last and this step's force and couples, and the
+  // laws' dissipation.
   template <bool kWall>
   [[gnu::always_inline]] static void book_work(const ContactTable& tab, std::size_t r, const Row& row, double F_n,
-                                               const TangentialForce& T, const RollingCouple& M, Vec2 f1, double dt,
-                                               LedgerStep& L) {
+                                               const TangentialForce& T, const RollingCouple& M, Vec2 f1,
+                                               PassSums& S) {
     const ContactKinematics& k = row.k;
-    L.W_n += (tab.F_n[r] + F_n) * k.v_n;
-    L.W_t += (tab.F_t[r] + T.F_t) * k.V_s;
-    L.D_slip += T.slip;
+    S.work += Pair{(tab.F_n[r] + F_n) * k.v_n, (tab.F_t[r] + T.F_t) * k.V_s};
+    double W_r = 0.0;
+    if constexpr (kCouples > 1)
+      W_r = (tab.M1[r] + M.M1) * row.w1 + (tab.M2[r] + M.M2) * row.w2;
+    else if constexpr (kCouples > 0)
+      W_r = (tab.M1[r] + M.M1) * k.thetadot_r;
+    S.roll += Pair{W_r, T.slip};
     if constexpr (Rolling::kActive) {
-      if constexpr (kCouples > 1)
-        L.W_r += (tab.M1[r] + M.M1) * row.w1 + (tab.M2[r] + M.M2) * row.w2;
-      else
-        L.W_r += (tab.M1[r] + M.M1) * k.thetadot_r;
-      L.D_r_plastic += M.plastic;
-      if (M.dashpot != 0.0) L.D_r_dashpot += M.dashpot;  // (a law without a rolling dashpot books none)
-      if constexpr (breaks<Rolling>()) L.E_r_break += M.released;
+      S.loss += Pair{M.plastic, M.dashpot};
+      if constexpr (breaks<Rolling>()) S.E_r_break += M.released;
     }
-    if constexpr (kWall) L.W_w += dot(tab.f1[r] + f1, row.v_wall);
+    if constexpr (kWall) S.W_w += dot(tab.f1[r] + f1, row.v_wall);
   }
 
   // This step's result into the row's columns: the state the next step starts from.
@@ -281,6 +299,7 @@ struct ContactKernel {
     Vec2* const sum_F = sums.force;
     double* const sum_T = sums.torque;
     LedgerStep L;
+    PassSums S;
     const std::size_t n_rows = tab.size();
     for (std::size_t r = 0; r < n_rows; ++r) {
       Row row;
@@ -299,10 +318,11 @@ struct ContactKernel {
       if (k.u_n <= 0.0) {
         // The contact opened this step: book the last half of the trapezoid, then forget its history.
         if (book) {
-          L.W_n += tab.F_n[r] * k.v_n;
-          L.W_t += tab.F_t[r] * k.V_s;
-          if constexpr (Rolling::kActive) L.W_r += tab.M1[r] * row.w1 + last_M2(tab, r) * row.w2;
-          if constexpr (kWall) L.W_w += dot(tab.f1[r], row.v_wall);
+          double W_r = 0.0;
+          if constexpr (Rolling::kActive) W_r = tab.M1[r] * row.w1 + last_M2(tab, r) * row.w2;
+          S.work += Pair{tab.F_n[r] * k.v_n, tab.F_t[r] * k.V_s};
+          S.roll += Pair{W_r, 0.0};
+          if constexpr (kWall) S.W_w += dot(tab.f1[r], row.v_wall);
         }
         open_row<kWall, kCommit>(tab, r, h);
         continue;
@@ -327,7 +347,7 @@ struct ContactKernel {
         }
       }
       const Vec2 f1 = T.F_t * k.t - F_n * k.n;
-      if (book) book_work<kWall>(tab, r, row, F_n, T, M, f1, dt, L);
+      if (book) book_work<kWall>(tab, r, row, F_n, T, M, f1, S);
       store_row<kWall>(tab, r, F_n, T, M, f1);
       // The row's terms of its discs' sums, in row order (see the header): +f1 and its torque on disc 1,
       // -f1 and its torque on disc 2. An open row adds nothing.
@@ -339,8 +359,7 @@ struct ContactKernel {
         sum_T[j] += k.a2 * T.F_t + M.M2;
       }
     }
-    const double half_dt = 0.5 * dt;
-    L.W_n *= half_dt, L.W_t *= half_dt, L.W_r *= half_dt, L.W_w *= half_dt;
+    S.book(dt, L);
     ledger.add_terms(L, kTermKernel);
     if (L.worst_overlap > ledger.worst_overlap) {
       ledger.worst_overlap = L.worst_overlap;
