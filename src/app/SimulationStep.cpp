@@ -18,6 +18,8 @@ void Simulation::rebuild() {
   // the history source of the new neighbour list.
   const DiscExchange::Counts moved = exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_);
   decomposition_->migrated();
+  // Received discs come last: back into gid order, the kernel's order (the arithmetic does not depend on it).
+  discs_.sort_owned_by_gid();
   migrated_ += moved.sent;
   exchange_.build_ghosts(discs_, *decomposition_, comm_);
   phases_.lap(PhaseTimes::communication);

@@ -1,5 +1,6 @@
 #include "core/DiscStore.hpp"
 
+#include <algorithm>
 #include <numbers>
 #include <stdexcept>
 
@@ -61,6 +62,21 @@ void DiscStore::remove_owned(const std::vector<bool>& drop) {
     kept = out;
   });
   n_owned_ = kept;
+}
+
+bool DiscStore::sort_owned_by_gid() {
+  const std::size_t n = n_owned_;
+  if (std::is_sorted(gid.begin(), gid.begin() + static_cast<std::ptrdiff_t>(n))) return false;
+  truncate_to_owned();
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+  std::sort(order.begin(), order.end(), [this](std::uint32_t a, std::uint32_t b) { return gid[a] < gid[b]; });
+  for_each_field([&order](const char*, unsigned, auto& field) {
+    auto sorted = field;
+    for (std::size_t k = 0; k < order.size(); ++k) sorted[k] = field[order[k]];
+    field.swap(sorted);
+  });
+  return true;
 }
 
 std::size_t DiscStore::memory_bytes() const {

@@ -63,6 +63,10 @@ class DiscStore {
   void set_owned_count(std::size_t n) { n_owned_ = n; }
   // Removes the owned discs whose flag in `drop` is set (ghosts are dropped too), keeping the order.
   void remove_owned(const std::vector<bool>& drop);
+  // Puts the owned discs in ascending gid (ghosts are dropped), when they are not already: the contact
+  // kernel walks the rows in ascending key order, so discs stored in that order are read as a stream.
+  // Returns whether anything moved.
+  bool sort_owned_by_gid();
   std::size_t memory_bytes() const;
 
   // Visits every field with its name, its uses and its vector.

@@ -46,7 +46,10 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
   bin(discs, domain, R_max);
   const std::size_t n_owned = discs.n_owned();
 
+  // The candidates, about as many as the rows held now: reserved so that the list does not double past its
+  // size (the rebuild's peak memory is the old rows, the new rows and this list).
   std::vector<std::tuple<ContactKey, std::int32_t, std::int32_t>> found;
+  found.reserve(pairs.size() + pairs.size() / 16 + 64);
   std::vector<std::size_t> around;
   for (std::size_t c = 0; c + 1 < cell_start_.size(); ++c) {
     if (cell_start_[c] == cell_start_[c + 1]) continue;
@@ -81,6 +84,7 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
     pairs.reserve(found.size());
     for (const auto& [k, i, j] : found)
       pairs.push(k, i, j, static_cast<std::int32_t>(params.pair_index(discs.material[i], discs.material[j])));
+    found = {};  // freed before the history is copied
     pairs.inherit_history(old_pairs);
   }
 

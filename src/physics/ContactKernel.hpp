@@ -243,8 +243,7 @@ struct ContactKernel {
   // laws' dissipation.
   template <bool kWall>
   [[gnu::always_inline]] static void book_work(const ContactTable& tab, std::size_t r, const Row& row, double F_n,
-                                               const TangentialForce& T, const RollingCouple& M, Vec2 f1,
-                                               PassSums& S) {
+                                               const TangentialForce& T, const RollingCouple& M, Vec2 f1, PassSums& S) {
     const ContactKinematics& k = row.k;
     S.work += Pair{(tab.F_n[r] + F_n) * k.v_n, (tab.F_t[r] + T.F_t) * k.V_s};
     double W_r = 0.0;
