@@ -11,8 +11,8 @@ makes them) it writes the packing as a LAMMPS data file and two LAMMPS inputs in
 runs, per round and in this order,
     rondel_bench --rolling wang, LAMMPS pair granular with rolling sds, rondel_bench --rolling none,
     LAMMPS pair gran/hooke/history,
-for --trials rounds, with the same warm-up and timed steps for both codes (1 rank, or each under
-`mpirun -n P` with --ranks P). It prints `uptime` first, every trial's disc-steps per second (LAMMPS: atoms x
+for --trials rounds, with the same warm-up and timed steps for both codes (1 rank pinned to one core with
+taskset, or each under `mpirun -n P --bind-to core` with --ranks P). It prints `uptime` first, every trial's disc-steps per second (LAMMPS: atoms x
 steps / the timed run's "Loop time"), their medians, the ratios of the medians and the medians of the
 per-round ratios, and the phase breakdown of both codes in the last round. Without LAMMPS (`lmp` not
 found, or --lmp naming no program) it says so and runs Rondel alone. It stops with a message naming what
@@ -371,6 +371,11 @@ def main():
     ap.add_argument("--warmup", type=int, default=1000, help="warm-up steps before them (default 1000)")
     ap.add_argument("--trials", type=int, default=5, help="rounds of the four runs (default 5)")
     ap.add_argument("--ranks", type=int, default=1, help="MPI ranks of every run (default 1: no mpirun)")
+    ap.add_argument("--pin", default="0",
+                    help="the core every 1-rank run is pinned to with taskset (default 0; 'none': not pinned); "
+                         "with --ranks, anything but 'none' binds the ranks to cores (mpirun --bind-to core). "
+                         "An unpinned process that the scheduler moves between cores runs up to 30 %% slower "
+                         "for the whole run, on the test machine")
     ap.add_argument("--rondel", default=DEFAULT_RONDEL,
                     help="rondel_bench (default build/rondel_bench of the working directory, else of this checkout)")
     ap.add_argument("--lmp", default="lmp", help="the LAMMPS binary (default lmp; missing: Rondel alone)")
@@ -407,8 +412,13 @@ def main():
             mpirun = shutil.which("mpirun")
             if not mpirun:
                 raise BenchError("--ranks needs mpirun, which is not on the PATH")
-            prefix = [mpirun, "-n", str(args.ranks)]
+            prefix = [mpirun, "-n", str(args.ranks)] + (["--bind-to", "core"] if args.pin != "none" else [])
             env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+        elif args.pin != "none":
+            taskset = shutil.which("taskset")
+            if not taskset:
+                raise BenchError("--pin needs taskset (Debian package util-linux); or give --pin none")
+            prefix = [taskset, "-c", args.pin]
         packing = read_packing(args.packing)
         for discs in sizes:
             copies_of(discs, len(packing[1]))  # every size checked before any run
