@@ -35,15 +35,16 @@ void Simulation::step() {
   const CommStats before = comm_.stats();
   stop_agreed_ = 0;
   // 1. Half kick and drift of owned discs (wrapping into the periodic box); the drift books gravity's work.
-  //    The same pass measures the largest displacement since the last neighbour build.
+  //    The same pass measures the largest step of a disc, which bounds the displacement since the last
+  //    neighbour build (NeighbourList::displacement).
   //    It also starts each free disc's force sum with its body force (step 4), and measures the motion
   //    bound when the displacement checks are spaced by it.
   const bool bounds = comm_.size() > 1 && !controlled_walls_ && config_.check_every > 1;
-  const Integrator::Drift drift = Integrator::half_kick_drift(discs_, config_.domain, dt_, BodyForce{config_.gravity},
-                                                              neighbours_.positions_at_build(), bounds);
+  const Integrator::Drift drift =
+      Integrator::half_kick_drift(discs_, config_.domain, dt_, BodyForce{config_.gravity}, bounds);
   drift_speed_ = drift.max_speed, drift_accel_ = drift.max_accel;
   const double W_g = drift.W_g;
-  double moved = drift.max_displacement;
+  double moved = neighbours_.displacement(drift.max_step, discs_, config_.domain, walls_);
   phases_.lap(PhaseTimes::integrate);
   // A position gone NaN or inf is this rank's error, agreed at the next reduction (always before a rebuild
   // could migrate the disc); the reduction sees it as an infinite displacement.

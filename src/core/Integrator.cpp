@@ -8,23 +8,19 @@ namespace rondel {
 namespace {
 
 template <bool kBounds>
-Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, const BodyForce& body,
-                             const std::vector<Vec2>& since) {
+Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, const BodyForce& body) {
   const double h = 0.5 * dt;
   const std::size_t n = discs.n_owned();
-  const bool measure = since.size() == n;
   // Local copies and plain pointers: a store to a disc cannot make the compiler reload them.
   const Domain box = domain;
-  const MinimumImage image(box);
   const Vec2 gravity = body.gravity;
-  const Vec2* const x0 = since.data();
   const std::uint32_t* const flags = discs.flags.data();
   const double *const mass = discs.mass.data(), *const inertia = discs.inertia.data();
   Vec2* const force = discs.force.data();
   double* const torque = discs.torque.data();
   Vec2 *const position = discs.position.data(), *const velocity = discs.velocity.data();
   double *const omega = discs.omega.data(), *const theta = discs.theta.data();
-  double W_g = 0.0, moved2 = 0.0, v2 = 0.0, a2 = 0.0;
+  double W_g = 0.0, step2 = 0.0, v2 = 0.0, a2 = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!(flags[i] & kFlagFixed)) {
       const double m = mass[i];
@@ -38,6 +34,7 @@ Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, 
       omega[i] += h * torque[i] / inertia[i];
       if constexpr (kBounds) v2 = std::max(v2, dot(v, v));
       const Vec2 dx = dt * v;
+      step2 = std::max(step2, dot(dx, dx));
       position[i] += dx;
       theta[i] += dt * omega[i];
       box.wrap(position[i]);
@@ -45,17 +42,15 @@ Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, 
       force[i] = body.on(m, flags[i]);
       torque[i] = 0.0;
     }
-    // Fixed discs too: they move with their walls (Boundaries::move_glued).
-    if (measure) moved2 = std::max(moved2, squared_displacement(image, x0[i], position[i]));
   }
-  return {W_g, measure ? std::sqrt(moved2) : INFINITY, std::sqrt(v2), std::sqrt(a2)};
+  return {W_g, std::sqrt(step2), std::sqrt(v2), std::sqrt(a2)};
 }
 
 }  // namespace
 
 Integrator::Drift Integrator::half_kick_drift(DiscStore& discs, const Domain& domain, double dt, const BodyForce& body,
-                                              const std::vector<Vec2>& since, bool bounds) {
-  return bounds ? drift_pass<true>(discs, domain, dt, body, since) : drift_pass<false>(discs, domain, dt, body, since);
+                                              bool bounds) {
+  return bounds ? drift_pass<true>(discs, domain, dt, body) : drift_pass<false>(discs, domain, dt, body);
 }
 
 void Integrator::half_kick(DiscStore& discs, double dt) {

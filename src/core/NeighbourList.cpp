@@ -106,6 +106,7 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
   wall_rows.inherit_history(old_walls);
 
   position_at_build_.assign(discs.position.begin(), discs.position.begin() + n_owned);
+  bound_ = 0.0;
   for (auto& w : walls) w.displacement_since_build = {};
   ++builds_;
 }
@@ -117,6 +118,16 @@ double NeighbourList::max_displacement(const DiscStore& discs, const Domain& dom
   for (std::size_t i = 0; i < discs.n_owned(); ++i)
     m2 = std::max(m2, squared_displacement(image, position_at_build_[i], discs.position[i]));
   return std::sqrt(m2);
+}
+
+double NeighbourList::displacement(double max_step, const DiscStore& discs, const Domain& domain,
+                                   const WallSet& walls) {
+  bound_ += max_step;
+  if (!(bound_ <= 0.5 * skin_)) bound_ = max_displacement(discs, domain);  // also a NaN step or position
+  double glued = 0.0;
+  for (const Wall& w : walls)
+    if (w.rough) glued = std::max(glued, std::sqrt(dot(w.displacement_since_build, w.displacement_since_build)));
+  return std::max(bound_, glued);
 }
 
 bool NeighbourList::needs_rebuild(double max_disc_disp, const WallSet& walls) const {

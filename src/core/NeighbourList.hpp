@@ -1,4 +1,5 @@
 #pragma once
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -31,10 +32,13 @@ class NeighbourList {
              ContactTable& pairs, ContactTable& wall_rows);
 
   // Largest displacement of an owned disc since the last build (minimum image); infinite before a build.
-  // The step measures it in the drift's pass (Integrator::half_kick_drift with positions_at_build()).
   double max_displacement(const DiscStore& discs, const Domain& domain) const;
-  // The owned discs' positions at the last build, in their storage order.
-  const std::vector<Vec2>& positions_at_build() const { return position_at_build_; }
+  // The step's displacement check without a pass over the discs: an upper bound of max_displacement, kept
+  // by adding each drift's largest step `max_step` of a free disc (a disc's displacement is at most the sum
+  // of its steps), and replaced by the exact max_displacement whenever it passes half the skin, so that a
+  // rebuild is decided on the exact value. Discs glued to a rough wall move with it: their displacement is
+  // their wall's since the build.
+  double displacement(double max_step, const DiscStore& discs, const Domain& domain, const WallSet& walls);
   // True when the local discs and walls have moved enough to need a new list.
   bool needs_rebuild(double max_disc_disp, const WallSet& walls) const;
 
@@ -59,6 +63,7 @@ class NeighbourList {
   std::vector<int> columns_, rows_;                   // the occupied columns and rows, ascending
   std::vector<std::size_t> cell_start_, cell_items_;  // bin b is column b % columns_.size(), row b / it
   std::vector<Vec2> position_at_build_;
+  double bound_ = INFINITY;  // the bound of displacement() (infinite before a build)
   std::size_t builds_ = 0;
 };
 

@@ -447,6 +447,44 @@ TEST(NeighbourList, WallMotionAddsToDiscMotion) {
   EXPECT_FALSE(nl.needs_rebuild(0.5 * skin, walls));
 }
 
+// The step's check: a bound that grows by each drift's largest step and is replaced by the exact largest
+// displacement once it passes half the skin, so a rebuild is decided on the exact value; a rough wall's
+// displacement stands for its glued discs'.
+TEST(NeighbourList, DisplacementBoundGrowsByStepsAndIsExactPastHalfTheSkin) {
+  const Domain d = box(0.0, 1.0, 0.0, 1.0, false, false);
+  const double skin = 0x1.0p-8;  // exact halves and sums below
+  DiscStore s;
+  s.add(1, 0, 0.01, kDensity, 1, {0.25, 0.5});
+  s.add(2, 0, 0.01, kDensity, 1, {0.75, 0.5});
+  NeighbourList nl(skin);
+  WallSet walls;
+  EXPECT_TRUE(std::isinf(nl.displacement(0.0, s, d, walls))) << "no build yet: the exact value, infinite";
+  build_once(nl, s, d, walls);
+  // Disc 1 steps forth and back: the bound adds both steps though it is back where it started.
+  s.position[0].x += 0.125 * skin;
+  EXPECT_EQ(nl.displacement(0.125 * skin, s, d, walls), 0.125 * skin);
+  s.position[0].x -= 0.125 * skin;
+  EXPECT_EQ(nl.displacement(0.125 * skin, s, d, walls), 0.25 * skin);
+  EXPECT_EQ(nl.displacement(0.25 * skin, s, d, walls), 0.5 * skin) << "at half the skin: still the bound";
+  // Past half the skin, the exact value: disc 2 has moved by 0.0625 skin since the build.
+  s.position[1].y += 0.0625 * skin;
+  EXPECT_EQ(nl.displacement(0x1.0p-30, s, d, walls), 0.0625 * skin);
+  EXPECT_FALSE(nl.needs_rebuild(nl.displacement(0.0, s, d, walls), walls));
+  // A real move past half the skin: exact, and a rebuild is due.
+  s.position[1].y += 0.5 * skin;
+  EXPECT_EQ(nl.displacement(0.5 * skin, s, d, walls), 0.5625 * skin);
+  EXPECT_TRUE(nl.needs_rebuild(nl.displacement(0.0, s, d, walls), walls));
+  EXPECT_EQ(nl.displacement(NAN, s, d, walls), 0.5625 * skin) << "a NaN step asks for the exact value";
+  // Glued discs move with their rough wall.
+  build_once(nl, s, d, walls);
+  walls.resize(1);
+  walls[0].normal = {0.0, 1.0};
+  walls[0].displacement_since_build = {0.0, 0.375 * skin};
+  EXPECT_EQ(nl.displacement(0.0, s, d, walls), 0.0) << "a smooth wall moves no disc";
+  walls[0].rough = true;
+  EXPECT_EQ(nl.displacement(0.0, s, d, walls), 0.375 * skin);
+}
+
 TEST(NeighbourList, MovingAGhostDoesNotCountAsDisplacement) {
   const Domain d = box(0.0, 1.0, 0.0, 1.0, false, false);
   DiscStore s;

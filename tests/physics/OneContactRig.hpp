@@ -74,7 +74,7 @@ class OneContactRig {
   }
 
   void step() {
-    Integrator::half_kick_drift(discs_, domain_, dt_, BodyForce{gravity_}, {}, false);
+    Integrator::half_kick_drift(discs_, domain_, dt_, BodyForce{gravity_}, false);
     LedgerStep unused;
     assembly_.begin_fixed_and_ghosts(discs_);
     ops_.run(KernelContext{discs_, domain_, walls_, params_, dt_}, pairs_, wall_rows_, ForceSums::of(discs_), unused);
