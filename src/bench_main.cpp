@@ -7,6 +7,7 @@
 // built; --no-stream skips it), the model of the bytes a step moves per disc (traffic_model,
 // BenchSupport.hpp) and the bound on disc-steps per second that the two give.
 //   rondel_bench [--discs 10000 x k] [--steps 5000] [--warmup 1000] [--rolling LAW] [--file PATH] [--no-stream]
+//                [--skin S]
 // Without --file it reads bench/jammed10k.csv of the working directory (a clone's root) and, when that is
 // missing, the one of the source tree it was built from (RONDEL_SOURCE_DIR, set by CMakeLists.txt), so it runs
 // from a build directory as well; the packing is described in bench/README.md. With --file, --discs counts
@@ -14,7 +15,8 @@
 // Rolling parameters follow the benchmark README (wang k_r = 2/7 k_n, mu_r = 0.1, which alonso_marroquin reads
 // from the same [wang] block; jiang_* delta = 0.5); the other laws get the equivalent cap for the mean radius
 // (iwashita_oda K_r = k_r R*^2, eta = mu_r R*; force_proportional mu_r = 0.1; constant_torque and
-// displacement_damping mu_r = 0.05).
+// displacement_damping mu_r = 0.05). --skin S sets neighbour.skin (default: a quarter of the mean radius); a
+// small skin makes the neighbour list rebuild within a few steps, to measure the memory peak of a rebuild.
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -35,6 +37,7 @@ struct Options {
   long discs = 10000, steps = 5000, warmup = 1000;
   std::string file;  // empty: the default packing (default_packing)
   std::string rolling = "none";
+  std::string skin;  // empty: neighbour.skin's default
   bool no_stream = false;
 };
 
@@ -46,7 +49,8 @@ Options parse(int argc, char** argv) {
                                {"--warmup", &o.warmup},
                                {"--rolling", &o.rolling},
                                {"--file", &o.file},
-                               {"--no-stream", &o.no_stream}});
+                               {"--no-stream", &o.no_stream},
+                               {"--skin", &o.skin}});
   return o;
 }
 
@@ -169,7 +173,8 @@ int main(int argc, char** argv) {
                   "[coulomb]\nk_s = 28571.43\nmu = 0.5\n[scene]\ntype = csv\nfile = %s\nreplicate_x = %ld\n"
                   "replicate_y = %ld\nmax_initial_overlap = 0.2\n",
                   lo, lo + static_cast<double>(nx) * L, lo, lo + static_cast<double>(ny) * L, o.file.c_str(), nx, ny);
-    rondel::Simulation sim(rondel::parse_config_text(std::string(ini) + rolling_block(o.rolling)), comm, false);
+    rondel::Simulation sim(rondel::parse_config_text(std::string(ini) + rolling_block(o.rolling) +
+                                                   (o.skin.empty() ? "" : "[neighbour]\nskin = " + o.skin + "\n")), comm, false);
     for (long s = 0; s < o.warmup; ++s) sim.step();
     const std::size_t builds0 = sim.neighbour_builds();
     const double comm_before = sim.comm_seconds();
