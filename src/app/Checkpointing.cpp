@@ -69,10 +69,14 @@ std::string Checkpointing::write_checkpoint(const StateHeader& header, DiscStore
 
 void Checkpointing::adopt_snapshots(std::int64_t step) {
   snapshots_.clear();
+  std::vector<fs::path> later;
   for (const fs::path& p : h5_files(dir_, "snapshot_")) {
     try {
       const StateHeader h = read_state_header(p.string(), comm_);
-      if (h.step > step) continue;
+      if (h.step > step) {
+        later.push_back(p);  // written after the checkpoint: the resumed run writes it again
+        continue;
+      }
       // The file's own datasets and walls: it may come from a run with other output.snapshot_fields.
       snapshots_.push_back(
           {p.filename().string(), h.step, static_cast<std::int64_t>(state_file_discs(p.string(), comm_)), h.time,
@@ -81,6 +85,9 @@ void Checkpointing::adopt_snapshots(std::int64_t step) {
       // not a complete snapshot: left out of the series
     }
   }
+  if (!comm_.root() || later.empty()) return;
+  for (const fs::path& p : later) fs::remove(p);
+  write_xdmf();
 }
 
 void Checkpointing::remove_old_files() const {

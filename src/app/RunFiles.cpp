@@ -1,7 +1,14 @@
 // The output directory of a run and its files (docs/design.md section 7, FORMAT.md).
 #include "app/RunFiles.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 
@@ -12,37 +19,135 @@ namespace rondel {
 
 namespace fs = std::filesystem;
 
-void RunFiles::prepare(bool resuming, std::int64_t step) {
+namespace {
+
+// Whether `a` and `b` name the same existing directory.
+bool same_directory(const fs::path& a, const fs::path& b) {
+  std::error_code ec;
+  return fs::equivalent(a, b, ec) && !ec;
+}
+
+// Rank 0: cuts a resumed run's table (diagnostics.csv, measures.csv: the step in the first column) back to the
+// rows of steps up to `step`, so that the rows the interrupted run wrote after its checkpoint are not there
+// twice. The header and any line that does not start with a step are kept. Written to a temporary file
+// and renamed over the table, so a failure leaves the table as it was.
+void cut_table(const fs::path& path, std::int64_t step) {
+  std::ifstream in(path);
+  if (!in) return;
+  std::string kept, line;
+  bool cut = false;
+  while (std::getline(in, line)) {
+    char* end = nullptr;
+    const long long row_step = std::strtoll(line.c_str(), &end, 10);
+    const bool row = end != line.c_str() && (*end == ',' || *end == '\0');
+    if (row && row_step > step) {
+      cut = true;
+      continue;
+    }
+    kept += line;
+    kept += '\n';
+  }
+  if (!in.eof()) throw IoError("cannot read '" + path.string() + "' to resume it");
+  in.close();
+  if (!cut) return;
+  const fs::path part = path.string() + ".part";
+  std::ofstream out(part, std::ios::trunc);
+  out << kept;
+  out.flush();
+  out.close();
+  std::error_code ec;
+  if (out.fail()) {
+    fs::remove(part, ec);
+    throw IoError("cannot write '" + part.string() + "' (disk full, permissions?) to cut '" + path.string() +
+                  "' back to step " + std::to_string(step));
+  }
+  fs::rename(part, path, ec);
+  if (ec) throw IoError("cannot replace '" + path.string() + "': " + ec.message());
+}
+
+}  // namespace
+
+RunFiles::~RunFiles() {
+  if (lock_.empty()) return;
+  std::error_code ec;
+  fs::remove(lock_, ec);
+}
+
+void RunFiles::prepare(const std::string& checkpoint, std::int64_t step) {
   // Rank 0 looks at the directory and creates it; every step that only rank 0 does is agreed, so that its
   // error (a directory in use, a file it cannot write) stops every rank.
-  agree(comm_, [&] { claim_directory(resuming); });
+  const bool resuming = !checkpoint.empty();
+  agree(comm_, [&] { claim_directory(checkpoint); });
   checkpoints_ = std::make_unique<Checkpointing>(config_.output, config_.checkpoint_keep, config_.snapshot_fields,
                                                  config_.domain, comm_);
   if (resuming)
     agree(comm_, [&] { checkpoints_->adopt_snapshots(step); });
   else
     agree(comm_, [&] { checkpoints_->remove_old_files(); });
-  agree(comm_, [&] { open_files(resuming); });
+  agree(comm_, [&] { open_files(resuming, step); });
 }
 
-void RunFiles::claim_directory(bool resuming) const {
+void RunFiles::claim_directory(const std::string& checkpoint) {
   if (!comm_.root()) return;
   const fs::path dir(config_.output);
   const bool exists = fs::exists(dir) && !(fs::is_directory(dir) && fs::is_empty(dir));
-  if (exists && !config_.overwrite && !resuming)
-    throw ConfigError("run.output = '" + config_.output +
-                      "' already exists and is not empty; choose another directory or set run.overwrite = true");
+  // A resumed run continues in the directory of its checkpoint; another directory must be new (or given up).
+  const bool own = !checkpoint.empty() && same_directory(fs::path(checkpoint).parent_path(), dir);
+  if (exists && !config_.overwrite && !own)
+    throw ConfigError("run.output = '" + config_.output + "' already exists and is not empty" +
+                      (checkpoint.empty() ? std::string()
+                                          : " (and it is not the directory of the run being resumed, '" +
+                                                fs::path(checkpoint).parent_path().string() + "')") +
+                      "; choose another directory or set run.overwrite = true");
   std::error_code ec;
   fs::create_directories(dir, ec);
+  take_lock(dir);
   if (!std::ofstream(dir / "config.ini").good())
     throw ConfigError("run.output = '" + config_.output + "' cannot be written (permissions, or a file of that name)");
 }
 
-void RunFiles::open_files(bool resuming) {
+void RunFiles::take_lock(const fs::path& dir) {
+  // The lock file holds "PID HOST" of rank 0. Created exclusively; one left by a process that no longer runs
+  // on this host (a run killed with SIGKILL) is taken over.
+  char host[256] = {};
+  gethostname(host, sizeof host - 1);
+  const fs::path path = dir / kLockName;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+    if (fd >= 0) {
+      const std::string text = std::to_string(getpid()) + " " + host + "\n";
+      const bool ok = ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
+      ::close(fd);
+      lock_ = path;
+      if (!ok) throw IoError("cannot write the lock file '" + path.string() + "' (disk full?)");
+      return;
+    }
+    if (errno != EEXIST)
+      throw ConfigError("run.output = '" + config_.output + "' cannot be written: cannot create the lock file '" +
+                        path.string() + "': " + std::strerror(errno));
+    long pid = 0;
+    std::string owner_host;
+    std::ifstream(path) >> pid >> owner_host;
+    const bool alive = pid > 0 && owner_host == host && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM);
+    if (alive || (pid > 0 && owner_host != host) || attempt > 0)
+      throw ConfigError("run.output = '" + config_.output + "' is in use by another run (process " +
+                        std::to_string(pid) + " on " + (owner_host.empty() ? std::string("?") : owner_host) +
+                        ", lock file '" + path.string() +
+                        "'); wait for it to end, or remove the lock file if no run uses the directory");
+    std::error_code ec;
+    fs::remove(path, ec);  // stale: its process is gone
+  }
+}
+
+void RunFiles::open_files(bool resuming, std::int64_t step) {
   if (!comm_.root()) return;
   const fs::path dir(config_.output);
   std::error_code ec;
   for (const char* stale : {"final.csv", "summary.txt", "summary.json"}) fs::remove(dir / stale, ec);
+  if (resuming) {
+    cut_table(dir / "diagnostics.csv", step);
+    cut_table(dir / "measures.csv", step);
+  }
   std::ofstream config(dir / "config.ini");
   config << "# resolved configuration of this run (every key, defaults included)\n" << config_.resolved_text;
   close_checked(config, dir / "config.ini");
@@ -137,7 +242,8 @@ void RunFiles::write_results(const std::string& summary, const std::string& json
   // The directory's files once summary.json is there too (checkpoints and snapshots included).
   std::vector<std::string> names{"summary.json"};
   for (const auto& e : fs::directory_iterator(dir))
-    if (e.is_regular_file() && e.path().filename() != "summary.json") names.push_back(e.path().filename().string());
+    if (e.is_regular_file() && e.path().filename() != "summary.json" && e.path().filename() != kLockName)
+      names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   std::string files;
   for (const auto& n : names) files += (files.empty() ? "\"" : ", \"") + n + "\"";

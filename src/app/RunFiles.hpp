@@ -22,11 +22,21 @@ class RunFiles {
   RunFiles(const Config& config, const Communicator& comm, bool write_files)
       : config_(config), comm_(comm), write_files_(write_files) {}
 
-  // Collective: checks that run.output may be used (empty, run.overwrite, or a resumed run), creates it and
-  // opens its files; a resumed run at `step` appends and keeps its snapshots. Errors found by rank 0 alone
-  // are agreed (every rank throws them). Rank 0's row writers below throw IoError when a file cannot be
-  // written: call them inside an agreement (parallel/Agreement.hpp).
-  void prepare(bool resuming, std::int64_t step);
+  RunFiles(const RunFiles&) = delete;
+  RunFiles& operator=(const RunFiles&) = delete;
+  // Rank 0: gives the directory's lock back (removes rondel.lock), whatever ended the run.
+  ~RunFiles();
+
+  // Collective: checks that run.output may be used (empty, run.overwrite, or the directory of the run being
+  // resumed), creates it, takes its lock (rondel.lock: no second run, nor the orphaned ranks of a killed one,
+  // writes into it meanwhile) and opens its files. A run resumed from `checkpoint` at `step` keeps the rows
+  // of diagnostics.csv and measures.csv up to `step` and the snapshots up to it, and appends: the directory
+  // is then what an uninterrupted run leaves. Errors found by rank 0 alone are agreed (every rank throws
+  // them). Rank 0's row writers below throw IoError when a file cannot be written: call them inside an
+  // agreement (parallel/Agreement.hpp).
+  void prepare(const std::string& checkpoint, std::int64_t step);
+  // The lock file's name in run.output.
+  static constexpr const char* kLockName = "rondel.lock";
   // True once prepare() has opened an output directory.
   bool has_directory() const { return checkpoints_ != nullptr; }
   // Rank 0: to the terminal (when the run writes files) and to log.txt.
@@ -56,10 +66,12 @@ class RunFiles {
   void check_log();
 
  private:
-  // Rank 0: the directory may be used (ConfigError otherwise) and exists.
-  void claim_directory(bool resuming) const;
-  // Rank 0: config.ini written, log.txt, diagnostics.csv and measures.csv opened.
-  void open_files(bool resuming);
+  // Rank 0: the directory may be used (ConfigError otherwise), exists and is locked by this run.
+  void claim_directory(const std::string& checkpoint);
+  void take_lock(const std::filesystem::path& dir);
+  // Rank 0: config.ini written, log.txt, diagnostics.csv and measures.csv opened (a resumed run's tables
+  // cut back to `step` first).
+  void open_files(bool resuming, std::int64_t step);
   static std::string write_failure(const std::filesystem::path& path);
   [[noreturn]] static void write_failed(const std::filesystem::path& path);
   static void check_stream(const std::ostream& out, const std::filesystem::path& path);
@@ -69,6 +81,7 @@ class RunFiles {
   const Communicator& comm_;
   bool write_files_;
   std::unique_ptr<Checkpointing> checkpoints_;
+  std::filesystem::path lock_;  // rank 0: the lock file this run holds (empty: none)
   ProgressLine* progress_ = nullptr;
   double wall_seconds_ = 0.0;
   std::string log_failed_;  // the first failure to write log.txt (check_log)  // wall time of earlier runs of this

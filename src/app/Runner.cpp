@@ -97,6 +97,9 @@ void Runner::thermo(const DiagnosticsRow& row) {
 void Runner::checkpoint() {
   files_.add_wall_seconds(seconds_since(last_checkpoint_));
   last_checkpoint_ = std::chrono::steady_clock::now();
+  // The tables' rows up to this step reach their files first: a run killed after the checkpoint and resumed
+  // from it then finds every row up to the checkpoint's step (and RunFiles::prepare cuts the later ones).
+  agree(sim_.comm(), [&] { files_.flush_tables(); });
   agree(sim_.comm(), [&] {
     sum_.last_checkpoint = sim_.write_checkpoint();
     files_.check_log();

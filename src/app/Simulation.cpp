@@ -55,7 +55,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
     distribute_discs();
   }
   setup_boundaries();
-  if (write_files_) files_.prepare(restart, step_);
+  if (write_files_) files_.prepare(restart_file, step_);
   phases_.restart();
   rebuild();
   if (restart) {
@@ -268,6 +268,20 @@ void Simulation::resolve_time_step() {
   }
 }
 
+void Simulation::resume_time_step(double file_dt, const std::string& path) {
+  // A run.dt that differs from the checkpoint's step is the user's new step (resolve_time_step checked it);
+  // otherwise the run goes on with the checkpoint's step, which must still be stable with this
+  // configuration's contacts and materials (they may have been changed on the command line).
+  if (config_.dt != 0.0 && config_.dt != file_dt) return;
+  dt_ = file_dt;
+  if (dt_ > critical_.dt && !config_.force_dt)
+    throw ConfigError("the time step " + fmt(dt_) + " s of the checkpoint '" + path +
+                      "' is above the critical time step " + fmt(critical_.dt) + " s of this configuration (" +
+                      critical_.mode + " mode, " + critical_.pair +
+                      "; a stiffer contact or a lighter material than the run that wrote it?): set run.dt below it, "
+                      "or run.force_dt = true");
+}
+
 void Simulation::check_initial_state() {
   ContactTable pairs = make_contact_table(laws_, false), walls = make_contact_table(laws_, true);
   NeighbourList probe(neighbours_.skin());
@@ -308,8 +322,10 @@ void Simulation::load_checkpoint(const std::string& path) {
   box0_.height = h.box_height0;
   measure_radii();
   setup_neighbours();
-  agree(comm_, [&] { resolve_time_step(); });
-  dt_ = h.dt;
+  agree(comm_, [&] {
+    resolve_time_step();
+    resume_time_step(h.dt, path);
+  });
   step_ = h.step;
   time_ = h.time;
   make_decomposition(false);

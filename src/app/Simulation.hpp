@@ -129,6 +129,9 @@ class Simulation {
   // A wall that carries glued discs in the checkpoint stays rough.
   void keep_rough_walls(const std::string& path);
   void resolve_time_step();
+  // A resumed run's time step: run.dt when it differs from the checkpoint's, else the checkpoint's, checked
+  // against this configuration's critical step.
+  void resume_time_step(double file_dt, const std::string& path);
   void check_initial_state();
   void rebuild();
   // The step's reduction (FusedReduction): returns the largest displacement since the last build over
