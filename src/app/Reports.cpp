@@ -113,7 +113,7 @@ std::string Reports::most_energetic_disc() const {
   return std::to_string(who) + " (kinetic energy " + fmt(top) + " J)";
 }
 
-void Reports::check_stability(const DiagnosticsRow& row) const {
+void Reports::check_stability(const DiagnosticsRow& row, double& d_other_peak) const {
   if (!std::isfinite(row.ke_trans + row.ke_rot))
     throw InstabilityError("step " + std::to_string(row.step) + ": the kinetic energy is not finite");
   if (row.residual > sim_.config().max_residual)
@@ -122,6 +122,19 @@ void Reports::check_stability(const DiagnosticsRow& row) const {
         " of the energy scale (run.max_residual = " + fmt(sim_.config().max_residual) +
         "): energy grows with no work done, the integration is unstable; the most energetic disc is " +
         most_energetic_disc() + "; lower run.dt or run.safety");
+  // D_other = -E_stored(0) + the dissipation of the dashpots (and the integration error): for closed
+  // spring-dashpots it only grows. A fall below its peak is energy the contacts created, the sign of a step
+  // the ledger itself cannot catch (its books close whatever the step).
+  d_other_peak = std::max(d_other_peak, row.D_other);
+  const double gain = d_other_peak - row.D_other, scale = std::max(row.scale, row.E_stored);
+  if (scale > 0.0 && gain > sim_.config().max_energy_gain * scale)
+    throw InstabilityError("step " + std::to_string(row.step) + ": the contacts created " + fmt(gain) +
+                           " J of energy (D_other fell from " + fmt(d_other_peak) + " to " + fmt(row.D_other) +
+                           " J: " + fmt(gain / scale, 3) +
+                           " of the energy scale; run.max_energy_gain = " + fmt(sim_.config().max_energy_gain) +
+                           "): a closed spring-dashpot cannot do positive work, so the time step is too large for "
+                           "the contacts; the most energetic disc is " +
+                           most_energetic_disc() + "; lower run.dt, or leave run.force_dt off");
 }
 
 namespace {

@@ -27,7 +27,9 @@ class Reports {
   // `scale` receives the ledger's updated energy scale.
   DiagnosticsRow diagnostics(const ContactSummary& stored, double& scale) const;
   // Throws InstabilityError when the kinetic energy is not finite or the ledger residual is too large.
-  void check_stability(const DiagnosticsRow& row) const;
+  // `d_other_peak`: the largest D_other of the run's diagnostics rows so far (updated; -inf before the
+  // first): D_other, which holds the contacts' dissipation, may only grow from its start (-E_stored(0)).
+  void check_stability(const DiagnosticsRow& row, double& d_other_peak) const;
   // Every disc as "gid,x,y,vx,vy,theta,omega,radius", ascending gid, on rank 0: hexadecimal floats, or
   // decimal ones with output.final_format = decimal.
   std::string state_text() const;

@@ -68,7 +68,7 @@ void Runner::record() {
     files_.check_log();
   });
   // From the global row: every rank alike (its message calls collectives), agreed so that it is printed once.
-  agree(comm, [&] { Reports(sim_).check_stability(row); });
+  agree(comm, [&] { Reports(sim_).check_stability(row, d_other_peak_); });
   if (!files_.has_directory()) return;
   const MeasuresRow m = sim_.measures(sim_.last_contacts());
   agree(comm, [&] { files_.write_measures(m); });

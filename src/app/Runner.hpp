@@ -1,5 +1,6 @@
 #pragma once
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -59,7 +60,8 @@ class Runner {
   PhaseTimes& phases_;
   RunSummary sum_;
   std::chrono::steady_clock::time_point start_, last_checkpoint_, thermo_clock_;
-  std::int64_t thermo_step_ = -1;  // the step of the last thermo line (-1: none yet)
+  std::int64_t thermo_step_ = -1;    // the step of the last thermo line (-1: none yet)
+  double d_other_peak_ = -HUGE_VAL;  // the largest D_other of this run's diagnostics rows (Reports::check_stability)
   std::int64_t checkpointed_ = -1;
 };
 

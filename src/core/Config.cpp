@@ -74,6 +74,9 @@ void read_run(const Reader& r, Config& c) {
   check(c.max_overlap > 0.0, "run.max_overlap", "must be > 0", num(c.max_overlap));
   c.max_residual = r.get<double>("run.max_residual");
   check(c.max_residual > 0.0, "run.max_residual", "must be > 0", num(c.max_residual));
+  c.max_energy_gain = r.get<double>("run.max_energy_gain");
+  check(c.max_energy_gain > 0.0 && std::isfinite(c.max_energy_gain), "run.max_energy_gain", "must be > 0 and finite",
+        num(c.max_energy_gain));
   c.reset_history = r.get<bool>("run.reset_history");
   c.accept_materials = r.get<bool>("run.accept_materials");
 }

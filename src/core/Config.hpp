@@ -52,6 +52,7 @@ struct Config {
   bool progress = true;
   double max_overlap = 0.1;
   double max_residual = 0.5;
+  double max_energy_gain = 0.1;  // run.max_energy_gain: largest -D_other / energy scale
   bool reset_history = false;
   bool accept_materials = false;  // a restart or file scene may have a material table other than the file's
   // [output]

@@ -330,6 +330,48 @@ TEST(ExtremeCases, EnergyGrowingWithNoWorkDoneStopsNamingStepDiscsAndQuantity) {
   EXPECT_TRUE(m.find("disc") != std::string::npos) << "the issue asks for the disc ids: '" << m << "'";
 }
 
+TEST(ExtremeCases, ContactsCreatingEnergyAtAForcedStepStopTheRun) {
+  // Two discs meeting head-on with a forced step just above the critical one: the ledger's books close (its
+  // residual stays at round-off, the normal contact's work is booked), but the contact does positive work,
+  // which a closed spring-dashpot cannot: D_other < 0. The guard (run.max_energy_gain) stops the run; below
+  // the critical step the same impact completes, with D_other >= 0.
+  // The scene inputs/two_disc_impact.ini (D5 discs, k_n = 2e8, e = 0.5, 1 m/s head-on).
+  const fs::path inputs = fs::path(RONDEL_SOURCE_DIR) / "inputs";
+  std::ifstream file(inputs / "two_disc_impact.ini");
+  const std::string ini((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(ini.empty());
+  const std::vector<std::string> base = {"--scene.file=" + (inputs / "two_disc_impact.csv").string()};
+  Communicator comm;
+  const double critical = Simulation(parse_config_text(ini, base), comm, false).critical().dt;
+  for (double factor : {0.9, 1.05, 3.0}) {
+    SCOPED_TRACE("dt = " + std::to_string(factor) + " x critical");
+    std::vector<std::string> forced = base;
+    std::ostringstream dt;
+    dt.precision(17);
+    dt << "--run.dt=" << factor * critical;
+    forced.push_back(dt.str());
+    forced.push_back("--run.force_dt=true");
+    Simulation sim(parse_config_text(ini, forced), comm, false);
+    if (factor < 1.0) {
+      EXPECT_NO_THROW(sim.run());
+      const DiagnosticsRow row = sim.diagnostics();
+      EXPECT_GE(row.D_other, -1e-12 * row.scale) << "a stable impact dissipates";
+      continue;
+    }
+    std::string m;
+    try {
+      sim.run();
+      ADD_FAILURE() << "the run at " << factor << " x critical completed";
+    } catch (const InstabilityError& e) {
+      m = e.what();
+    }
+    EXPECT_TRUE(names(m, "created")) << m;
+    EXPECT_TRUE(names(m, "run.max_energy_gain")) << m;
+    EXPECT_TRUE(names(m, "disc")) << m;
+    EXPECT_LT(sim.diagnostics().D_other, 0.0);
+  }
+}
+
 TEST(ExtremeCases, OutputWrittenBeforeAFailureIsKept) {
   GasCase c(2000);
   TempDir out_root;
