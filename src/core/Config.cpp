@@ -74,6 +74,10 @@ void read_run(const Reader& r, Config& c) {
   check(c.max_overlap > 0.0, "run.max_overlap", "must be > 0", num(c.max_overlap));
   c.max_residual = r.get<double>("run.max_residual");
   check(c.max_residual > 0.0, "run.max_residual", "must be > 0", num(c.max_residual));
+  c.local_damping = r.get<double>("run.local_damping");
+  check(c.local_damping >= 0.0 && c.local_damping < 1.0, "run.local_damping",
+        "must be in [0, 1): the fraction alpha of each force component taken against the motion (0 = off)",
+        num(c.local_damping));
   c.reset_history = r.get<bool>("run.reset_history");
   c.accept_materials = r.get<bool>("run.accept_materials");
 }

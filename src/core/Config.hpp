@@ -52,6 +52,7 @@ struct Config {
   bool progress = true;
   double max_overlap = 0.1;
   double max_residual = 0.5;
+  double local_damping = 0.0;  // alpha of the integrator's local damping, [0, 1); 0 = off
   bool reset_history = false;
   bool accept_materials = false;  // a restart or file scene may have a material table other than the file's
   // [output]
