@@ -14,8 +14,8 @@ enum LedgerTermUse : unsigned {
   kTermKernel = 2u,       // booked by the contact kernel (LedgerStep) and added to the ledger every step
   kTermWork = 4u,         // a work: a diagnostics.csv column, before E_stored
   kTermDissipation = 8u,  // a dissipation by mechanism: a diagnostics.csv column, after E_stored
-  kTermOfMotion = 16u,     // taken from the discs' motion by the integrator, not through the contacts: not a part
-                           // of -W_c (D_other leaves it out), it enters the ledger's balance itself
+  kTermOfMotion = 16u,    // taken from the discs' motion by the integrator, not through the contacts: not a part
+                          // of -W_c (D_other leaves it out), it enters the ledger's balance itself
 };
 
 struct LedgerTermInfo {

@@ -141,8 +141,7 @@ TEST(EnergyLedger, ResidualCountsTheDampingLoss) {
   g.W_t = -0.25;
   const double KE_undamped = 3.5;
   EXPECT_EQ(g.absolute_residual(KE_undamped), 0.0);
-  EXPECT_EQ(g.absolute_residual(KE_undamped + 0.1),
-            std::fabs(KE_undamped + 0.1 - g.KE0 - g.W_g - g.W_w - g.W_c()));
+  EXPECT_EQ(g.absolute_residual(KE_undamped + 0.1), std::fabs(KE_undamped + 0.1 - g.KE0 - g.W_g - g.W_w - g.W_c()));
   g.D_damping = 1.25;
   EXPECT_EQ(g.absolute_residual(KE_undamped - 1.25), 0.0);
   EXPECT_EQ(g.absolute_residual(KE_undamped), 1.25);

@@ -37,17 +37,18 @@ std::string num(double v) {
 std::string free_fall_ini(double alpha) {
   return "[run]\nprogress = false\ndt = 2e-5\nlocal_damping = " + num(alpha) +
          "\n[domain]\nxlo = -1\nxhi = 1\nylo = -10\nyhi = 1\n[gravity]\ny = " + num(-kG) +
-         "\n[linear]\nk_n = 1e5\n[coulomb]\nk_s = 7.5e4\nmu = 0.5\n[scene]\ntype = lattice_square\nnx = 1\nny = 1\nradius = 0.01\nvx = 0.3\n"
+         "\n[linear]\nk_n = 1e5\n[coulomb]\nk_s = 7.5e4\nmu = 0.5\n[scene]\ntype = lattice_square\nnx = 1\nny = "
+         "1\nradius = 0.01\nvx = 0.3\n"
          "omega = 20\n";
 }
 
 struct FreeFall {
-  double accel = 0.0;         // (v_y(t2) - v_y(t1)) / (t2 - t1), after the first step
+  double accel = 0.0;  // (v_y(t2) - v_y(t1)) / (t2 - t1), after the first step
   double vx = 0.0, omega = 0.0;
   double force_y = 0.0, mass = 0.0;
-  double residual = 0.0;      // |KE - KE0 - W_g + D_damping| [J]
+  double residual = 0.0;  // |KE - KE0 - W_g + D_damping| [J]
   double W_g = 0.0, dt = 0.0;
-  double damping_share = 0.0; // D_damping / W_g
+  double damping_share = 0.0;  // D_damping / W_g
 };
 
 FreeFall free_fall(double alpha) {
@@ -80,9 +81,10 @@ TEST(LocalDamping, FreeFallAcceleratesAtGTimesOneMinusAlpha) {
     // trapezoid's start term: the kicks use m g and (1 - alpha) m g, gravity's work m g v_1/2 dt, so
     // KE - KE0 - W_g + D_damping = alpha m g^2 h^2 / 2 (h = dt/2), and nothing after it.
     const double h = 0.5 * f.dt, start = alpha * f.mass * kG * kG * h * h / 2.0;
-    std::printf("[ damping  ] alpha %.2f: free-fall acceleration %.15g m/s^2 (g (1 - alpha) = %.15g), "
-                "D_damping / W_g = %.6f, ledger residual %.6e J (alpha m g^2 h^2/2 = %.6e J; W_g %.4e J)\n",
-                alpha, f.accel, expected, f.damping_share, f.residual, start, f.W_g);
+    std::printf(
+        "[ damping  ] alpha %.2f: free-fall acceleration %.15g m/s^2 (g (1 - alpha) = %.15g), "
+        "D_damping / W_g = %.6f, ledger residual %.6e J (alpha m g^2 h^2/2 = %.6e J; W_g %.4e J)\n",
+        alpha, f.accel, expected, f.damping_share, f.residual, start, f.W_g);
     EXPECT_NEAR(f.accel, expected, 1e-11 * kG);
     // No force, no damping: the horizontal motion and the spin keep their values exactly.
     EXPECT_EQ(f.vx, 0.3);
@@ -125,9 +127,10 @@ Closure granular(double alpha) {
 
 TEST(LocalDamping, LedgerClosesOnAGranularScene) {
   const Closure off = granular(0.0), on = granular(0.7);
-  std::printf("[ damping  ] granular scene: largest ledger residual %.3e (alpha 0) and %.3e (alpha 0.7; %.3e "
-              "without D_damping); D_damping %.4e J of the energy scale %.4e J\n",
-              off.residual, on.residual, on.residual_without, on.D_damping, on.scale);
+  std::printf(
+      "[ damping  ] granular scene: largest ledger residual %.3e (alpha 0) and %.3e (alpha 0.7; %.3e "
+      "without D_damping); D_damping %.4e J of the energy scale %.4e J\n",
+      off.residual, on.residual, on.residual_without, on.D_damping, on.scale);
   EXPECT_EQ(off.D_damping, 0.0);
   EXPECT_GT(on.D_damping, 0.05 * on.scale) << "the damping took little: the test would prove nothing";
   // With damping the ledger closes as well as without (the integration error of the contacts' trapezoid).
