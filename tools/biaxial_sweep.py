@@ -92,6 +92,7 @@ def main(argv=None):
                     help="how the samples are prepared (default servo)")
     ap.add_argument("--ucm-layers", type=int, default=6, help="undercompaction: layers")
     ap.add_argument("--ucm-e", type=float, default=0.25, help="undercompaction: target planar void ratio")
+    ap.add_argument("--ucm-seed", type=int, default=2005, help="undercompaction: seed of the sizes and positions")
     ap.add_argument("--damping", type=float, default=0.0, help="run.local_damping of the shear runs, [0, 1)")
     add_figure_options(ap, dpi=150)
     a = ap.parse_args(argv)
@@ -143,7 +144,8 @@ def sweep(a):
             preps[p] = os.path.join(d, "consolidated")
             if not done(preps[p]):
                 cmd = [sys.executable, os.path.join(HERE, "undercompaction.py"), "--out", d, "--rondel", a.rondel,
-                       "--pressure", f"{p:g}", "--layers", str(a.ucm_layers), "--e", f"{a.ucm_e:g}"]
+                       "--pressure", f"{p:g}", "--layers", str(a.ucm_layers), "--e", f"{a.ucm_e:g}",
+                       "--seed", str(a.ucm_seed)]
                 cmd += [f"--extra={x}" for x in a.extra]
                 jobs.append((cmd, d + ".log", d))
             continue
