@@ -6,6 +6,9 @@ values, Jiang models and confining stresses; collect peak and residual friction 
       --deltas 0,0.4,1.6 --models jiang_plastic,jiang_brittle --pressures 2e5 [--rate 0.1] [--jobs 2]
 
 delta = 0 runs with contact.rolling = none (no rolling resistance; the model is then irrelevant, run once).
+Preparation (--prep): servo (inputs/biaxial_prepare.ini, the default) or undercompaction (tools/undercompaction.py:
+the J05 specimen built in --ucm-layers layers to the planar void ratio --ucm-e, then consolidated; its shear runs
+are named ..._ucm). --damping ALPHA runs the shear stage with run.local_damping = ALPHA (names ..._aALPHA).
 Writes OUT/prep_P/ (prepare runs), OUT/MODEL_dDELTA_pP_rRATE/ (shear runs), OUT/table.csv, OUT/table.md,
 OUT/phi_vs_delta.png (--format pdf|svg, --dpi), plus curves from tools/biaxial.py (OUT/curves_*). Existing finished runs (a
 summary.txt present) are reused, so the sweep can be extended. Run lengths: --prep-steps, --strain
@@ -85,6 +88,12 @@ def main(argv=None):
     ap.add_argument("--window", type=float, default=0.05, help="residual window (axial strain)")
     ap.add_argument("--jobs", type=int, default=2, help="runs in parallel")
     ap.add_argument("--extra", action="append", default=[], help="more --section.key=value for every run")
+    ap.add_argument("--prep", choices=("servo", "undercompaction"), default="servo",
+                    help="how the samples are prepared (default servo)")
+    ap.add_argument("--ucm-layers", type=int, default=6, help="undercompaction: layers")
+    ap.add_argument("--ucm-e", type=float, default=0.25, help="undercompaction: target planar void ratio")
+    ap.add_argument("--ucm-seed", type=int, default=2005, help="undercompaction: seed of the sizes and positions")
+    ap.add_argument("--damping", type=float, default=0.0, help="run.local_damping of the shear runs, [0, 1)")
     add_figure_options(ap, dpi=150)
     a = ap.parse_args(argv)
     check_figure_options(ap, a)
@@ -96,6 +105,8 @@ def main(argv=None):
             ap.error(f"'{ini}': no such input file")
     if a.jobs < 1:
         ap.error("--jobs must be >= 1")
+    if not 0.0 <= a.damping < 1.0:
+        ap.error(f"--damping must be in [0, 1), got {a.damping:g}")
     return run_tool(TOOL, sweep, a)
 
 
@@ -126,7 +137,18 @@ def sweep(a):
     # Stage 1: one prepared sample per confining stress.
     preps = {}
     jobs = []
+    ucm = a.prep == "undercompaction"
     for p in sorted({c[2] for c in cases}):
+        if ucm:
+            d = os.path.join(a.out, f"ucm_{p/1e3:g}kPa")
+            preps[p] = os.path.join(d, "consolidated")
+            if not done(preps[p]):
+                cmd = [sys.executable, os.path.join(HERE, "undercompaction.py"), "--out", d, "--rondel", a.rondel,
+                       "--pressure", f"{p:g}", "--layers", str(a.ucm_layers), "--e", f"{a.ucm_e:g}",
+                       "--seed", str(a.ucm_seed)]
+                cmd += [f"--extra={x}" for x in a.extra]
+                jobs.append((cmd, d + ".log", d))
+            continue
         d = os.path.join(a.out, f"prep_{p/1e3:g}kPa")
         preps[p] = d
         if not done(d):
@@ -142,7 +164,8 @@ def sweep(a):
     # Stage 2: the shear runs.
     runs, jobs, failed = [], [], []
     for m, dlt, p, r in cases:
-        name = f"{m}_d{dlt:g}_p{p/1e3:g}kPa_r{r:g}"
+        name = f"{m}_d{dlt:g}_p{p/1e3:g}kPa_r{r:g}" + ("_ucm" if ucm else "")
+        name += f"_a{a.damping:g}" if a.damping else ""
         d = os.path.join(a.out, name)
         runs.append((m, dlt, p, r, d))
         if done(d):
@@ -153,6 +176,8 @@ def sweep(a):
                                                [f"--contact.rolling={m}", f"--jiang.delta={dlt:g}"])
         cmd = [a.rondel, a.shear, f"--scene.file={preps[p]}", "--run.progress=false", f"--walls.servo_gain={a.gain}",
                f"--walls.control=top:strain_rate:{r:g} left:servo:{p:g} right:servo:{p:g}"] + law + a.extra
+        if a.damping:
+            cmd.append(f"--run.local_damping={a.damping:g}")
         dt = probe_dt(cmd, d)
         cmd += [f"--run.output={d}", "--run.overwrite=true", f"--run.steps={shear_steps(r, dt)}"]
         jobs.append((cmd, d + ".log", d))
@@ -174,7 +199,7 @@ def sweep(a):
         lw = biaxial.friction_angles(meas["eps_axial"], meas["syy"], meas["sxx"], a.window)
         n = len(meas["wall_sxx"])
         late = meas["wall_sxx"][n // 10:]
-        rows.append(dict(model=m, delta=dlt, p_kPa=p / 1e3, rate=r,
+        rows.append(dict(model=m, delta=dlt, p_kPa=p / 1e3, rate=r, prep=a.prep, damping=a.damping,
                          I=r * 0.0075 * math.sqrt(2650.0 / p),
                          phi_peak=res["phi_peak"], eps_peak=res["eps_peak"], phi_res=res["phi_residual"],
                          phi_peak_lw=lw["phi_peak"], phi_res_lw=lw["phi_residual"],
@@ -186,10 +211,11 @@ def sweep(a):
         w.writeheader()
         w.writerows(rows)
     with open(os.path.join(a.out, "table.md"), "w") as f:
-        f.write("| model | delta | p [kPa] | rate [1/s] | I | phi_peak [deg] | at eps_a | phi_res [deg] "
-                "| LW peak / res | mean s3 [kPa] | run time [s] |\n|---|---|---|---|---|---|---|---|---|---|---|\n")
+        f.write("| model | delta | p [kPa] | rate [1/s] | prep | alpha | I | phi_peak [deg] | at eps_a | phi_res [deg] "
+                "| LW peak / res | mean s3 [kPa] | run time [s] |\n" + "|---" * 13 + "|\n")
         for x in rows:
-            f.write(f"| {x['model']} | {x['delta']:g} | {x['p_kPa']:g} | {x['rate']:g} | {x['I']:.1e} | "
+            f.write(f"| {x['model']} | {x['delta']:g} | {x['p_kPa']:g} | {x['rate']:g} | {x['prep']} | "
+                    f"{x['damping']:g} | {x['I']:.1e} | "
                     f"{x['phi_peak']:.1f} | {x['eps_peak']:.3f} | {x['phi_res']:.1f} | "
                     f"{x['phi_peak_lw']:.1f} / {x['phi_res_lw']:.1f} | {x['s3_mean_kPa']:.0f} | {x['wall_s']:.0f} |\n")
         f.write(f"\nResidual: mean over the last {a.window:g} of axial strain. s1 = wall_syy, s3 = wall_sxx "

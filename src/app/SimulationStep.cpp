@@ -40,8 +40,9 @@ void Simulation::step() {
   //    It also starts each free disc's force sum with its body force (step 4), and measures the motion
   //    bound when the displacement checks are spaced by it.
   const bool bounds = comm_.size() > 1 && !controlled_walls_ && config_.check_every > 1;
-  const Integrator::Drift drift =
-      Integrator::half_kick_drift(discs_, config_.domain, dt_, BodyForce{config_.gravity}, bounds);
+  //    With run.local_damping the kick is damped (docs/physics.md section 9) and books what it took.
+  const Integrator::Drift drift = Integrator::half_kick_drift(discs_, config_.domain, dt_, BodyForce{config_.gravity},
+                                                              bounds, config_.local_damping);
   drift_speed_ = drift.max_speed, drift_accel_ = drift.max_accel;
   const double W_g = drift.W_g;
   double moved = neighbours_.displacement(drift.max_step, discs_, config_.domain, walls_);
@@ -104,10 +105,11 @@ void Simulation::step() {
   }
   if (controlled_walls_) loads_ = Boundaries::local_loads(walls_, discs_, config_.domain, pairs_, wall_rows_);
   phases_.lap(PhaseTimes::force);
-  // 7. Second half kick (diagnostics and output on their schedules: Runner).
-  Integrator::half_kick(discs_, dt_);
+  // 7. Second half kick (diagnostics and output on their schedules: Runner), damped with run.local_damping
+  //    by the half-step velocities.
+  const double D_kick = Integrator::half_kick(discs_, dt_, config_.local_damping);
   phases_.lap(PhaseTimes::integrate);
-  ledger_.add(work, W_g);
+  ledger_.add(work, W_g, drift.D_damping + D_kick);
   ++step_;
   time_ += dt_;
   // A balance check every balance_every steps, and once more after a repartition (the imbalance then

@@ -77,6 +77,10 @@ void read_run(const Reader& r, Config& c) {
   c.max_energy_gain = r.get<double>("run.max_energy_gain");
   check(c.max_energy_gain > 0.0 && std::isfinite(c.max_energy_gain), "run.max_energy_gain", "must be > 0 and finite",
         num(c.max_energy_gain));
+  c.local_damping = r.get<double>("run.local_damping");
+  check(c.local_damping >= 0.0 && c.local_damping < 1.0, "run.local_damping",
+        "must be in [0, 1): the fraction alpha of each force component taken against the motion (0 = off)",
+        num(c.local_damping));
   c.reset_history = r.get<bool>("run.reset_history");
   c.accept_materials = r.get<bool>("run.accept_materials");
 }

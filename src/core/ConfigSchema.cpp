@@ -42,10 +42,13 @@ void add_run_sections(po::options_description& all) {
       ("run.reset_history", def(false), "[-] start from a file whose laws differ: drop its contact history")
       ("run.accept_materials", def(false), "[-] start from a file whose material table differs: the discs keep their "
                                            "material index and take mass and inertia from this configuration")
-      ("run.max_residual", def(0.5), "[-] stop when the energy ledger residual exceeds this fraction of the energy scale")(
-          "run.max_energy_gain", def(0.1),
-          "[-] stop when the contacts have created more than this fraction of the energy scale (D_other fallen "
-          "that far below its peak: a closed spring-dashpot cannot do positive work; a step above critical does)");
+      ("run.max_residual", def(0.5), "[-] stop when the energy ledger residual exceeds this fraction of the energy scale")
+      ("run.max_energy_gain", def(0.1), "[-] stop when the contacts have created more than this fraction of the energy "
+                                        "scale (D_other fallen that far below its peak: a closed spring-dashpot cannot "
+                                        "do positive work; a step above critical does)")
+      ("run.local_damping", def(0.0), "[-] local (non-viscous) damping alpha in [0, 1): each component of a free disc's "
+                                      "force and its torque less alpha |F_i| sign(v_i), against its motion; not objective "
+                                      "(a moving or turning sample is damped too); 0 = off");
   po::options_description out("[output] snapshots and checkpoints (HDF5, FORMAT.md)");
   out.add_options()
       ("output.snapshot_every", def<std::int64_t>(0), "[steps] snapshot interval; 0 = none")

@@ -14,6 +14,8 @@ enum LedgerTermUse : unsigned {
   kTermKernel = 2u,       // booked by the contact kernel (LedgerStep) and added to the ledger every step
   kTermWork = 4u,         // a work: a diagnostics.csv column, before E_stored
   kTermDissipation = 8u,  // a dissipation by mechanism: a diagnostics.csv column, after E_stored
+  kTermOfMotion = 16u,    // taken from the discs' motion by the integrator, not through the contacts: not a part
+                          // of -W_c (D_other leaves it out), it enters the ledger's balance itself
 };
 
 struct LedgerTermInfo {
@@ -25,11 +27,13 @@ struct LedgerTermInfo {
 // The ledger's values [J per thickness]. Works: of gravity W_g, of moving walls on discs W_w, of the contact
 // forces and couples W_n + W_t + W_r on the relative motion (negative when they resist). Dissipation by
 // mechanism (>= 0): Coulomb slip, rolling plastic work, rolling dashpots, and the stored rolling energy
-// released when brittle contacts break.
+// released when brittle contacts break; and the work taken by the integrator's local damping
+// (run.local_damping; 0 when it is off).
 struct LedgerTerms {
   double KE0 = 0.0;  // kinetic energy at the start
   double W_g = 0.0, W_w = 0.0, W_n = 0.0, W_t = 0.0, W_r = 0.0;
   double D_slip = 0.0, D_r_plastic = 0.0, D_r_dashpot = 0.0, E_r_break = 0.0;
+  double D_damping = 0.0;
   double scale = 0.0;  // largest of KE, |W_g|, |W_w| seen at the diagnostics so far
 
   // Visits every term in the checkpoint's order with its description and that term of each of `terms`
@@ -50,6 +54,8 @@ struct LedgerTerms {
     visit(LedgerTermInfo{"D_r_plastic", "D_rolling_plastic", kKernelLoss}, terms.D_r_plastic...);
     visit(LedgerTermInfo{"D_r_dashpot", "D_rolling_dashpot", kKernelLoss}, terms.D_r_dashpot...);
     visit(LedgerTermInfo{"E_r_break", "E_rolling_break", kKernelLoss}, terms.E_r_break...);
+    visit(LedgerTermInfo{"D_damping", "D_damping", kTermDissipation | kTermRankShare | kTermOfMotion},
+          terms.D_damping...);
     visit(LedgerTermInfo{"scale", "", 0u}, terms.scale...);
   }
   // Adds the terms of `other` that have `use` (this step's terms to a total).

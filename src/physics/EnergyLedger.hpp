@@ -1,8 +1,9 @@
 #pragma once
 // Energy ledger (docs/physics.md section 5): the work of gravity W_g, of moving walls on discs W_w, and of the
 // contact forces and couples W_c = W_n + W_t + W_r on the relative motion (negative when they resist),
-// integrated with the half-step velocities. Residual |KE - KE0 - W_g - W_w - W_c| relative to the largest
-// of KE, |W_g| and |W_w| so far is the run's reported integration error.
+// integrated with the half-step velocities, and D_damping, the work the integrator's local damping takes from
+// the discs (run.local_damping). Residual |KE - KE0 - W_g - W_w - W_c + D_damping| relative to the largest of
+// KE, |W_g| and |W_w| so far is the run's reported integration error.
 #include <algorithm>
 #include <cmath>
 
@@ -17,22 +18,26 @@ struct EnergyLedger : LedgerTerms {
     KE0 = KE;
     scale = KE;
   }
-  // Adds a step: the terms the kernel books, and the work of gravity.
-  void add(const LedgerStep& s, double W_gravity) {
+  // Adds a step: the terms the kernel books, the work of gravity, and the local damping's loss in the step's
+  // two kicks (0 when the damping is off).
+  void add(const LedgerStep& s, double W_gravity, double damping = 0.0) {
     W_g += W_gravity;
     add_terms(s, kTermKernel);
+    D_damping += damping;
   }
   double W_c() const { return W_n + W_t + W_r; }
   // What the dissipations by mechanism leave of -W_c once the springs' energy E_stored is counted: the
-  // dashpots of the normal and tangential springs, and the integration error.
+  // dashpots of the normal and tangential springs, and the integration error. The local damping is not a
+  // part of -W_c (it acts on the discs' motion, not through the contacts).
   double D_other(double E_stored) const {
     double other = -W_c() - E_stored;
     for_each_term([&other](const LedgerTermInfo& t, double value) {
-      if (t.uses & kTermDissipation) other -= value;
+      if ((t.uses & kTermDissipation) && !(t.uses & kTermOfMotion)) other -= value;
     });
     return other;
   }
-  double absolute_residual(double KE) const { return std::fabs(KE - KE0 - W_g - W_w - W_c()); }
+  // D_damping last: with the damping off it adds +0, which leaves every bit of the difference as it was.
+  double absolute_residual(double KE) const { return std::fabs(KE - KE0 - W_g - W_w - W_c() + D_damping); }
   // Updates the energy scale with the present state and returns the relative residual.
   double relative_residual(double KE) {
     scale = std::max({scale, KE, std::fabs(W_g), std::fabs(W_w)});

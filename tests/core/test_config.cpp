@@ -173,6 +173,19 @@ TEST(Config, NegativeDampingIsRefused) {
   EXPECT_TRUE(refused_naming(kValid, {"--coulomb.zeta_t=-0.1"}, "coulomb.zeta_t"));
 }
 
+// run.local_damping: alpha in [0, 1); NaN, infinite, negative and >= 1 refused, naming the key and the range.
+TEST(Config, LocalDampingOutsideZeroOneIsRefused) {
+  for (const char* bad : {"-0.1", "1", "1.5", "nan", "inf", "-inf", "1e300"}) {
+    const std::string message = config_error(kValid, {std::string("--run.local_damping=") + bad});
+    EXPECT_NE(message.find("run.local_damping"), std::string::npos) << bad << ": " << message;
+    EXPECT_NE(message.find("[0, 1)"), std::string::npos) << bad << ": " << message;
+  }
+  EXPECT_EQ(parse_config_text(kValid).local_damping, 0.0) << "off by default";
+  EXPECT_EQ(parse_config_text(kValid, {"--run.local_damping=0"}).local_damping, 0.0);
+  EXPECT_EQ(parse_config_text(kValid, {"--run.local_damping=0.7"}).local_damping, 0.7);
+  EXPECT_EQ(parse_config_text(kValid, {"--run.local_damping=0.999"}).local_damping, 0.999);
+}
+
 TEST(Config, LawBlockForALawNotSelectedIsRefused) {
   // kValid has a [coulomb] block: with contact.tangential = none it must be refused, naming a coulomb key.
   const std::string message = config_error(kValid, {"--contact.tangential=none"});

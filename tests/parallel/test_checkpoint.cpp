@@ -343,6 +343,9 @@ TEST(Checkpoint, RestartIsBitwiseWithTwoMaterials) {
                          "--wang.glass.wall.steel.mu_r=0.05", "--contact.steel.steel.rolling=false"});
 }
 
+// Local damping (run.local_damping): it needs no state, so the restart continues the damped kicks as they were.
+TEST(Checkpoint, RestartIsBitwiseWithLocalDamping) { restart_cases("wang", {"--run.local_damping=0.7"}); }
+
 TEST(Checkpoint, RestartIsBitwiseWithRoughShearingWall) {
   restart_cases("wang", {"--walls.rough=right", "--walls.rough_depth=0.0025", "--walls.control=right:shear:0.05"});
 }

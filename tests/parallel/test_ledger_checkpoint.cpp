@@ -4,6 +4,7 @@
 // on any rank count, with the local indices unset and the torques zero. Rows without state and rows the
 // rank does not book (disc 1 a ghost) are not written.
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
 #include <cstdint>
 #include <memory>
@@ -102,10 +103,44 @@ TEST(LedgerCheckpoint, EveryTermRoundTripsThroughItsOwnAttribute) {
                                                                              {"D_r_plastic", &LedgerTerms::D_r_plastic},
                                                                              {"D_r_dashpot", &LedgerTerms::D_r_dashpot},
                                                                              {"E_r_break", &LedgerTerms::E_r_break},
+                                                                             {"D_damping", &LedgerTerms::D_damping},
                                                                              {"scale", &LedgerTerms::scale}};
   const Hdf5File f(file.path(), Hdf5File::Mode::read, comm);
   for (const auto& [name, field] : format)
     EXPECT_EQ(f.read_double_attribute("/ledger", name), w.header.ledger.*field) << name;
+}
+
+// A checkpoint written before the local damping has no /ledger/D_damping: it reads as 0, the other terms as
+// written (the attribute is removed here with the HDF5 library itself, as an older writer would have left it).
+TEST(LedgerCheckpoint, OlderCheckpointWithoutDDampingReadsItAsZero) {
+  const Communicator comm;
+  const SharedFile file(comm, "older.h5");
+  Written w = make_state(comm);
+  ASSERT_NE(w.header.ledger.D_damping, 0.0);
+  write_state_file(file.path(), w.header, w.discs, w.pairs, w.walls, WallSet{}, comm, {}, 0.0);
+  comm.barrier();
+  if (comm.root()) {
+    const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+    const hid_t f = H5Fopen(file.path().c_str(), H5F_ACC_RDWR, fapl);
+    ASSERT_GE(f, 0);
+    EXPECT_GE(H5Adelete_by_name(f, "/ledger", "D_damping", H5P_DEFAULT), 0);
+    H5Fclose(f);
+    H5Pclose(fapl);
+  }
+  comm.barrier();
+  {
+    const Hdf5File f(file.path(), Hdf5File::Mode::read, comm);
+    EXPECT_FALSE(f.has_attribute("/ledger", "D_damping")) << "the attribute was not removed";
+  }
+  const StateHeader back = read_state_header(file.path(), comm);
+  LedgerTerms::visit_terms(
+      [](const LedgerTermInfo& t, double written, double read) {
+        if (t.name == "D_damping")
+          EXPECT_EQ(read, 0.0);
+        else
+          EXPECT_EQ(read, written) << t.name;
+      },
+      w.header.ledger, back.ledger);
 }
 
 TEST(LedgerCheckpoint, ContactRowsRoundTripColumnByColumn) {

@@ -66,6 +66,12 @@ void check_scene(const std::string& scene, const std::string& ini, int steps, in
 // 1. (a) Deposition into a box with walls, gravity, friction and the Wang rolling law.
 TEST(RankInvariance, DepositionBitwiseEqualToOneRank) { check_scene("deposition", deposition_ini(), 4000, 250, true); }
 
+// 1. (a') The deposition of (a) with local damping (run.local_damping = 0.7): the damped kicks (their sign
+// tests on each velocity component) give the 1-rank bits.
+TEST(RankInvariance, DepositionWithLocalDampingBitwiseEqualToOneRank) {
+  check_scene("deposition, damped", deposition_ini() + "[run]\nlocal_damping = 0.7\n", 4000, 250, true);
+}
+
 // 1. (b) Dense periodic packing with random velocities and a drift across the seams (Jiang plastic rolling).
 TEST(RankInvariance, PeriodicPackingBitwiseEqualToOneRank) { check_scene("periodic", periodic_ini(), 3000, 250, true); }
 

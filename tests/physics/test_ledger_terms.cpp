@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <sstream>
 #include <string>
@@ -36,7 +37,7 @@ TEST(LedgerTerms, CheckpointNamesAreTheFileFormats) {
   std::vector<std::string> names;
   LedgerTerms{}.for_each_term([&](const LedgerTermInfo& t, double) { names.emplace_back(t.name); });
   EXPECT_EQ(names, (std::vector<std::string>{"KE0", "W_g", "W_w", "W_n", "W_t", "W_r", "D_slip", "D_r_plastic",
-                                             "D_r_dashpot", "E_r_break", "scale"}));
+                                             "D_r_dashpot", "E_r_break", "D_damping", "scale"}));
   EXPECT_EQ(std::set<std::string>(names.begin(), names.end()).size(), names.size()) << "a name appears twice";
 }
 
@@ -57,7 +58,7 @@ TEST(LedgerTerms, DiagnosticsHeaderIsTheFileFormats) {
   EXPECT_EQ(DiagnosticsWriter::header(),
             "step,time,ke_trans,ke_rot,contacts,wall_contacts,coordination,max_overlap_ratio,W_gravity,W_walls,"
             "W_normal,W_tangential,W_rolling,E_stored,D_slip,D_rolling_plastic,D_rolling_dashpot,E_rolling_break,"
-            "D_other,ledger_residual,imbalance,ghost_fraction,migrated");
+            "D_damping,D_other,ledger_residual,imbalance,ghost_fraction,migrated");
 }
 
 TEST(LedgerTerms, ATermsValueLandsInItsOwnDiagnosticsColumn) {
@@ -90,17 +91,19 @@ TEST(LedgerTerms, EveryMemberIsInTheTermList) {
       << "LedgerTerms has a member that LedgerTerms::visit_terms does not visit";
 }
 
-TEST(EnergyLedger, AddsTheKernelsTermsAndGravity) {
+TEST(EnergyLedger, AddsTheKernelsTermsGravityAndDamping) {
   EnergyLedger ledger;
   number_terms(ledger);
   const EnergyLedger before = ledger;
   LedgerStep step;
   number_terms(step);
-  ledger.add(step, 0.25);
+  ledger.add(step, 0.25, 0.125);
   LedgerTerms::visit_terms(
       [](const LedgerTermInfo& t, double now, double was, double booked) {
         if (t.name == "W_g")
           EXPECT_EQ(now, was + 0.25);
+        else if (t.name == "D_damping")
+          EXPECT_EQ(now, was + 0.125);
         else if (t.uses & kTermKernel)
           EXPECT_EQ(now, was + booked) << t.name;
         else
@@ -122,6 +125,26 @@ TEST(EnergyLedger, DOtherIsMinusWcMinusStoredMinusEachDissipation) {
   // The historical expression, operation for operation (the CSV's bits must not change).
   const double expected = -g.W_c() - E_stored - g.D_slip - g.D_r_plastic - g.D_r_dashpot - g.E_r_break;
   EXPECT_EQ(g.D_other(E_stored), expected);
+  // The local damping is not a part of -W_c: it leaves D_other alone.
+  g.D_damping = 0.5;
+  EXPECT_EQ(g.D_other(E_stored), expected);
+}
+
+// The residual adds the damping's loss back: KE = KE0 + W_g + W_w + W_c - D_damping closes to 0; with
+// D_damping = 0 the residual is the historical expression's, bit for bit.
+TEST(EnergyLedger, ResidualCountsTheDampingLoss) {
+  EnergyLedger g;
+  g.KE0 = 1.0;
+  g.W_g = 3.0;
+  g.W_w = 0.5;
+  g.W_n = -0.75;
+  g.W_t = -0.25;
+  const double KE_undamped = 3.5;
+  EXPECT_EQ(g.absolute_residual(KE_undamped), 0.0);
+  EXPECT_EQ(g.absolute_residual(KE_undamped + 0.1), std::fabs(KE_undamped + 0.1 - g.KE0 - g.W_g - g.W_w - g.W_c()));
+  g.D_damping = 1.25;
+  EXPECT_EQ(g.absolute_residual(KE_undamped - 1.25), 0.0);
+  EXPECT_EQ(g.absolute_residual(KE_undamped), 1.25);
 }
 
 }  // namespace
