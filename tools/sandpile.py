@@ -139,8 +139,16 @@ def label_of(config):
     law = config.get("contact", "rolling", "none") or "none"
     block = LAW_BLOCK.get(law, law)
     params = config[block] if block in config else {}
-    text = ", ".join(f"{k} = {v}" for k, v in params.items())
+    text = ", ".join(f"{k} = {short(v)}" for k, v in params.items())
     return law + (f" ({text})" if text else "")
+
+
+def short(value):
+    """A number as config.ini writes it (0.90000000000000002) in its shortest form (0.9); text as it is."""
+    try:
+        return f"{float(value):.10g}"
+    except ValueError:
+        return value
 
 
 # -------------------------------------------------------------------------------------------- measure
