@@ -13,9 +13,10 @@ Asserts: t0 = 4.5 s read from the fill's checkpoint (and --t0 overriding it); pe
 (above the chamber, in it, in the pile) and the three heights equal to those computed from the built heap
 alone; the settling time (t = 4.5 + 3 s) and the height change over the last 2 s; left, right and mean
 angles within 1.5 deg of 25, 35 and 30; the label taken from the rolling law's block; the CSV and figure
-files (PNG and PDF); a user error (missing directory, no floor to find, wrong --label count) exits 1 with
-one line and no traceback; a final frame without a heap (only the rolled-away discs) exits 2. Exits
-non-zero on any failure, prints 'N passed, N failed'.
+files (PNG and PDF, with a --hline); a user error (missing directory, no floor to find, wrong --label
+count, a --hline height that is not a number) exits 1 with one line and no traceback; a final frame
+without a heap (only the rolled-away discs) exits 2. Exits non-zero on any failure, prints 'N passed,
+N failed'.
 """
 import contextlib
 import csv
@@ -199,7 +200,7 @@ def main():
         # two runs, labels given, --t0 given, PDF figures, as a command
         run2, _ = build(tmp, "constant", rolling="constant_torque", block="[constant_torque]\nmu_r = 0.15\n")
         rc, out, err = run_command(run, run2, "--out", os.path.join(tmp, "both"), "--label", "a", "b",
-                                   "--t0", "1", "--format", "pdf")
+                                   "--t0", "1", "--format", "pdf", "--hline", "0.1", "reference")
         check("two runs, --t0 1, PDF: exit 0", rc == 0, err)
         if rc == 0:
             s2 = read_rows(os.path.join(tmp, "both_summary.csv"))
@@ -233,6 +234,8 @@ def main():
         check("--floor and --chamber-top given: exit 0", rc == 0, err)
         rc, out, err = run_command(run, run2, "--label", "only-one")
         user_error("--label count", rc, err)
+        rc, out, err = run_command(run, "--hline", "high", "reference")
+        user_error("--hline with a height that is not a number", rc, err)
         run5, _ = build(tmp, "empty", heights=[0.0, 0.0])
         rc, out, err = run_command(run5, "--no-plot")
         check("no heap in the chamber at the end (only discs that rolled away): exit 2, one line",
