@@ -34,8 +34,9 @@ diameter; straight lines through the surface points between 20 % and 80 % of the
 right and mean; the last row of diagnostics.csv (kinetic energy) when there is one.
 
 Figures: PREFIX_height.png (height_top, solid, and height_centre, dashed, against time for every run; a
-dotted line at each run's t0, where the gate opens; --hline HEIGHT LABEL adds a reference height) and PREFIX_pile_<k>.png (the final pile of run k with
-its surface points and flank fits). --format pdf|svg, --dpi, --no-plot (CSV only).
+dotted line at each run's t0, where the gate opens; --hline HEIGHT LABEL adds a reference height) and
+PREFIX_pile_<k>.png (the final pile of run k with its surface points and flank fits). --format pdf|svg,
+--dpi, --no-plot (CSV only).
 
 PREFIX defaults to RUN_DIR/sandpile for one run, ./sandpile for several. Files are read with tools/rondel
 (docs/python.md). Exit status: 0 done, 1 a missing or unreadable input or a bad option, 2 no pile could
