@@ -287,7 +287,9 @@ def plot_heights(prefix, results, a):
         ax.axhline(value, color=f"{0.25 + 0.2 * (k % 3):.2f}", lw=0.9, ls=(0, (1, 2 + k)), label=text)
     ax.set_xlabel("time since the start of filling [s] (dotted: the gate opens)")
     ax.set_ylabel("pile height above the floor [m]")
-    ax.set_ylim(bottom=0.0)
+    tops = [row[k] for r in results for row in r["rows"] for k in ("height_top", "height_centre")]
+    tops = [v for v in tops if math.isfinite(v)] + [v for v, _ in (a.hline or [])]
+    ax.set_ylim(0.0, 1.12 * max(tops) if tops else 1.0)  # room above the highest curve and reference line
     ax.grid(True, lw=0.3)
     ax.set_title("2D sandpile: height of the pile in the chamber against time", fontsize=10)
     ax.legend(fontsize=7, loc="lower right")
