@@ -171,9 +171,11 @@ CheckpointContent inspect(const fs::path& path) {
   const std::uint64_t nw = f.rows("/walls/kind");
   const auto velocity = f.read<Vec2>("/walls/velocity", 0, nw);
   const auto p0 = f.read<Vec2>("/walls/p0", 0, nw);
+  // A rotating wall (format version 3) moves too.
+  const auto omega = f.rows("/walls/omega") == nw ? f.read<double>("/walls/omega", 0, nw) : std::vector<double>(nw);
   std::int64_t moving = -1;
   for (std::uint64_t w = 0; w < nw; ++w)
-    if (velocity[w].x != 0.0 || velocity[w].y != 0.0)
+    if (velocity[w].x != 0.0 || velocity[w].y != 0.0 || omega[w] != 0.0)
       moving = static_cast<std::int64_t>(w), c.moving_wall_x = p0[w].x, c.moving_wall_y = p0[w].y;
   for (const char* group : {"/contacts", "/wall_contacts"}) {
     const std::string g = group;
@@ -341,6 +343,13 @@ TEST(Checkpoint, RestartIsBitwiseWithTwoMaterials) {
                          "--scene.materials=glass steel", "--scene.material_fractions=0.6 0.4",
                          "--walls.material=steel", "--linear.glass.steel.zeta=0.3", "--coulomb.steel.steel.mu=0.3",
                          "--wang.glass.wall.steel.mu_r=0.05", "--contact.steel.steel.rolling=false"});
+}
+
+// A rotating wall (docs/physics.md section 8): the moving line replaced by a paddle, a segment from
+// (0, 0.045) down to its pivot at the origin that turns clockwise at 10 rad/s into the pile. Its ends (turned
+// step by step) and its angle travel through the checkpoint.
+TEST(Checkpoint, RestartIsBitwiseWithRotatingPaddle) {
+  restart_cases("wang", {"--walls.lines=", "--walls.segments=0 0.045 0 0 -10 0 0"});
 }
 
 TEST(Checkpoint, RestartIsBitwiseWithRoughShearingWall) {
