@@ -9,8 +9,9 @@
    beta = 30 deg with the drum turning counter-clockwise and for the mirrored bed (beta = 25 deg) with the
    drum turning clockwise (both angles positive when the bed leans the way the drum turns); only the
    snapshots at t >= --from are measured; the three output files are written.
-2. With the rondel executable (argv[1]): a tiny drum run (60 discs, 1,500 steps, snapshots every 250) is
-   measured (exit 0, finite angles), and the sweep mode runs two laws and two mu_r (mu_r = 0 shared: three
+2. With the rondel executable (argv[1]): a tiny drum run (50 discs in a drum of 0.02 m turning at 5 rad/s,
+   40,000 steps = 0.64 s, snapshots every 4,000) is measured (exit 0, an angle between 0 and 60 deg: the bed
+   leans the way the drum turns), and the sweep mode runs two laws and two mu_r (mu_r = 0 shared: three
    runs, two jobs at a time, 300 steps each on inputs/drum.ini), writes its table, and a second call reuses
    every finished run.
 3. Errors: a missing run directory and a directory without snapshots give exit status 1 with a message.
@@ -123,10 +124,10 @@ def tiny_run(tmp, rondel):
     ini = os.path.join(tmp, "tiny.ini")
     with open(ini, "w") as f:
         f.write("""[run]
-steps = 1500
+steps = 40000
 progress = false
 [output]
-snapshot_every = 250
+snapshot_every = 4000
 [domain]
 xlo = -0.021
 xhi = 0.021
@@ -149,8 +150,8 @@ mu_r = 0.1
 circles = 0 0 0.02 5
 [scene]
 type = random
-count = 60
-region = -0.012 0.012 -0.012 0.012
+count = 50
+region = -0.013 0.013 -0.013 0.013
 radius_min = 0.001
 radius_max = 0.0015
 seed = 3
