@@ -174,7 +174,7 @@ file = )" +
          file + "\n";
 }
 
-// 1. (f) A rotating drum (docs/physics.md section 8): 150 discs fall into a circle wall turning at 20 rad/s that
+// 1. (f) A rotating drum (docs/physics.md section 8): 120 discs fall into a circle wall turning at 20 rad/s that
 // carries a rotating lifter (a segment turning with it about the drum's centre), with gravity, Coulomb friction
 // and the Wang rolling law: wall rows whose wall moves under the discs and turns (omega2 = Omega), and the
 // neighbour list rebuilt for the lifter's sweep.
@@ -192,14 +192,14 @@ circles = 0 0 0.03 20
 segments = 0 -0.0295 0 -0.023 20 0 0
 [scene]
 type = random
-count = 150
+count = 120
 region = -0.02 0.02 -0.02 0.02
 radius_min = 0.001
 radius_max = 0.0016
 seed = 5
 vy = -1
 )";
-  check_scene("drum", ini, 3000, 250, true);
+  check_scene("drum", ini, 1500, 250, true);
 }
 
 // 2. A disc rolling without slip on the bottom wall crosses a rank border: its wall contact row (tangential

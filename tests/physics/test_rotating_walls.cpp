@@ -59,9 +59,15 @@ ContactParams all_law_params() {
 }
 
 const std::vector<std::string>& rolling_laws() {
-  static const std::vector<std::string> laws{"none",         "jiang_plastic",    "jiang_brittle",
-                                             "wang",         "iwashita_oda",     "alonso_marroquin",
-                                             "force_proportional", "constant_torque", "displacement_damping"};
+  static const std::vector<std::string> laws{"none",
+                                             "jiang_plastic",
+                                             "jiang_brittle",
+                                             "wang",
+                                             "iwashita_oda",
+                                             "alonso_marroquin",
+                                             "force_proportional",
+                                             "constant_torque",
+                                             "displacement_damping"};
   return laws;
 }
 
@@ -113,7 +119,8 @@ Wall rotating_segment() {
   w.p1 = {0.05, 0.0};
   w.centre = kCentre;
   w.omega = kOmega;
-  w.lever = std::max(std::hypot(w.p0.x - kCentre.x, w.p0.y - kCentre.y), std::hypot(w.p1.x - kCentre.x, w.p1.y - kCentre.y));
+  w.lever =
+      std::max(std::hypot(w.p0.x - kCentre.x, w.p0.y - kCentre.y), std::hypot(w.p1.x - kCentre.x, w.p1.y - kCentre.y));
   return w;
 }
 
@@ -174,9 +181,8 @@ TEST(RotatingWall, ADiscWithoutSpinSeesVrMinusR1OmegaForWang) {
   const Wall& w = rig.walls[0];
   const Wall::Proximity prox = w.proximity(x1);
   const double a1 = wall_lever(kR, prox.dist);
-  const ContactKinematics kin =
-      disc_wall_kinematics(prox.n, prox.dist, kR, rig.discs.velocity[0], w.surface_velocity(x1 + a1 * prox.n), 0.0,
-                           w.omega);
+  const ContactKinematics kin = disc_wall_kinematics(prox.n, prox.dist, kR, rig.discs.velocity[0],
+                                                     w.surface_velocity(x1 + a1 * prox.n), 0.0, w.omega);
   EXPECT_DOUBLE_EQ(kin.V_r, -kR * kOmega);
   EXPECT_DOUBLE_EQ(kin.thetadot_r, -kOmega);
   EXPECT_NEAR(kin.V_s, -a1 * kOmega, 1e-13 * kOmega * kR);
