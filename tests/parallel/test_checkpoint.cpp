@@ -346,10 +346,10 @@ TEST(Checkpoint, RestartIsBitwiseWithTwoMaterials) {
 }
 
 // A rotating wall (docs/physics.md section 8): the moving line replaced by a fixed one (x = 0) and a paddle on
-// it, a segment from (0, 0.045) down to its pivot at the origin that turns clockwise at 10 rad/s into the pile. Its
+// it, a segment from (0, 0.045) down to its pivot at the origin that turns clockwise at 25 rad/s into the pile. Its
 // ends (turned step by step) and its angle travel through the checkpoint.
 TEST(Checkpoint, RestartIsBitwiseWithRotatingPaddle) {
-  restart_cases("wang", {"--walls.lines=0 0 1 0", "--walls.segments=0 0.045 0 0 -10 0 0"});
+  restart_cases("wang", {"--walls.lines=0 0 1 0", "--walls.segments=0 0.045 0 0 -25 0 0"});
 }
 
 TEST(Checkpoint, RestartIsBitwiseWithRoughShearingWall) {

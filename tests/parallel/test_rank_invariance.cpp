@@ -199,7 +199,7 @@ radius_max = 0.0016
 seed = 5
 vy = -1
 )";
-  check_scene("drum", ini, 1500, 250, true);
+  check_scene("drum", ini, 4000, 250, true);
 }
 
 // 2. A disc rolling without slip on the bottom wall crosses a rank border: its wall contact row (tangential
