@@ -58,10 +58,18 @@ def print_walls(w):
     extra = ", ".join(f"{k} {v!r}" for k, v in w.attrs.items())
     print(f"  walls: {nw}" + (f" ({extra})" if extra else ""))
     for i in range(nw):
-        kind = "line" if int(w["kind"][i]) == 0 else "segment"
+        kind = {0: "line", 1: "segment", 2: "circle"}.get(int(w["kind"][i]), f"kind {int(w['kind'][i])}")
         p0, p1, nrm, v = (w[k][i] for k in ("p0", "p1", "normal", "velocity"))
-        where = (f"through ({p0[0]:.6g}, {p0[1]:.6g}), normal ({nrm[0]:.3g}, {nrm[1]:.3g})" if kind == "line"
-                 else f"({p0[0]:.6g}, {p0[1]:.6g}) - ({p1[0]:.6g}, {p1[1]:.6g})")
+        if kind == "line":
+            where = f"through ({p0[0]:.6g}, {p0[1]:.6g}), normal ({nrm[0]:.3g}, {nrm[1]:.3g})"
+        elif kind == "circle":
+            where = f"centre ({p0[0]:.6g}, {p0[1]:.6g}), radius {float(w['radius'][i]):.6g} m"
+        else:
+            where = f"({p0[0]:.6g}, {p0[1]:.6g}) - ({p1[0]:.6g}, {p1[1]:.6g})"
+        if "omega" in w and float(w["omega"][i]) != 0.0:
+            c = w["centre"][i]
+            where += (f", rotating at {float(w['omega'][i]):.6g} rad/s about ({c[0]:.6g}, {c[1]:.6g}), "
+                      f"turned {float(w['angle'][i]):.6g} rad")
         load = ""
         if "normal_force" in w:
             load = f", normal force {float(w['normal_force'][i]):.6g} N on {int(w['contacts'][i])} contacts"

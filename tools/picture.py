@@ -7,7 +7,7 @@
                              [--line-width W] [--vmax V] [--palette]
 
 Kinds (every kind draws the walls of /walls as black lines: kind 0 lines across the view, kind 1
-segments from p0 to p1; periodic box edges are drawn dashed). The view is the discs' extent with a
+segments from p0 to p1, kind 2 circles of /walls/radius about p0; periodic box edges are drawn dashed). The view is the discs' extent with a
 margin (the domain along periodic axes): --view walls widens it to every wall segment, --view X0 X1 Y0 Y1
 sets it.
   rotation  discs as circles to scale, coloured by the accumulated rotation /discs/theta [rad]
@@ -51,7 +51,7 @@ try:
     plt = pyplot()
     from matplotlib.collections import EllipseCollection, LineCollection
     from matplotlib.colors import ListedColormap, Normalize
-    from matplotlib.patches import Patch
+    from matplotlib.patches import Circle, Patch
 except ImportError as e:  # pragma: no cover - depends on the machine
     print(f"picture: error: the Python module {e.name} is missing for {sys.executable}: run the tool with "
           "Debian's /usr/bin/python3 after apt-get install python3-h5py python3-numpy python3-matplotlib",
@@ -95,6 +95,7 @@ class State:
         self.wall_key, self.wall_Fn = wc.get("key"), wc.get("F_n")
         self.wall_kind, self.wall_p0, self.wall_p1 = w.get("kind"), w.get("p0"), w.get("p1")
         self.wall_normal = w.get("normal")
+        self.wall_radius = w.get("radius")
 
     def missing(self, dataset, field=None, extra=""):
         """Raise the error for a missing dataset, naming the key that writes it."""
@@ -150,9 +151,9 @@ def contact_segments(p1, p2, domain):
     return seg, idx
 
 
-def wall_points(p, wall, kind, p0, p1, normal):
-    """Nearest point of wall WALL[k] to disc centre P[k]: the foot on a line (kind 0) or the closest point
-    of a segment (kind 1)."""
+def wall_points(p, wall, kind, p0, p1, normal, radius=None):
+    """Nearest point of wall WALL[k] to disc centre P[k]: the foot on a line (kind 0), the closest point
+    of a segment (kind 1) or the point of a circle (kind 2, centre p0, RADIUS) on the ray through P[k]."""
     p = np.asarray(p, dtype=float).reshape(-1, 2)
     wall = np.asarray(wall, dtype=int)
     a, b, n = p0[wall], p1[wall], normal[wall]
@@ -161,7 +162,14 @@ def wall_points(p, wall, kind, p0, p1, normal):
     L2 = np.sum(ab * ab, axis=1)
     t = np.clip(np.sum((p - a) * ab, axis=1) / np.where(L2 > 0, L2, 1.0), 0.0, 1.0)
     foot_seg = a + ab * t[:, None]
-    return np.where((np.asarray(kind)[wall] == 1)[:, None], foot_seg, foot_line)
+    k = np.asarray(kind)[wall]
+    out = np.where((k == 1)[:, None], foot_seg, foot_line)
+    if radius is not None and (k == 2).any():
+        d = p - a
+        dist = np.sqrt(np.sum(d * d, axis=1))
+        rim = a + d * (np.asarray(radius)[wall] / np.where(dist > 0, dist, 1.0))[:, None]
+        out = np.where((k == 2)[:, None], rim, out)
+    return out
 
 
 def view_limits(state, view="discs"):
@@ -181,6 +189,10 @@ def view_limits(state, view="discs"):
         if seg.any():
             pts = np.concatenate([state.wall_p0[seg], state.wall_p1[seg]])
             lo, hi = np.minimum(lo, pts.min(axis=0)), np.maximum(hi, pts.max(axis=0))
+        if state.wall_radius is not None:
+            for w in np.flatnonzero(np.asarray(state.wall_kind) == 2):
+                c, rc = np.asarray(state.wall_p0[w]), float(state.wall_radius[w])
+                lo, hi = np.minimum(lo, c - rc), np.maximum(hi, c + rc)
     dom = state.domain
     for i, axis in enumerate(("x", "y")):
         if dom.get(f"periodic_{axis}"):
@@ -234,6 +246,10 @@ def draw_walls(ax, state):
         if seg.any():
             ax.add_collection(LineCollection(np.stack([state.wall_p0[seg], state.wall_p1[seg]], axis=1),
                                              colors="black", linewidths=1.5, zorder=5))
+        if state.wall_radius is not None:
+            for w in np.flatnonzero(kind == 2):
+                ax.add_patch(Circle(tuple(state.wall_p0[w]), float(state.wall_radius[w]), fill=False,
+                                    color="black", lw=1.5, zorder=5))
     dom = state.domain
     style = dict(color="0.3", lw=0.8, ls="--", zorder=5)
     if dom.get("periodic_x"):
@@ -360,7 +376,8 @@ def picture_forces(state, args):
     if wFn is not None and len(wFn):
         wrow = state.rows_of(wkey[:, 0])
         p = state.position[wrow]
-        q = wall_points(p, wkey[:, 1], state.wall_kind, state.wall_p0, state.wall_p1, state.wall_normal)
+        q = wall_points(p, wkey[:, 1], state.wall_kind, state.wall_p0, state.wall_p1, state.wall_normal,
+                        state.wall_radius)
         ax.add_collection(LineCollection(np.stack([p, q], axis=1), linewidths=base * wFn / mean_F,
                                          colors="navy", capstyle="round", zorder=3))
     draw_walls(ax, state)

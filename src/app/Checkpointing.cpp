@@ -195,6 +195,10 @@ std::vector<Vec2> Checkpointing::wall_outline(const WallSet& walls, const Domain
       out.push_back(w.p0), out.push_back(w.p1);
       continue;
     }
+    if (w.kind == Wall::Kind::circle) {  // one cell per wall: a circle is drawn as its radius at `angle`
+      out.push_back(w.centre), out.push_back(w.centre + w.radius * Vec2{std::cos(w.angle), std::sin(w.angle)});
+      continue;
+    }
     const Vec2 d{-w.normal.y, w.normal.x};
     double lo = -inf, hi = inf;
     clip_to_box(w.p0, d, domain, lo, hi);

@@ -57,6 +57,12 @@ StateHeader Restart::header(const Simulation& sim, const char* kind) {
   return h;
 }
 
+namespace {
+const char* kind_name(Wall::Kind k) {
+  return k == Wall::Kind::line ? "line" : k == Wall::Kind::segment ? "segment" : "circle";
+}
+}  // namespace
+
 std::vector<SceneDisc> Restart::scene_from_file(const Config& config, WallSet& walls_out) {
   // Every rank reads every disc (the scene is then distributed like any other). A directory means its
   // newest complete checkpoint. Box walls take their positions from the file (a prepared sample keeps its
@@ -70,7 +76,10 @@ std::vector<SceneDisc> Restart::scene_from_file(const Config& config, WallSet& w
   check_disc_materials(path, d, config);
   const WallSet walls = read_state_walls(path, self);
   if (walls.size() == walls_out.size())
-    for (std::size_t w = 0; w < walls.size(); ++w) walls_out[w].p0 = walls[w].p0, walls_out[w].p1 = walls[w].p1;
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+      walls_out[w].p0 = walls[w].p0, walls_out[w].p1 = walls[w].p1;
+      if (walls_out[w].rotates() && walls[w].kind == walls_out[w].kind) walls_out[w].normal = walls[w].normal;
+    }
   std::vector<SceneDisc> out;
   for (std::size_t i = 0; i < d.n_owned(); ++i)
     out.push_back({d.gid[i], d.position[i], d.radius[i], d.velocity[i], d.omega[i], d.material[i]});
@@ -125,8 +134,13 @@ void Restart::read_walls(WallSet& into) const {
     throw InputError("'" + path_ + "' has " + std::to_string(walls.size()) + " walls but the configuration defines " +
                      std::to_string(into.size()));
   for (std::size_t w = 0; w < walls.size(); ++w) {  // positions and loads from the file, controls from the config
+    if (walls[w].kind != into[w].kind)
+      throw InputError("'" + path_ + "': wall " + std::to_string(w) + " is a " + kind_name(walls[w].kind) +
+                       " in the file but a " + kind_name(into[w].kind) + " in the configuration");
     into[w].p0 = walls[w].p0;
     into[w].p1 = walls[w].p1;
+    if (into[w].rotates()) into[w].normal = walls[w].normal;  // a rotating line has turned its normal
+    into[w].angle = walls[w].angle;
     into[w].velocity = walls[w].velocity;
     into[w].force = walls[w].force;
     into[w].normal_force = walls[w].normal_force;

@@ -28,10 +28,14 @@ struct RowGeometry {
         pair(discs, domain, static_cast<std::size_t>(pairs.i1[r]), static_cast<std::size_t>(pairs.i2[r]));
     return pairs.F_t[r] * k.t - pairs.F_n[r] * k.n;
   }
-  // Disc i against a wall.
+  // Disc i against a wall (a rotating wall: its surface velocity at the contact point and its spin, as the
+  // kernel forms them).
   static ContactKinematics wall(const DiscStore& discs, const Wall& w, std::size_t i) {
     const Wall::Proximity prox = w.proximity(discs.position[i]);
-    return disc_wall_kinematics(prox.n, prox.dist, discs.radius[i], discs.velocity[i], w.velocity, discs.omega[i]);
+    if (!w.rotates())
+      return disc_wall_kinematics(prox.n, prox.dist, discs.radius[i], discs.velocity[i], w.velocity, discs.omega[i]);
+    const Vec2 v_wall = w.surface_velocity(discs.position[i] + wall_lever(discs.radius[i], prox.dist) * prox.n);
+    return disc_wall_kinematics(prox.n, prox.dist, discs.radius[i], discs.velocity[i], v_wall, discs.omega[i], w.omega);
   }
 };
 

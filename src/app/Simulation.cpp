@@ -166,9 +166,11 @@ void Simulation::setup_neighbours() {
     check_periodic_lengths();
     for (std::size_t w = 0; w < walls_.size(); ++w)
       for (std::size_t i = 0; i < discs_.n_owned(); ++i)
-        if (walls_[w].kind == Wall::Kind::line && walls_[w].proximity(discs_.position[i]).dist < 0.0)
+        if (walls_[w].kind != Wall::Kind::segment && walls_[w].proximity(discs_.position[i]).dist < 0.0)
           throw InputError("disc " + std::to_string(discs_.gid[i]) + " lies behind wall " + std::to_string(w) +
-                           " (its centre is on the far side of the line)");
+                           (walls_[w].kind == Wall::Kind::line
+                                ? " (its centre is on the far side of the line)"
+                                : " (its centre is outside the circle: a circle wall holds discs inside it)"));
   });
 }
 

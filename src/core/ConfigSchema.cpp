@@ -165,8 +165,12 @@ void add_wall_sections(po::options_description& all) {
       ("walls.rough_depth", def(0.0), "[m] glue depth of walls.rough; 0 = the largest disc diameter")
       ("walls.servo_gain", def(0.2), "[-] servo gain in (0, 1): fraction of the force error closed per step")
       ("walls.servo_max_speed", def(0.1), "[m/s] largest servo wall speed")
-      ("walls.lines", def(""), "[m, m/s] infinite lines 'px py nx ny [vx vy]; ...' (n points to the discs)")
-      ("walls.segments", def(""), "[m, m/s] segments 'x1 y1 x2 y2 [vx vy]; ...'");
+      ("walls.lines", def(""), "[m, m/s, rad/s] infinite lines 'px py nx ny [vx vy | omega cx cy]; ...' (n points to "
+                               "the discs; 'vx vy' translates the line, 'omega cx cy' rotates it about (cx, cy))")
+      ("walls.segments", def(""), "[m, m/s, rad/s] segments 'x1 y1 x2 y2 [vx vy | omega cx cy]; ...' (a translation "
+                                  "or a rotation about the fixed centre (cx, cy), counter-clockwise positive)")
+      ("walls.circles", def(""), "[m, rad/s] circles 'cx cy R_c [omega]; ...' whose inside holds the discs (drums), "
+                                 "rotating about their centre at omega (default 0); walls after walls.segments");
   // clang-format on
   all.add(neigh).add(par).add(walls);
 }

@@ -1,4 +1,5 @@
-// [walls]: line and segment walls, the box walls, their motions (servo, strain rate, shear) and glue.
+// [walls]: line, segment and circle walls (fixed, translating or rotating), the box walls, their motions
+// (servo, strain rate, shear) and glue.
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -11,28 +12,67 @@ namespace {
 
 const char* const kSides[4] = {"bottom", "left", "right", "top"};
 
+// Every number of a wall record must be finite.
+void finite_record(const std::vector<double>& rec, const char* key) {
+  for (double v : rec) check(std::isfinite(v), key, "finite numbers", num(v));
+}
+
+// The optional motion at the end of a line or segment record (numbers from `at` on): none, 'vx vy' (a
+// translation) or 'omega cx cy' (a rotation about the fixed centre (cx, cy)).
+void read_motion(const std::vector<double>& rec, std::size_t at, const char* key, Wall& w) {
+  if (rec.size() == at + 2) w.velocity = {rec[at], rec[at + 1]};
+  if (rec.size() != at + 3) return;
+  check(rec[at] != 0.0, key, "a rotating wall's omega != 0 (leave 'omega cx cy' out for a fixed wall)", num(rec[at]));
+  w.omega = rec[at];
+  w.centre = {rec[at + 1], rec[at + 2]};
+}
+
+double distance(Vec2 a, Vec2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
 void read_wall_records(const Reader& r, Config& c) {
+  const Domain& d = c.domain;
   for (const auto& rec : records(r.get<std::string>("walls.lines"), "walls.lines")) {
-    check(rec.size() == 4 || rec.size() == 6, "walls.lines", "'px py nx ny [vx vy]' per wall",
+    check(rec.size() == 4 || rec.size() == 6 || rec.size() == 7, "walls.lines",
+          "'px py nx ny', 'px py nx ny vx vy' or 'px py nx ny omega cx cy' per wall",
           "a record of " + std::to_string(rec.size()) + " numbers");
+    finite_record(rec, "walls.lines");
     Wall w;
     w.kind = Wall::Kind::line;
     w.p0 = {rec[0], rec[1]};
     const double len = std::hypot(rec[2], rec[3]);
     check(len > 0.0, "walls.lines", "a non-zero normal", "normal (0, 0)");
     w.normal = {rec[2] / len, rec[3] / len};
-    if (rec.size() == 6) w.velocity = {rec[4], rec[5]};
+    read_motion(rec, 4, "walls.lines", w);
+    if (w.rotates()) {  // the points of the line that discs can meet lie in the domain
+      for (Vec2 corner : {Vec2{d.xlo, d.ylo}, Vec2{d.xhi, d.ylo}, Vec2{d.xlo, d.yhi}, Vec2{d.xhi, d.yhi}})
+        w.lever = std::max(w.lever, distance(corner, w.centre));
+    }
     c.walls.push_back(w);
   }
   for (const auto& rec : records(r.get<std::string>("walls.segments"), "walls.segments")) {
-    check(rec.size() == 4 || rec.size() == 6, "walls.segments", "'x1 y1 x2 y2 [vx vy]' per wall",
+    check(rec.size() == 4 || rec.size() == 6 || rec.size() == 7, "walls.segments",
+          "'x1 y1 x2 y2', 'x1 y1 x2 y2 vx vy' or 'x1 y1 x2 y2 omega cx cy' per wall",
           "a record of " + std::to_string(rec.size()) + " numbers");
+    finite_record(rec, "walls.segments");
     Wall w;
     w.kind = Wall::Kind::segment;
     w.p0 = {rec[0], rec[1]};
     w.p1 = {rec[2], rec[3]};
     check(rec[0] != rec[2] || rec[1] != rec[3], "walls.segments", "two distinct ends", "a zero-length segment");
-    if (rec.size() == 6) w.velocity = {rec[4], rec[5]};
+    read_motion(rec, 4, "walls.segments", w);
+    if (w.rotates()) w.lever = std::max(distance(w.p0, w.centre), distance(w.p1, w.centre));
+    c.walls.push_back(w);
+  }
+  for (const auto& rec : records(r.get<std::string>("walls.circles"), "walls.circles")) {
+    check(rec.size() == 3 || rec.size() == 4, "walls.circles", "'cx cy R_c' or 'cx cy R_c omega' per wall",
+          "a record of " + std::to_string(rec.size()) + " numbers");
+    finite_record(rec, "walls.circles");
+    check(rec[2] > 0.0, "walls.circles", "a radius R_c > 0", num(rec[2]));
+    Wall w;
+    w.kind = Wall::Kind::circle;
+    w.centre = w.p0 = {rec[0], rec[1]};
+    w.radius = rec[2];
+    if (rec.size() == 4) w.omega = rec[3];
     c.walls.push_back(w);
   }
 }

@@ -107,7 +107,7 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
 
   position_at_build_.assign(discs.position.begin(), discs.position.begin() + n_owned);
   bound_ = 0.0;
-  for (auto& w : walls) w.displacement_since_build = {};
+  for (auto& w : walls) w.displacement_since_build = {}, w.turn_since_build = 0.0;
   ++builds_;
 }
 
@@ -133,8 +133,7 @@ double NeighbourList::displacement(double max_step, const DiscStore& discs, cons
 bool NeighbourList::needs_rebuild(double max_disc_disp, const WallSet& walls) const {
   if (!(max_disc_disp <= 0.5 * skin_)) return true;
   double wall_disp = 0.0;
-  for (const auto& w : walls)
-    wall_disp = std::max(wall_disp, std::sqrt(dot(w.displacement_since_build, w.displacement_since_build)));
+  for (const auto& w : walls) wall_disp = std::max(wall_disp, w.moved_since_build());
   return max_disc_disp + wall_disp > skin_;
 }
 

@@ -40,14 +40,15 @@ void write_walls(Hdf5File& f, const WallSet& walls, const Communicator& comm) {
   const std::uint64_t n = walls.size();
   std::vector<std::int32_t> kind, material;
   std::vector<std::int64_t> contacts;
-  std::vector<double> normal_force;
-  std::vector<Vec2> p0, p1, normal, velocity, force;
+  std::vector<double> normal_force, radius, omega, angle;
+  std::vector<Vec2> p0, p1, normal, velocity, force, centre;
   if (comm.root())
     for (const Wall& w : walls) {
-      kind.push_back(w.kind == Wall::Kind::line ? 0 : 1);
+      kind.push_back(w.kind == Wall::Kind::line ? 0 : w.kind == Wall::Kind::segment ? 1 : 2);
       material.push_back(w.material);
       p0.push_back(w.p0), p1.push_back(w.p1), normal.push_back(w.normal), velocity.push_back(w.velocity);
       force.push_back(w.force), normal_force.push_back(w.normal_force), contacts.push_back(w.contacts);
+      centre.push_back(w.centre), radius.push_back(w.radius), omega.push_back(w.omega), angle.push_back(w.angle);
     }
   f.write("/walls/kind", kind, n, 0);
   f.write("/walls/p0", p0, n, 0);
@@ -58,6 +59,10 @@ void write_walls(Hdf5File& f, const WallSet& walls, const Communicator& comm) {
   f.write("/walls/normal_force", normal_force, n, 0);
   f.write("/walls/contacts", contacts, n, 0);
   f.write("/walls/material", material, n, 0);
+  f.write("/walls/centre", centre, n, 0);
+  f.write("/walls/radius", radius, n, 0);
+  f.write("/walls/omega", omega, n, 0);
+  f.write("/walls/angle", angle, n, 0);
 }
 
 // The peak over the writers and routings of this process (peak_checkpoint_structure_bytes()).
@@ -341,10 +346,17 @@ WallSet read_walls(const Hdf5File& f) {
   // Files written before the materials have no /walls/material: every wall is of material 0.
   const auto material = f.rows("/walls/material") == n ? f.read<std::int32_t>("/walls/material", 0, n, 1, false)
                                                        : std::vector<std::int32_t>(n, 0);
+  // Files before version 3 have no rotating walls and no circles: centre, radius, omega and angle read as 0.
+  const bool turning = f.rows("/walls/centre") == n;
+  const auto centre = turning ? f.read<Vec2>("/walls/centre", 0, n, 1, false) : std::vector<Vec2>(n);
+  const auto radius = turning ? f.read<double>("/walls/radius", 0, n, 1, false) : std::vector<double>(n, 0.0);
+  const auto omega = turning ? f.read<double>("/walls/omega", 0, n, 1, false) : std::vector<double>(n, 0.0);
+  const auto angle = turning ? f.read<double>("/walls/angle", 0, n, 1, false) : std::vector<double>(n, 0.0);
   WallSet walls(n);
   for (std::uint64_t w = 0; w < n; ++w) {
     walls[w].material = material[w];
-    walls[w].kind = kind[w] == 0 ? Wall::Kind::line : Wall::Kind::segment;
+    walls[w].kind = kind[w] == 0 ? Wall::Kind::line : kind[w] == 1 ? Wall::Kind::segment : Wall::Kind::circle;
+    walls[w].centre = centre[w], walls[w].radius = radius[w], walls[w].omega = omega[w], walls[w].angle = angle[w];
     walls[w].p0 = p0[w], walls[w].p1 = p1[w], walls[w].normal = normal[w], walls[w].velocity = velocity[w];
     walls[w].force = force[w], walls[w].normal_force = normal_force[w], walls[w].contacts = contacts[w];
   }

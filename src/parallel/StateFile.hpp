@@ -18,9 +18,11 @@ class Hdf5File;
 // The HDF5 layout of checkpoints and snapshots (FORMAT.md). Written collectively by every rank into one
 // file; discs in ascending gid and contact rows in ascending key, so the content does not depend on the rank
 // count (run metadata under /run_metadata and the ledger under /ledger excepted).
-inline constexpr std::int64_t kStateFormatVersion = 2;
+inline constexpr std::int64_t kStateFormatVersion = 3;
 // The oldest version a reader takes: version 2 only dropped datasets of version 1 (a pair's f1, tq1, tq2, and
-// M2 of an objective rolling law), so a version 1 file holds everything a restart reads.
+// M2 of an objective rolling law), so a version 1 file holds everything a restart reads; version 3 added the
+// circle walls (kind 2) and the rotation of walls (/walls/centre, radius, omega, angle), which a file of an
+// older version does not have (its walls neither rotate nor are circles).
 inline constexpr std::int64_t kOldestReadableFormatVersion = 1;
 
 struct StateHeader {

@@ -12,8 +12,10 @@
 // Energy ledger (docs/physics.md section 5): the work of each contact on the relative motion is integrated
 // with the half-step velocities and the trapezoid of last and this step's force,
 //   dW_n = (F_n' + F_n)/2 v_n dt,  dW_t = (F_t' + F_t)/2 V_s dt,  dW_r = sum_i (M_i' + M_i)/2 omega_i dt,
-// and a moving wall's work on a disc is (f' + f)/2 . v_wall dt. The rows' (F' + F) v terms are summed and
-// the sums multiplied by dt/2 once per pass; for a law whose couple on disc 2 is -M1, the rolling term is
+// and a moving wall's work on a disc is (f' + f)/2 . v_wall dt, v_wall its surface velocity at the contact
+// point; a rotating wall (Omega) also works through the couple, (M1' + M1)/2 Omega dt, while the rolling
+// term of a wall row is (M1' + M1)/2 (omega1 - Omega) dt (docs/physics.md section 8). The rows' (F' + F) v terms are
+// summed and the sums multiplied by dt/2 once per pass; for a law whose couple on disc 2 is -M1, the rolling term is
 // (M1' + M1)(omega1 - omega2). The laws report Coulomb slip, rolling plastic and dashpot work and
 // brittle-break releases. A row is booked by the rank that owns its disc 1, so a border pair computed on
 // two ranks counts once.
@@ -166,8 +168,13 @@ struct ContactKernel {
       const Wall::Proximity prox = w.proximity(D.x[i]);
       if (prox.dist >= D.R[i] && !loaded) return Found::apart;
       row.w1 = D.w[i];
-      row.v_wall = w.velocity;
-      row.k = disc_wall_kinematics(prox.n, prox.dist, D.R[i], D.v[i], w.velocity, row.w1);
+      if (w.rotates()) {  // the surface velocity at the contact point, and the wall's spin (physics.md section 8)
+        row.w2 = w.omega;
+        row.v_wall = w.surface_velocity(D.x[i] + wall_lever(D.R[i], prox.dist) * prox.n);
+      } else {
+        row.v_wall = w.velocity;
+      }
+      row.k = disc_wall_kinematics(prox.n, prox.dist, D.R[i], D.v[i], row.v_wall, row.w1, row.w2);
       row.b = disc_wall_bodies(D.m[i], D.I[i]);
     } else {
       const Vec2 d = image.separation(D.x[i], D.x[j]);
@@ -247,16 +254,21 @@ struct ContactKernel {
     const ContactKinematics& k = row.k;
     S.work += Pair{(tab.F_n[r] + F_n) * k.v_n, (tab.F_t[r] + T.F_t) * k.V_s};
     double W_r = 0.0;
-    if constexpr (kCouples > 1)
+    if constexpr (kCouples > 1 && !kWall)
       W_r = (tab.M1[r] + M.M1) * row.w1 + (tab.M2[r] + M.M2) * row.w2;
     else if constexpr (kCouples > 0)
-      W_r = (tab.M1[r] + M.M1) * k.thetadot_r;
+      W_r = (tab.M1[r] + M.M1) * k.thetadot_r;  // at a wall: its couple on the wall does no work on the discs
     S.roll += Pair{W_r, T.slip};
     if constexpr (Rolling::kActive) {
       S.loss += Pair{M.plastic, M.dashpot};
       if constexpr (breaks<Rolling>()) S.E_r_break += M.released;
     }
-    if constexpr (kWall) S.W_w += dot(tab.f1[r] + f1, row.v_wall);
+    if constexpr (kWall) {
+      S.W_w += dot(tab.f1[r] + f1, row.v_wall);
+      // A rotating wall: the couple on the disc works on the wall's spin too, (M1' + M1) Omega.
+      if constexpr (kCouples > 0)
+        if (row.w2 != 0.0) S.W_w += (tab.M1[r] + M.M1) * row.w2;
+    }
   }
 
   // This step's result into the row's columns: the state the next step starts from.
@@ -316,10 +328,19 @@ struct ContactKernel {
         // The contact opened this step: book the last half of the trapezoid, then forget its history.
         if (book) {
           double W_r = 0.0;
-          if constexpr (Rolling::kActive) W_r = tab.M1[r] * row.w1 + last_M2(tab, r) * row.w2;
+          if constexpr (Rolling::kActive) {
+            if constexpr (kWall)
+              W_r = tab.M1[r] * k.thetadot_r;
+            else
+              W_r = tab.M1[r] * row.w1 + last_M2(tab, r) * row.w2;
+          }
           S.work += Pair{tab.F_n[r] * k.v_n, tab.F_t[r] * k.V_s};
           S.roll += Pair{W_r, 0.0};
-          if constexpr (kWall) S.W_w += dot(tab.f1[r], row.v_wall);
+          if constexpr (kWall) {
+            S.W_w += dot(tab.f1[r], row.v_wall);
+            if constexpr (Rolling::kActive)
+              if (row.w2 != 0.0) S.W_w += tab.M1[r] * row.w2;
+          }
         }
         open_row<kWall, kCommit>(tab, r, h);
         continue;

@@ -4,8 +4,10 @@
 //   u_n = R1 + R2 - |d|,  a_i = R_i - u_n/2 (contact-point levers, a1 + a2 = |d|)
 //   v_n = (v2 - v1).n,  V_t = (v1 - v2).t,  V_s = V_t + a1 w1 + a2 w2,
 //   V_r = R* (w1 - w2), R* = R1 R2/(R1 + R2),  thetadot_r = w1 - w2.
-// At a wall (disc 2, R2 -> inf, never rotating): u_n = R1 - dist, R* -> R1, the a2 w2 term vanishes and
-// v2 is the wall's velocity. Velocities are the half-step ones of velocity Verlet (docs/physics.md section 1).
+// At a wall (disc 2, R2 -> inf): u_n = R1 - dist, R* -> R1, v2 is the velocity v_w of the wall's surface at the
+// contact point p = x1 + a1 n and w2 its angular velocity Omega (0 unless it rotates, docs/physics.md section 8):
+// V_t = (v1 - v_w).t, V_s = V_t + a1 w1 (the wall's a2 w2 term is its surface velocity, already in v_w) and
+// thetadot_r = w1 - Omega. Velocities are the half-step ones of velocity Verlet (docs/physics.md section 1).
 #include <cmath>
 
 #include "core/Vec2.hpp"
@@ -64,8 +66,14 @@ inline ContactKinematics disc_disc_kinematics(Vec2 d, double dist, double R1, do
   return k;
 }
 
-// n: unit vector from the disc centre towards the wall; dist: centre-to-wall distance.
-inline ContactKinematics disc_wall_kinematics(Vec2 n, double dist, double R1, Vec2 v1, Vec2 v_wall, double w1) {
+// The lever a1 = R1 - u_n/2 of a disc at the distance dist from a wall (u_n = R1 - dist), as the kinematics
+// form it: the contact point is x1 + a1 n.
+inline double wall_lever(double R1, double dist) { return R1 - 0.5 * (R1 - dist); }
+
+// n: unit vector from the disc centre towards the wall; dist: centre-to-wall distance; v_wall: the wall's
+// surface velocity at the contact point; w_wall: the wall's angular velocity (0: a wall that does not rotate).
+inline ContactKinematics disc_wall_kinematics(Vec2 n, double dist, double R1, Vec2 v1, Vec2 v_wall, double w1,
+                                              double w_wall = 0.0) {
   ContactKinematics k;
   k.wall = true;
   k.dist = dist;
@@ -81,7 +89,7 @@ inline ContactKinematics disc_wall_kinematics(Vec2 n, double dist, double R1, Ve
   k.v_n = dot(dv, k.n);
   k.V_t = -dot(dv, k.t);
   k.V_s = k.V_t + k.a1 * w1;
-  k.thetadot_r = w1;
+  k.thetadot_r = w1 - w_wall;
   k.V_r = k.R_star * k.thetadot_r;
   return k;
 }

@@ -6,7 +6,8 @@
 //   betadot = -V_t/|d|, the turning rate of the line of centres                               [rad/s]
 //   s1 =  R1 (w1 - betadot) =  R1 w1 + R1/|d| V_t   (the contact point on disc 1, W15 Eq. 23)   [m/s]
 //   s2 = -R2 (w2 - betadot) = -R2 w2 - R2/|d| V_t   (the contact point on disc 2, W15 Eq. 24)   [m/s]
-//   at a wall (R2 -> inf, w2 = 0): s1 = R1 w1, s2 = -V_t
+//   at a wall (R2 -> inf): s1 = R1 w1, s2 = -V_t; a wall rotating at Omega (w2): the same in its frame,
+//   s1 = R1 (w1 - Omega), s2 = -(V_t + a1 Omega) (both vanish in rigid co-rotation)
 //   V_r2 = sign(s1) min(|s1|, |s2|) when s1 s2 > 0, else 0 (pure rolling is s1 = s2)          [m/s]
 //   then `wang`'s spring-slider on V_r2 (W15 Eq. 28):
 //   x_r += V_r2 dt; trial T_r = -k_r x_r - c_r V_r2, capped at mu_r F_n by the capping rule    [N]
@@ -43,9 +44,9 @@ struct AlonsoMarroquinRates {
 
 inline AlonsoMarroquinRates alonso_marroquin_rates(const ContactKinematics& k, double w1, double w2) {
   AlonsoMarroquinRates r;
-  if (k.wall) {
-    r.s1 = k.R1 * w1;
-    r.s2 = -k.V_t;
+  if (k.wall) {  // in the wall's frame (a rotating wall: w2 = Omega, and V_t + a1 Omega is V_t seen from it)
+    r.s1 = k.R1 * (w1 - w2);
+    r.s2 = -(k.V_t + k.a1 * w2);
   } else {
     const double betadot = -k.V_t / k.dist;
     r.s1 = k.R1 * (w1 - betadot);

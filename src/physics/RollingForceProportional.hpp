@@ -2,6 +2,8 @@
 // force_proportional: the commercial manual's force proportional method (CM Eq. 3275); docs/physics.md
 // section 3. Each disc gets its own couple from its own spin:
 //   M_i = -mu_r F_n a_i sign(omega_i)      [N m],  a_i = R_i - u_n/2 (a wall gets none)
+// At a wall the disc's spin is taken relative to the wall, sign(omega1 - Omega) (Omega = 0 unless the wall
+// rotates, docs/physics.md section 8), so a disc carried round by a rotating wall is not braked.
 // Not objective: a pair in rigid rotation is braked, so the angular momentum of an isolated pair is not
 // conserved (dL/dt = -mu_r F_n (a1 + a2) for a pair spinning together, docs/validation.md case K7).
 // Parameter mu_r [-]. No history.
@@ -32,7 +34,8 @@ struct RollingForceProportional {
   static RollingCouple moment(const ContactParams& p, const ContactBodies&, const ContactKinematics& k, double F_n,
                               double, double w1, double w2, double* const*, std::size_t) {
     const double f = p.mu_r * F_n;
-    return {-f * k.a1 * sign(w1), k.wall ? 0.0 : -f * k.a2 * sign(w2)};
+    if (k.wall) return {-f * k.a1 * sign(k.thetadot_r), 0.0};  // the disc's spin relative to the wall
+    return {-f * k.a1 * sign(w1), -f * k.a2 * sign(w2)};
   }
   static double stored(const ContactParams&, const ContactBodies&, const ContactKinematics&, double, double* const*,
                        std::size_t) {

@@ -19,7 +19,7 @@ namespace rondel {
 
 // Rate of the legacy rolling angle, dtheta_r/dt.
 inline double iwashita_oda_rate(const ContactKinematics& k, double w1, double w2) {
-  if (k.wall) return w1;
+  if (k.wall) return k.thetadot_r;  // w1 - omega_wall
   const double dbeta = -k.V_t / k.dist;
   const double da = k.R1 * (w1 - dbeta), db = k.R2 * (w2 - dbeta);
   return 0.5 * (da - db) / (0.5 * (k.R1 + k.R2));

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <boost/program_options.hpp>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -240,6 +241,45 @@ TEST(Config, BadWallRecordsAreRefused) {
   EXPECT_TRUE(refused_naming(kValid, {"--walls.lines=0 0 0 0"}, "walls.lines"));
   EXPECT_TRUE(refused_naming(kValid, {"--walls.segments=0 0 x 1"}, "walls.segments"));
   EXPECT_TRUE(refused_naming(kValid, {"--walls.segments=0.1 0.1 0.1 0.1"}, "walls.segments"));
+  // Numbers that are not finite, a rotation record of the wrong length or with omega = 0.
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.lines=0 0 0 1 nan 0"}, "walls.lines"));
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.segments=0 0 1 inf"}, "walls.segments"));
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.segments=0 0 1 0 2 0 0 0"}, "walls.segments"));
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.segments=0 0 1 0 0 0.5 0.5"}, "walls.segments"));
+}
+
+TEST(Config, CircleAndRotatingWalls) {
+  // walls.lines, then walls.segments, then walls.circles, then the box sides.
+  const Config c = parse_config_text(
+      kValid, {"--walls.segments=0 0 0.1 0 3 0.05 0.05", "--walls.circles=0.05 0.05 0.04 -2", "--walls.box=bottom"});
+  ASSERT_EQ(c.walls.size(), 3u);
+  const Wall& seg = c.walls[0];
+  EXPECT_EQ(seg.kind, Wall::Kind::segment);
+  EXPECT_EQ(seg.omega, 3.0);
+  EXPECT_EQ(seg.centre.x, 0.05);
+  EXPECT_EQ(seg.centre.y, 0.05);
+  EXPECT_DOUBLE_EQ(seg.lever, std::hypot(0.05, 0.05));  // its farthest end from the centre
+  EXPECT_EQ(seg.velocity.x, 0.0);
+  const Wall& drum = c.walls[1];
+  EXPECT_EQ(drum.kind, Wall::Kind::circle);
+  EXPECT_EQ(drum.radius, 0.04);
+  EXPECT_EQ(drum.omega, -2.0);
+  EXPECT_EQ(drum.lever, 0.0);  // rotation leaves a circle in place
+  EXPECT_EQ(c.walls[2].box_side, 0);
+  // A circle: n from the disc to the rim, dist = R_c - |x - c| (u_n = |x - c| + R - R_c).
+  const Wall::Proximity p = drum.proximity({0.05, 0.02});
+  EXPECT_DOUBLE_EQ(p.dist, 0.04 - 0.03);
+  EXPECT_DOUBLE_EQ(p.n.x, 0.0);
+  EXPECT_DOUBLE_EQ(p.n.y, -1.0);
+  // Refused: a bad record length, R_c <= 0, numbers that are not finite.
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.circles=0 0"}, "walls.circles"));
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.circles=0 0 1 2 3"}, "walls.circles"));
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.circles=0 0 0"}, "walls.circles"));
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.circles=0 0 -0.1"}, "walls.circles"));
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.circles=0 0 nan"}, "walls.circles"));
+  EXPECT_TRUE(refused_naming(kValid, {"--walls.circles=0 0 0.1 inf"}, "walls.circles"));
+  const std::string message = config_error(kValid, {"--walls.circles=0 0 0"});
+  EXPECT_NE(message.find("R_c > 0"), std::string::npos) << message;
 }
 
 TEST(Config, RoughWallsAndShearControls) {

@@ -171,9 +171,11 @@ CheckpointContent inspect(const fs::path& path) {
   const std::uint64_t nw = f.rows("/walls/kind");
   const auto velocity = f.read<Vec2>("/walls/velocity", 0, nw);
   const auto p0 = f.read<Vec2>("/walls/p0", 0, nw);
+  // A rotating wall (format version 3) moves too.
+  const auto omega = f.rows("/walls/omega") == nw ? f.read<double>("/walls/omega", 0, nw) : std::vector<double>(nw);
   std::int64_t moving = -1;
   for (std::uint64_t w = 0; w < nw; ++w)
-    if (velocity[w].x != 0.0 || velocity[w].y != 0.0)
+    if (velocity[w].x != 0.0 || velocity[w].y != 0.0 || omega[w] != 0.0)
       moving = static_cast<std::int64_t>(w), c.moving_wall_x = p0[w].x, c.moving_wall_y = p0[w].y;
   for (const char* group : {"/contacts", "/wall_contacts"}) {
     const std::string g = group;
@@ -345,6 +347,13 @@ TEST(Checkpoint, RestartIsBitwiseWithTwoMaterials) {
 
 // Local damping (run.local_damping): it needs no state, so the restart continues the damped kicks as they were.
 TEST(Checkpoint, RestartIsBitwiseWithLocalDamping) { restart_cases("wang", {"--run.local_damping=0.7"}); }
+
+// A rotating wall (docs/physics.md section 8): the moving line replaced by a fixed one (x = 0) and a paddle on
+// it, a segment from (0, 0.045) down to its pivot at the origin that turns clockwise at 25 rad/s into the pile. Its
+// ends (turned step by step) and its angle travel through the checkpoint.
+TEST(Checkpoint, RestartIsBitwiseWithRotatingPaddle) {
+  restart_cases("wang", {"--walls.lines=0 0 1 0", "--walls.segments=0 0.045 0 0 -25 0 0"});
+}
 
 TEST(Checkpoint, RestartIsBitwiseWithRoughShearingWall) {
   restart_cases("wang", {"--walls.rough=right", "--walls.rough_depth=0.0025", "--walls.control=right:shear:0.05"});

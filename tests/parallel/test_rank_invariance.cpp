@@ -180,6 +180,35 @@ file = )" +
          file + "\n";
 }
 
+// 1. (f) A rotating drum (docs/physics.md section 8): 120 discs fall into a circle wall turning at 20 rad/s that
+// carries a rotating lifter (a segment turning with it about the drum's centre), with gravity, Coulomb friction
+// and the Wang rolling law: wall rows whose wall moves under the discs and turns (omega2 = Omega), and the
+// neighbour list rebuilt for the lifter's sweep. The domain is wider than tall, so that the grid partitioner
+// cuts the bed at the bottom of the drum with vertical borders (a horizontal one would leave it to one rank).
+TEST(RankInvariance, RotatingDrumBitwiseEqualToOneRank) {
+  const std::string ini = R"(
+[domain]
+xlo = -0.04
+xhi = 0.04
+ylo = -0.032
+yhi = 0.032
+)" + test::falling_contacts_ini() +
+                          test::rolling_law_ini("wang") + R"(
+[walls]
+circles = 0 0 0.03 20
+segments = 0 -0.0295 0 -0.023 20 0 0
+[scene]
+type = random
+count = 120
+region = -0.02 0.02 -0.02 0.02
+radius_min = 0.001
+radius_max = 0.0016
+seed = 5
+vy = -1
+)";
+  check_scene("drum", ini, 4000, 250, true);
+}
+
 // 2. A disc rolling without slip on the bottom wall crosses a rank border: its wall contact row (tangential
 // spring xi and rolling spring x_r or theta_r) goes with it; every step is compared with the 1-rank run.
 TEST(RankInvariance, RollingDiscCrossesBorderWithItsHistory) {

@@ -204,6 +204,25 @@ TEST_F(CheckpointErrors, TheValidCheckpointRestarts) {
   EXPECT_EQ(sim.step_count(), 1501);
 }
 
+// A file of format version 2 (before rotating and circle walls: no /walls/centre, radius, omega, angle) is still
+// read: its walls do not rotate, and the run continues from it with the same bits as from the version 3 file.
+TEST_F(CheckpointErrors, AVersionTwoFileWithoutWallRotationRestarts) {
+  const fs::path file = copy("version-2.h5");
+  {
+    const H5 h(file);
+    for (const char* set : {"/walls/centre", "/walls/radius", "/walls/omega", "/walls/angle"})
+      ASSERT_GE(H5Ldelete(h.file, set, H5P_DEFAULT), 0) << set;
+    h.set_int("/", "format_version", 2);
+  }
+  const Communicator self(MPI_COMM_SELF);
+  QuietCout quiet;
+  Simulation old_file(config_for(out("version-2")), self, true, file.string());
+  Simulation new_file(config_for(out("version-3")), self, true, valid_->string());
+  for (int k = 0; k < 20; ++k) old_file.step(), new_file.step();
+  EXPECT_EQ(old_file.step_count(), 1520);
+  EXPECT_EQ(test::first_difference(new_file.state_text(), old_file.state_text(), "version 3", "version 2"), "");
+}
+
 TEST_F(CheckpointErrors, MissingFiles) {
   // --resume of a directory without a checkpoint, and of one that does not exist.
   const fs::path empty = *dir_ / "empty";

@@ -225,6 +225,12 @@ TEST(SetupErrors, DiscOutsideTheDomainIsRefused) {
   const std::string behind = setup_error<InputError>(csv_scene(dir / "inside.csv") + "[walls]\nlines = 0 0.2 0 -1\n");
   EXPECT_TRUE(names(behind, "disc 2"));
   EXPECT_TRUE(names(behind, "wall 0"));
+  // A disc outside a circle wall (a drum of radius 0.3 about (0.1, 0.1) holds disc 1, not disc 2).
+  const std::string outside =
+      setup_error<InputError>(csv_scene(dir / "inside.csv") + "[walls]\ncircles = 0.1 0.1 0.3 2\n");
+  EXPECT_TRUE(names(outside, "disc 2"));
+  EXPECT_TRUE(names(outside, "wall 0"));
+  EXPECT_TRUE(names(outside, "outside the circle"));
 }
 
 TEST(SetupErrors, PeriodicLengthBelowTwiceTheInteractionRange) {

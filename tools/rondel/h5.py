@@ -7,9 +7,10 @@ import numpy as np
 from .config import Config
 from .errors import RondelFileError
 
-FORMAT_VERSION = 2
-# Versions this reader takes: 2 only dropped contact datasets of 1 that the tools do not read.
-READABLE_VERSIONS = (1, 2)
+FORMAT_VERSION = 3
+# Versions this reader takes: 2 only dropped contact datasets of 1 that the tools do not read; 3 added
+# circle walls (/walls/kind 2) and wall rotation (/walls/centre, radius, omega, angle).
+READABLE_VERSIONS = (1, 2, 3)
 FLAG_FIXED = 1
 FLAG_GLUED = 2
 M64 = (1 << 64) - 1
