@@ -86,7 +86,7 @@ void add_run_sections(po::options_description& all, std::vector<KeySpec>& keys) 
       .text("run.output", def("rondel-output"), "path", "output directory (must not exist unless run.overwrite)")
       .flag("run.overwrite", def(false), "reuse an existing output directory")
       .flag("run.progress", def(true), "progress line on rank 0")
-      .number("run.max_overlap", def(0.1), "-", kFraction, "stop when an overlap exceeds this fraction of the smaller radius")
+      .number("run.max_overlap", def(0.1), "-", kPositive, "stop when an overlap exceeds this fraction of the smaller radius")
       .flag("run.reset_history", def(false), "start from a file whose laws differ: drop its contact history")
       .flag("run.accept_materials", def(false), "start from a file whose material table differs: the discs keep their "
                                                 "material index and take mass and inertia from this configuration")
