@@ -165,7 +165,7 @@ void Simulation::setup_neighbours() {
   agree(comm_, [&] {
     const double skin = config_.skin > 0.0 ? config_.skin : 0.25 * R_total_ / static_cast<double>(n_discs_);
     neighbours_ = NeighbourList(skin);
-    start_checks::check_cells(config_, neighbours_.range(R_max_), static_cast<double>(n_discs_));
+    start_checks::check_cells(config_, neighbours_.range(R_max_));
     check_periodic_lengths();
     for (std::size_t w = 0; w < walls_.size(); ++w)
       for (std::size_t i = 0; i < discs_.n_owned(); ++i)

@@ -139,13 +139,13 @@ void check_time_step(const Config& c, const CriticalStep& critical, double dt, d
                       " s: " + critical_keys(c));
 }
 
-void check_cells(const Config& c, double range, double discs) {
+void check_cells(const Config& c, double range) {
   // As CellGrid: floor(length / range) cells per side, at least 1, at most 1e5.
   auto per_side = [range](double length) { return std::clamp(std::floor(length / range), 1.0, 1.0e5); };
   const double cells = per_side(c.domain.length_x()) * per_side(c.domain.length_y());
   const double per_cell = c.partitioner == "metis" ? kBytesPerMetisCell : kBytesPerCell;
   check_memory(
-      discs, cells, per_cell,
+      0.0, cells, per_cell,
       "the domain (domain.xlo, domain.xhi, domain.ylo, domain.yhi) in cells of side >= the interaction range " +
           fmt(range) + " m (2 x the largest radius + neighbour.skin; " + radius_keys(c) + ")");
 }

@@ -24,8 +24,9 @@ void check_masses(const Config& c, const std::vector<MaterialInfo>& materials);
 // The critical step and the time step: finite and normal, the run's end time run.steps x dt finite, and the
 // fall of a disc at rest under gravity in one step below run.max_overlap x the smallest radius `R_min`.
 void check_time_step(const Config& c, const CriticalStep& critical, double dt, double R_min);
-// The cell grid (cells of side >= `range`, as CellGrid makes them) and the discs against the machine's memory.
-void check_cells(const Config& c, double range, double discs);
+// The cell grid (cells of side >= `range`, as CellGrid makes them) against the machine's memory (the disc
+// count is checked where the scene is built).
+void check_cells(const Config& c, double range);
 // Every disc: a finite kinetic energy and a surface speed |v| + |omega| R below the speed of light.
 void check_initial_motion(const Config& c, const DiscStore& discs);
 

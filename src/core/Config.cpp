@@ -266,7 +266,8 @@ std::string config_help(const LawCatalog& laws) {
   std::ostringstream s;
   s << "Usage: mpirun -n N rondel FILE.ini [--section.key=value ...]\n"
        "Every key may be set in FILE.ini (under [section] as 'key = value') or on the command line,\n"
-       "which wins. Units in brackets.\n\n"
+       "which wins. Units in brackets; the range a value must lie in after its meaning (every number,\n"
+       "and every number of a list, must be finite).\n\n"
     << config_schema(laws, {}, true);
   return s.str();
 }

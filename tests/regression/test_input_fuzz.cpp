@@ -5,6 +5,7 @@
 // after the start) or a run with a value outside the range the key declares. The real executable is run on
 // a few of the cases for the exit code 1 and the output directory left unmade (InputFuzz.Executable*).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdint>
@@ -406,6 +407,30 @@ TEST(InputFuzz, ExecutableRefusesBadInputWithExitOneBeforeWritingAnything) {
         << o.err;
     for (const std::string& w : words) EXPECT_NE(o.err.find(w), std::string::npos) << "no '" << w << "' in: " << o.err;
     EXPECT_FALSE(fs::exists(out)) << "a refused run created " << out;
+  }
+}
+
+TEST(InputFuzz, RefusalsAreAgreedOnThreeRanks) {
+  // Every rank finds the same error (a key's value, a derived quantity): each exits 1, the message once.
+  if (std::system("command -v mpirun > /dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun is not installed";
+  TempDir dir("rondel-fuzz-ranks");
+  test::write_file(dir / "lattice.ini", kLattice);
+  std::string env = test::without_mpi_launch(true);
+  if (geteuid() == 0) env += " OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1";
+  for (const auto& [args, key] : std::vector<std::pair<std::string, std::string>>{
+           {"--scene.vx=nan", "scene.vx"}, {"--material.density=1e-300", "material.density"}}) {
+    SCOPED_TRACE(args);
+    const fs::path out = dir / "out";
+    const test::Outcome o =
+        test::run_in(dir, env,
+                     "timeout 120 mpirun -n 3 --oversubscribe " + test::quoted(test::rondel_executable()) +
+                         " lattice.ini " + args + " --run.output=" + test::quoted(out));
+    EXPECT_EQ(o.exit_code, 1) << o.err;
+    const auto first = o.err.find("rondel: configuration error:");
+    ASSERT_NE(first, std::string::npos) << o.err;
+    EXPECT_EQ(o.err.find("rondel: configuration error:", first + 1), std::string::npos) << "printed twice: " << o.err;
+    EXPECT_NE(o.err.find(key), std::string::npos) << o.err;
+    EXPECT_FALSE(fs::exists(out));
   }
 }
 
