@@ -174,7 +174,8 @@ int main(int argc, char** argv) {
                   "replicate_y = %ld\nmax_initial_overlap = 0.2\n",
                   lo, lo + static_cast<double>(nx) * L, lo, lo + static_cast<double>(ny) * L, o.file.c_str(), nx, ny);
     rondel::Simulation sim(rondel::parse_config_text(std::string(ini) + rolling_block(o.rolling) +
-                                                   (o.skin.empty() ? "" : "[neighbour]\nskin = " + o.skin + "\n")), comm, false);
+                                                     (o.skin.empty() ? "" : "[neighbour]\nskin = " + o.skin + "\n")),
+                           comm, false);
     for (long s = 0; s < o.warmup; ++s) sim.step();
     const std::size_t builds0 = sim.neighbour_builds();
     const double comm_before = sim.comm_seconds();
