@@ -134,6 +134,7 @@ TEST(ConfigValidation, AbsurdValuesAreRefused) {
   // A finite box whose length is not, a speed faster than light, a gravity beyond any star's.
   EXPECT_TRUE(has(refusal(kValid, {"--domain.xlo=-1e308", "--domain.xhi=1e308"}), "domain.xhi"));
   EXPECT_TRUE(has(refusal(kValid, {"--scene.vy=3e8"}), "scene.vy"));
+  EXPECT_TRUE(has(refusal(kValid, {"--walls.box=bottom top", "--walls.control=top:shear:1e9"}), "walls.control"));
   EXPECT_TRUE(has(refusal(kValid, {"--gravity.y=-1e13"}), "gravity.y"));
   EXPECT_TRUE(has(refusal(kValid, {"--run.steps=9223372036854775807"}), "run.steps"));
   EXPECT_TRUE(has(refusal(kValid, {"--scene.seed=-1"}), "scene.seed"));
