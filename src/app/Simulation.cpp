@@ -10,6 +10,7 @@
 #include "app/Reports.hpp"
 #include "app/Restart.hpp"
 #include "app/RowGeometry.hpp"
+#include "app/StartChecks.hpp"
 #include "core/Errors.hpp"
 #include "core/ExactSum.hpp"
 #include "core/SceneBuilder.hpp"
@@ -120,7 +121,8 @@ void Simulation::add_scene_discs() {
     if (!config_.domain.contains(x))
       throw InputError("disc " + std::to_string(d.gid) + " at (" + fmt(d.x.x) + ", " + fmt(d.x.y) +
                        ") lies outside the domain [" + fmt(config_.domain.xlo) + ", " + fmt(config_.domain.xhi) +
-                       "] x [" + fmt(config_.domain.ylo) + ", " + fmt(config_.domain.yhi) + "]");
+                       "] x [" + fmt(config_.domain.ylo) + ", " + fmt(config_.domain.yhi) + "] (from " +
+                       start_checks::scene_keys(config_) + ")");
     discs_.add(d.gid, d.material, d.radius, config_.materials[static_cast<std::size_t>(d.material)], x, d.v, d.omega);
   }
 }
@@ -163,14 +165,18 @@ void Simulation::setup_neighbours() {
   agree(comm_, [&] {
     const double skin = config_.skin > 0.0 ? config_.skin : 0.25 * R_total_ / static_cast<double>(n_discs_);
     neighbours_ = NeighbourList(skin);
+    start_checks::check_cells(config_, neighbours_.range(R_max_));
     check_periodic_lengths();
     for (std::size_t w = 0; w < walls_.size(); ++w)
       for (std::size_t i = 0; i < discs_.n_owned(); ++i)
         if (walls_[w].kind != Wall::Kind::segment && walls_[w].proximity(discs_.position[i]).dist < 0.0)
-          throw InputError("disc " + std::to_string(discs_.gid[i]) + " lies behind wall " + std::to_string(w) +
-                           (walls_[w].kind == Wall::Kind::line
-                                ? " (its centre is on the far side of the line)"
-                                : " (its centre is outside the circle: a circle wall holds discs inside it)"));
+          throw InputError(
+              "disc " + std::to_string(discs_.gid[i]) + " lies behind wall " + std::to_string(w) +
+              (walls_[w].kind == Wall::Kind::line
+                   ? " (its centre is on the far side of the line; the wall is from " +
+                         std::string(walls_[w].box_side >= 0 ? "walls.box and walls.box_region" : "walls.lines") + ")"
+                   : " (its centre is outside the circle: a circle wall holds discs inside it; "
+                     "walls.circles)"));
   });
 }
 
@@ -179,11 +185,11 @@ void Simulation::check_periodic_lengths() const {
   const Domain& d = config_.domain;
   if (d.periodic_x && d.length_x() < 2.0 * range)
     throw ConfigError("domain.xhi - domain.xlo = " + fmt(d.length_x()) + " is below twice the interaction range " +
-                      fmt(range) + " (2 x largest radius + skin): a periodic length must be at least " +
+                      fmt(range) + " (2 x largest radius + neighbour.skin): a periodic length must be at least " +
                       fmt(2 * range));
   if (d.periodic_y && d.length_y() < 2.0 * range)
     throw ConfigError("domain.yhi - domain.ylo = " + fmt(d.length_y()) + " is below twice the interaction range " +
-                      fmt(range) + " (2 x largest radius + skin): a periodic length must be at least " +
+                      fmt(range) + " (2 x largest radius + neighbour.skin): a periodic length must be at least " +
                       fmt(2 * range));
 }
 
@@ -253,6 +259,7 @@ void Simulation::resolve_time_step() {
     m.R_min = std::min(m.R_min, discs_.radius[i]), m.R_max = std::max(m.R_max, discs_.radius[i]);
   }
   for (MaterialInfo& m : mats) m.R_min = -comm_.max(-m.R_min), m.R_max = comm_.max(m.R_max);
+  start_checks::check_masses(config_, mats);
   CriticalOptions options{config_.max_overlap, {}};
   for (const Wall& w : walls_)
     if (std::find(options.wall_materials.begin(), options.wall_materials.end(), w.material) ==
@@ -268,6 +275,9 @@ void Simulation::resolve_time_step() {
                         critical_.mode + " mode, " + critical_.pair + "); lower it, leave run.dt = 0 for " +
                         fmt(config_.safety) + " x critical, or set run.force_dt = true");
   }
+  double R_min = INFINITY;
+  for (const MaterialInfo& m : mats) R_min = std::min(R_min, m.R_min);
+  start_checks::check_time_step(config_, critical_, dt_, R_min);
 }
 
 void Simulation::resume_time_step(double file_dt, const std::string& path) {
@@ -285,6 +295,7 @@ void Simulation::resume_time_step(double file_dt, const std::string& path) {
 }
 
 void Simulation::check_initial_state() {
+  start_checks::check_initial_motion(config_, discs_);
   ContactTable pairs = make_contact_table(laws_, false), walls = make_contact_table(laws_, true);
   NeighbourList probe(neighbours_.skin());
   probe.build(discs_, config_.domain, walls_, config_.params, pairs, walls);
@@ -308,9 +319,9 @@ void Simulation::check_initial_state() {
              "disc " + std::to_string(discs_.gid[i]) + " and wall " + std::to_string(walls.i2[r]));
   }
   if (count > 0)
-    throw InputError(std::to_string(count) +
-                     " initial overlaps exceed scene.max_initial_overlap = " + fmt(config_.scene.max_initial_overlap) +
-                     " of the smaller radius; the worst is " + fmt(worst) + " between " + where);
+    throw InputError(std::to_string(count) + " initial overlaps exceed scene.max_initial_overlap = " +
+                     fmt(config_.scene.max_initial_overlap) + " of the smaller radius; the worst is " + fmt(worst) +
+                     " between " + where + " (from " + start_checks::scene_keys(config_) + ")");
 }
 
 void Simulation::load_checkpoint(const std::string& path) {

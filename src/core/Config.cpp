@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <boost/any.hpp>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -126,6 +127,10 @@ void read_domain(const Reader& r, Config& c) {
   c.domain.yhi = r.get<double>("domain.yhi");
   check(c.domain.xhi > c.domain.xlo, "domain.xhi", "must be > domain.xlo", num(c.domain.xhi));
   check(c.domain.yhi > c.domain.ylo, "domain.yhi", "must be > domain.ylo", num(c.domain.yhi));
+  check(std::isfinite(c.domain.length_x()), "domain.xhi", "domain.xhi - domain.xlo must be a finite length",
+        num(c.domain.xhi) + " - " + num(c.domain.xlo));
+  check(std::isfinite(c.domain.length_y()), "domain.yhi", "domain.yhi - domain.ylo must be a finite length",
+        num(c.domain.yhi) + " - " + num(c.domain.ylo));
   c.domain.periodic_x = r.get<bool>("domain.periodic_x");
   c.domain.periodic_y = r.get<bool>("domain.periodic_y");
   c.gravity = {r.get<double>("gravity.x"), r.get<double>("gravity.y")};
@@ -147,6 +152,8 @@ void read_domain(const Reader& r, Config& c) {
 Config build(const LawCatalog& laws, const DynamicSections& dynamic, const po::variables_map& vm) {
   const po::options_description schema = config_schema(laws, dynamic);
   const Reader r{vm};
+  // The one validation pass: every value given is finite and in the range declared with its key.
+  validate_values(config_keys(laws, dynamic), vm);
   Config c;
   read_run(r, c);
   read_output(r, c);
@@ -162,11 +169,30 @@ Config build(const LawCatalog& laws, const DynamicSections& dynamic, const po::v
 }
 
 std::string read_text(const std::string& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    throw ConfigError("the configuration file '" + file + "' is a directory, not an INI file");
   std::ifstream in(file);
   if (!in) throw ConfigError("cannot read the configuration file '" + file + "'");
   std::ostringstream s;
   s << in.rdbuf();
+  if (in.bad()) throw ConfigError("cannot read the configuration file '" + file + "'");
   return s.str();
+}
+
+// Boost's default style guesses an option from a prefix (--scene.x would be scene.x0): only whole keys.
+constexpr int kCommandLineStyle = po::command_line_style::default_style & ~po::command_line_style::allow_guessing;
+
+// The message of a Boost parse error, with the closest declared key for an unknown one.
+std::string parse_message(const po::error& e, const std::vector<KeySpec>& keys) {
+  std::string message = e.what();
+  if (const auto* unknown = dynamic_cast<const po::unknown_option*>(&e)) {
+    std::string name = unknown->get_option_name();
+    name.erase(0, name.find_first_not_of('-'));
+    const std::string near = closest_key(name, keys);
+    if (!near.empty()) message += " (did you mean '" + near + "'?)";
+  }
+  return message;
 }
 
 po::options_description command_line(const po::options_description& schema) {
@@ -188,6 +214,7 @@ std::string configuration_file(const LawCatalog& laws, const std::vector<std::st
     po::store(po::command_line_parser(args)
                   .options(command_line(config_schema(laws)))
                   .positional(pos)
+                  .style(kCommandLineStyle)
                   .allow_unregistered()
                   .run(),
               vm);
@@ -209,13 +236,15 @@ po::variables_map parse(const LawCatalog& laws, const std::vector<std::string>& 
   for (std::string& k : ini_keys(ini_text ? *ini_text : file_text)) keys.push_back(std::move(k));
   *dynamic_out = dynamic_sections(laws, keys);
   const auto schema = config_schema(laws, *dynamic_out);
+  const std::vector<KeySpec> specs = config_keys(laws, *dynamic_out);
   po::options_description cli = command_line(schema);
   po::positional_options_description pos;
   pos.add("config", 1);
   po::variables_map vm;
   try {
-    po::store(po::command_line_parser(args).options(cli).positional(pos).run(), vm);
+    po::store(po::command_line_parser(args).options(cli).positional(pos).style(kCommandLineStyle).run(), vm);
     if (vm.count("help")) throw HelpRequested{config_help(laws)};
+    refuse_empty_flags(specs, args, ini_text ? *ini_text : file_text);
     if (ini_text) {
       std::istringstream in(*ini_text);
       po::store(po::parse_config_file(in, schema, false), vm);
@@ -226,14 +255,14 @@ po::variables_map parse(const LawCatalog& laws, const std::vector<std::string>& 
       try {
         po::store(po::parse_config_file(in, schema, false), vm);
       } catch (const po::error& e) {
-        throw ConfigError("in '" + file + "': " + std::string(e.what()) + " (rondel --help lists every key)");
+        throw ConfigError("in '" + file + "': " + parse_message(e, specs) + " (rondel --help lists every key)");
       }
     } else if (!vm.count("resume")) {
       throw ConfigError("no configuration file given: usage 'rondel FILE.ini [--section.key=value ...]'");
     }
     po::notify(vm);
   } catch (const po::error& e) {
-    throw ConfigError(std::string(e.what()) + " (rondel --help lists every key)");
+    throw ConfigError(parse_message(e, specs) + " (rondel --help lists every key)");
   }
   return vm;
 }
@@ -244,7 +273,8 @@ std::string config_help(const LawCatalog& laws) {
   std::ostringstream s;
   s << "Usage: mpirun -n N rondel FILE.ini [--section.key=value ...]\n"
        "Every key may be set in FILE.ini (under [section] as 'key = value') or on the command line,\n"
-       "which wins. Units in brackets.\n\n"
+       "which wins. Units in brackets; the range a value must lie in after its meaning (every number,\n"
+       "and every number of a list, must be finite).\n\n"
     << config_schema(laws, {}, true);
   return s.str();
 }

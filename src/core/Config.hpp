@@ -53,7 +53,7 @@ struct Config {
   double max_overlap = 0.1;
   double max_residual = 0.5;
   double max_energy_gain = 0.1;  // run.max_energy_gain: largest -D_other / energy scale
-  double local_damping = 0.0;  // alpha of the integrator's local damping, [0, 1); 0 = off
+  double local_damping = 0.0;    // alpha of the integrator's local damping, [0, 1); 0 = off
   bool reset_history = false;
   bool accept_materials = false;  // a restart or file scene may have a material table other than the file's
   // [output]

@@ -32,35 +32,34 @@ const LawBlock* find_block(const LawCatalog& laws, const std::string& section) {
   return nullptr;
 }
 
-void add_material_keys(po::options_description& d, const std::string& prefix, bool named) {
+void add_material_keys(po::options_description& d, std::vector<KeySpec>& keys, const std::string& prefix, bool named) {
   const std::string p = prefix + ".";
-  auto key = [&p](const char* k) { return p + k; };
+  config::KeyTable table(d, keys);
   if (named)
-    d.add_options()(key("density").c_str(), po::value<double>(), "[kg/m^3] density (required)");
+    table.number(p + "density", po::value<double>(), "kg/m^3", kPositive, "density (required)");
   else
-    d.add_options()(key("density").c_str(), po::value<double>()->default_value(2650.0, "2650"), "[kg/m^3] density");
-  d.add_options()(key("thickness").c_str(), po::value<double>()->default_value(1.0, "1"),
-                  "[m] disc thickness t (forces and energies are per t; the same for every material)")(
-      key("body").c_str(), po::value<std::string>()->default_value("disc"),
-      "[-] disc (m = rho pi R^2 t, I = m R^2/2) | sphere (m = 4/3 pi rho R^3, I = 2/5 m R^2)")(
-      key("youngs_modulus").c_str(), po::value<double>(),
-      "[Pa] Young's modulus E (required with contact.normal = hertz)")(
-      key("poisson_ratio").c_str(), po::value<double>(),
-      "[-] Poisson's ratio nu, in (-1, 0.5) (required with contact.normal = hertz)");
+    table.number(p + "density", po::value<double>()->default_value(2650.0, "2650"), "kg/m^3", kPositive, "density");
+  table.number(p + "thickness", po::value<double>()->default_value(1.0, "1"), "m", kPositive,
+               "disc thickness t (forces and energies are per t; the same for every material)");
+  table.text(p + "body", po::value<std::string>()->default_value("disc"), "-",
+             "disc (m = rho pi R^2 t, I = m R^2/2) | sphere (m = 4/3 pi rho R^3, I = 2/5 m R^2)");
+  table.number(p + "youngs_modulus", po::value<double>(), "Pa", kPositive,
+               "Young's modulus E (required with contact.normal = hertz)");
+  table.number(p + "poisson_ratio", po::value<double>(), "-", Range{-1.0, 0.5, true, true},
+               "Poisson's ratio nu (required with contact.normal = hertz)");
 }
 
-void add_pair_keys(po::options_description& d, const LawCatalog& laws, const std::string& section) {
+void add_pair_keys(po::options_description& d, std::vector<KeySpec>& keys, const LawCatalog& laws,
+                   const std::string& section) {
   const std::string block = section.substr(0, section.find('.'));
+  config::KeyTable table(d, keys);
   if (block == "contact") {
-    d.add_options()((section + ".rolling").c_str(), po::value<bool>(),
-                    "[-] false: no rolling resistance at this pair (rolling = none here)");
+    table.flag(section + ".rolling", po::value<bool>(),
+               "false: no rolling resistance at this pair (rolling = none here)");
     return;
   }
-  for (const ParamSpec& p : find_block(laws, block)->params) {
-    const std::string help =
-        std::string("[").append(p.unit).append("] ").append(p.help).append(", ").append(p.range.text());
-    d.add_options()((section + "." + p.key).c_str(), po::value<double>(), help.c_str());
-  }
+  for (const ParamSpec& p : find_block(laws, block)->params)
+    table.number(section + "." + p.key, po::value<double>(), p.unit, p.range, p.help);
 }
 
 }  // namespace
@@ -106,32 +105,43 @@ DynamicSections dynamic_sections(const LawCatalog& laws, const std::vector<std::
 }
 
 po::options_description config_schema(const LawCatalog& laws, const DynamicSections& dynamic, bool help) {
-  po::options_description all = config_schema(laws);
+  po::options_description all;
+  std::vector<KeySpec> keys;
+  config::declare_fixed_keys(laws, all, keys);
+  config::declare_dynamic_keys(laws, dynamic, help, all, keys);
+  return all;
+}
+
+namespace config {
+
+void declare_dynamic_keys(const LawCatalog& laws, const DynamicSections& dynamic, bool help,
+                          po::options_description& all, std::vector<KeySpec>& keys) {
   if (help) {
     po::options_description m(
         "[material.NAME] one material of several (instead of [material]; NAME: letters, "
         "digits, _; materials are numbered in name order)");
-    add_material_keys(m, "material.NAME", true);
+    add_material_keys(m, keys, "material.NAME", true);
     po::options_description p(
         "[BLOCK.A.B] disc-disc and [BLOCK.A.wall.W] disc-wall parameters of one unordered material pair: any key "
         "of the selected law's block BLOCK, replacing the default (e.g. [linear.glass.steel] k_n = 2e6); "
         "[contact.A.B] and [contact.A.wall.W] hold the key below");
-    add_pair_keys(p, laws, "contact.A.B");
+    add_pair_keys(p, keys, laws, "contact.A.B");
     all.add(m).add(p);
-    return all;
+    return;
   }
   for (const std::string& name : dynamic.materials) {
     po::options_description m("[material." + name + "]");
-    add_material_keys(m, "material." + name, true);
+    add_material_keys(m, keys, "material." + name, true);
     all.add(m);
   }
   for (const std::string& section : dynamic.pairs) {
     po::options_description p("[" + section + "]");
-    add_pair_keys(p, laws, section);
+    add_pair_keys(p, keys, laws, section);
     all.add(p);
   }
-  return all;
 }
+
+}  // namespace config
 
 namespace config {
 
@@ -252,8 +262,8 @@ void read_materials(const Reader& r, const DynamicSections& dynamic, Config& c) 
   for (const Material& m : c.materials)
     if (m.thickness != c.materials.front().thickness)
       throw ConfigError("key 'material." + m.name + ".thickness' = " + num(m.thickness) +
-                        ": every material has the thickness of the first (" + num(c.materials.front().thickness) +
-                        "), the thickness the stresses are per");
+                        ": every material has the thickness of the first (material." + c.materials.front().name +
+                        ".thickness = " + num(c.materials.front().thickness) + "), the thickness the stresses are per");
   c.density = c.materials.front().density;
   c.thickness = c.materials.front().thickness;
 }

@@ -1,6 +1,8 @@
 #include "core/ConfigRead.hpp"
 
+#include <boost/any.hpp>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 namespace rondel::config {
@@ -34,13 +36,19 @@ std::vector<double> numbers(const std::string& text, const std::string& key) {
   std::vector<double> out;
   std::string tok;
   while (in >> tok) {
+    double v = 0.0;
     try {
       std::size_t used = 0;
-      out.push_back(std::stod(tok, &used));
+      v = std::stod(tok, &used);
       if (used != tok.size()) throw std::invalid_argument(tok);
+    } catch (const std::out_of_range&) {
+      throw ConfigError("key '" + key + "': '" + tok + "' is out of the range of a double (about 1e-308 to 1e308)");
     } catch (const std::exception&) {
       throw ConfigError("key '" + key + "': '" + tok + "' is not a number");
     }
+    if (!std::isfinite(v))
+      throw ConfigError("key '" + key + "': '" + tok + "' is not allowed: every number must be finite");
+    out.push_back(v);
   }
   return out;
 }
@@ -54,6 +62,89 @@ std::vector<std::vector<double>> records(const std::string& text, const std::str
     if (!v.empty()) out.push_back(std::move(v));
   }
   return out;
+}
+
+namespace {
+
+// The value of a number key as a double (integers too: their ranges are doubles).
+double number_of(const boost::any& v) {
+  if (auto p = boost::any_cast<double>(&v)) return *p;
+  if (auto p = boost::any_cast<std::int64_t>(&v)) return static_cast<double>(*p);
+  if (auto p = boost::any_cast<int>(&v)) return static_cast<double>(*p);
+  if (auto p = boost::any_cast<std::uint64_t>(&v)) return static_cast<double>(*p);
+  return NAN;
+}
+
+std::string value_text(const boost::any& v) {
+  std::ostringstream s;
+  s.precision(10);
+  if (auto p = boost::any_cast<double>(&v))
+    s << *p;
+  else if (auto p = boost::any_cast<std::int64_t>(&v))
+    s << *p;
+  else if (auto p = boost::any_cast<int>(&v))
+    s << *p;
+  else if (auto p = boost::any_cast<std::uint64_t>(&v))
+    s << *p;
+  return s.str();
+}
+
+std::string trimmed(const std::string& s) {
+  const auto a = s.find_first_not_of(" \t\r"), b = s.find_last_not_of(" \t\r");
+  return a == std::string::npos ? "" : s.substr(a, b - a + 1);
+}
+
+}  // namespace
+
+void validate_values(const std::vector<KeySpec>& keys, const boost::program_options::variables_map& vm) {
+  for (const KeySpec& k : keys) {
+    if (!vm.count(k.key) || vm[k.key].defaulted()) continue;
+    const boost::any& value = vm[k.key].value();
+    if (k.type == KeyType::real || k.type == KeyType::integer) {
+      check(k.range.contains(number_of(value)), k.key, "must be " + k.range.text(), value_text(value));
+    } else if (k.type == KeyType::numbers || k.type == KeyType::records) {
+      const std::string text = boost::any_cast<std::string>(value);
+      for (const auto& record : records(text, k.key))
+        for (double v : record) check(k.range.contains(v), k.key, "every number must be " + k.range.text(), num(v));
+    }
+  }
+}
+
+void refuse_empty_flags(const std::vector<KeySpec>& keys, const std::vector<std::string>& args,
+                        const std::string& ini_text) {
+  auto is_flag = [&keys](const std::string& key) {
+    for (const KeySpec& k : keys)
+      if (k.key == key) return k.type == KeyType::flag;
+    return false;
+  };
+  auto refuse = [](const std::string& key, const std::string& where) {
+    throw ConfigError("key '" + key + "' has an empty value" + where + ": give true or false");
+  };
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a.rfind("--", 0) != 0) continue;
+    const auto eq = a.find('=');
+    const std::string key = a.substr(2, eq == std::string::npos ? std::string::npos : eq - 2);
+    if (!is_flag(key)) continue;
+    const bool empty = eq != std::string::npos ? trimmed(a.substr(eq + 1)).empty()
+                                               : i + 1 < args.size() && trimmed(args[i + 1]).empty();
+    if (empty) refuse(key, " on the command line");
+  }
+  std::istringstream in(ini_text);
+  std::string section, line;
+  for (std::size_t lineno = 1; std::getline(in, line); ++lineno) {
+    line = trimmed(line.substr(0, line.find('#')));
+    if (line.empty() || line[0] == ';') continue;
+    if (line[0] == '[') {
+      section = trimmed(line.substr(1, line.find(']') - 1));
+      continue;
+    }
+    const auto eq = line.find('=');
+    if (eq == std::string::npos) continue;
+    const std::string name = trimmed(line.substr(0, eq));
+    const std::string key = section.empty() ? name : section + "." + name;
+    if (is_flag(key) && trimmed(line.substr(eq + 1)).empty()) refuse(key, " (line " + std::to_string(lineno) + ")");
+  }
 }
 
 }  // namespace rondel::config

@@ -2,7 +2,9 @@
 // Internal to the configuration layer (Config*.cpp): reading the parsed keys with the checks and messages
 // every section shares, and the readers of each section.
 #include <boost/program_options.hpp>
+#include <cmath>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/Config.hpp"
@@ -34,6 +36,54 @@ void in_range(double v, const Range& range, const std::string& key);  // "must b
 // Whitespace-separated numbers; ';'-separated records of them. Errors name `key`.
 std::vector<double> numbers(const std::string& text, const std::string& key);
 std::vector<std::vector<double>> records(const std::string& text, const std::string& key);
+
+// Any finite number; a speed (of a disc, a wall) below the speed of light; |gravity| up to 1e12 m/s^2 (about a
+// neutron star's surface: anything larger is taken for a mistake).
+inline constexpr Range kFinite{-INFINITY, INFINITY, false, false};
+inline constexpr double kLightSpeed = 299792458.0;
+inline constexpr Range kSpeed{-kLightSpeed, kLightSpeed, false, false};
+inline constexpr Range kGravity{-1e12, 1e12, false, false};
+
+// Declares keys once, to Boost (the parse and --help) and to the key list (type and range, for the validation
+// pass): the help line is "[unit] help, RANGE" (no range for any finite number).
+class KeyTable {
+ public:
+  KeyTable(boost::program_options::options_description& options, std::vector<KeySpec>& keys)
+      : options_(options), keys_(keys) {}
+  // A number (double or an integer type); `value` carries the default, if any.
+  template <class T>
+  KeyTable& number(const std::string& key, boost::program_options::typed_value<T>* value, const char* unit,
+                   const Range& range, const std::string& help) {
+    keys_.push_back({key, std::is_floating_point_v<T> ? KeyType::real : KeyType::integer, range});
+    return add(key, value, unit, help, range, "");
+  }
+  KeyTable& flag(const std::string& key, boost::program_options::typed_value<bool>* value, const std::string& help);
+  KeyTable& text(const std::string& key, boost::program_options::typed_value<std::string>* value, const char* unit,
+                 const std::string& help);
+  // Whitespace-separated numbers (`records`: ';'-separated records of them), each in `each`; default "".
+  KeyTable& list(const std::string& key, const char* unit, const Range& each, const std::string& help,
+                 bool records = false);
+
+ private:
+  KeyTable& add(const std::string& key, const boost::program_options::value_semantic* value, const char* unit,
+                const std::string& help, const Range& range, const char* each);
+  boost::program_options::options_description& options_;
+  std::vector<KeySpec>& keys_;
+};
+
+// The keys of every section whose name is fixed (ConfigSchema.cpp), and of the dynamic sections
+// (ConfigMaterials.cpp; with `help`, once with the placeholders).
+void declare_fixed_keys(const LawCatalog& laws, boost::program_options::options_description& all,
+                        std::vector<KeySpec>& keys);
+void declare_dynamic_keys(const LawCatalog& laws, const DynamicSections& dynamic, bool help,
+                          boost::program_options::options_description& all, std::vector<KeySpec>& keys);
+
+// The validation pass: every value given (not the defaults) is finite and in its declared range, every
+// number of a list too. Throws ConfigError naming the key, the value and what is allowed.
+void validate_values(const std::vector<KeySpec>& keys, const boost::program_options::variables_map& vm);
+// A flag given with an empty value ("run.overwrite =" or "--run.overwrite="), which Boost reads as true.
+void refuse_empty_flags(const std::vector<KeySpec>& keys, const std::vector<std::string>& args,
+                        const std::string& ini_text);
 
 void read_contact(const LawCatalog& laws, const Reader& r, Config& c);
 void read_walls(const Reader& r, Config& c);

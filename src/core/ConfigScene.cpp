@@ -70,7 +70,7 @@ void read_scene(const Reader& r, Config& c) {
   s.radius_max = r.get<double>("scene.radius_max");
   s.sizes = numbers(r.get<std::string>("scene.sizes"), "scene.sizes");
   s.fractions = numbers(r.get<std::string>("scene.fractions"), "scene.fractions");
-  s.seed = r.get<std::uint64_t>("scene.seed");
+  s.seed = static_cast<std::uint64_t>(r.get<std::int64_t>("scene.seed"));  // >= 0 (validate_values)
   s.max_attempts = r.get<std::int64_t>("scene.max_attempts");
   s.file = r.get<std::string>("scene.file");
   s.replicate_x = r.get<int>("scene.replicate_x");
@@ -139,10 +139,11 @@ void read_scene_materials(const Reader& r, Config& c) {
   }
   const std::size_t ranges = s.material_radius_min.size() + s.material_radius_max.size();
   if (ranges > 0) {
-    check(s.type == "random" && s.distribution != "list", "scene.material_radius_min",
+    check(s.type == "random" && s.distribution != "list", "scene.material_radius_min' / 'scene.material_radius_max",
           "a random scene with uniform_radius or uniform_area", s.type + " / " + s.distribution);
     check(s.material_radius_min.size() == s.materials.size() && s.material_radius_max.size() == s.materials.size(),
-          "scene.material_radius_min", "one smallest and one largest radius per name in scene.materials",
+          "scene.material_radius_min' / 'scene.material_radius_max",
+          "one smallest and one largest radius per name in scene.materials",
           std::to_string(s.material_radius_min.size()) + " and " + std::to_string(s.material_radius_max.size()));
     for (std::size_t k = 0; k < s.materials.size(); ++k) {
       check(s.material_radius_min[k] > 0.0, "scene.material_radius_min", "must be > 0", num(s.material_radius_min[k]));

@@ -27,4 +27,17 @@ std::vector<std::string> argument_keys(const std::vector<std::string>& args);
 boost::program_options::options_description config_schema(const LawCatalog& laws, const DynamicSections& dynamic,
                                                           bool help = false);
 
+// What a key holds, declared with the key itself (the same lines as the schema): the validation pass checks
+// every value given against it before anything is read (docs/design.md section 8), and the tests walk it.
+enum class KeyType { real, integer, flag, text, numbers, records };
+struct KeySpec {
+  std::string key;
+  KeyType type;
+  Range range;  // real, integer: the value's; numbers, records: every number's; flag, text: unused
+};
+// Every key of config_schema(laws, dynamic) with its type and range.
+std::vector<KeySpec> config_keys(const LawCatalog& laws, const DynamicSections& dynamic = {});
+// The declared key closest to `name` by edit distance ("" when none is close): "did you mean ...?".
+std::string closest_key(const std::string& name, const std::vector<KeySpec>& keys);
+
 }  // namespace rondel

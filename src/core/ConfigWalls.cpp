@@ -136,6 +136,7 @@ void read_wall_controls(const Reader& r, Config& c) {
     } else if (mode == "strain_rate") {
       wall.control = Wall::Control::strain_rate, wall.strain_rate = value;
     } else if (mode == "shear") {
+      check(std::fabs(value) <= kLightSpeed, "walls.control", "a shear velocity below the speed of light [m/s]", spec);
       wall.shear_velocity = value;
     } else {
       throw ConfigError("key 'walls.control': mode '" + mode + "' in '" + spec +

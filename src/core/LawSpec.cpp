@@ -7,7 +7,11 @@ namespace rondel {
 
 std::string Range::text() const {
   std::ostringstream s;
-  if (std::isinf(hi))
+  if (std::isinf(lo) && std::isinf(hi))
+    s << "finite";
+  else if (std::isinf(lo))
+    s << (hi_open ? "< " : "<= ") << hi;
+  else if (std::isinf(hi))
     s << (lo_open ? "> " : ">= ") << lo;
   else
     s << "in " << (lo_open ? "(" : "[") << lo << ", " << hi << (hi_open ? ")" : "]");

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/Errors.hpp"
+#include "core/MemoryLimit.hpp"
 
 namespace rondel {
 
@@ -58,9 +59,23 @@ std::vector<std::size_t> material_slots(const SceneConfig& s, std::size_t n) {
 
 int slot_material(const SceneConfig& s, std::size_t slot) { return s.materials.empty() ? 0 : s.materials[slot]; }
 
-std::vector<SceneDisc> lattice(const SceneConfig& s, bool hex) {
+std::vector<SceneDisc> lattice(const SceneConfig& s, const Domain& domain, bool hex) {
+  check_memory(static_cast<double>(s.nx) * s.ny, 0.0, 0.0, "scene.nx x scene.ny");
   std::vector<SceneDisc> out;
   const double row = hex ? s.spacing * std::sqrt(3.0) / 2.0 : s.spacing;
+  // The corners of the lattice (the first disc, the farthest row and column, the half shift of hex rows).
+  const double far_x = s.x0 + (s.nx - 1) * s.spacing + (hex && s.ny > 1 ? 0.5 * s.spacing : 0.0),
+               far_y = s.y0 + (s.ny - 1) * row;
+  const bool inside_x = domain.periodic_x || (s.x0 >= domain.xlo && far_x <= domain.xhi);
+  const bool inside_y = domain.periodic_y || (s.y0 >= domain.ylo && far_y <= domain.yhi);
+  if (!std::isfinite(far_x) || !std::isfinite(far_y) || !inside_x || !inside_y) {
+    std::ostringstream m;
+    m << "keys 'scene.nx', 'scene.ny', 'scene.spacing' (" << s.spacing << "; 0: 2 x scene.radius), 'scene.x0', "
+      << "'scene.y0': the lattice spans (" << s.x0 << ", " << s.y0 << ") to (" << far_x << ", " << far_y
+      << "), outside the domain (domain.xlo, domain.xhi, domain.ylo, domain.yhi) [" << domain.xlo << ", " << domain.xhi
+      << "] x [" << domain.ylo << ", " << domain.yhi << "]";
+    throw InputError(m.str());
+  }
   for (int j = 0; j < s.ny; ++j)
     for (int i = 0; i < s.nx; ++i) {
       const double shift = (hex && (j % 2 == 1)) ? 0.5 * s.spacing : 0.0;
@@ -97,6 +112,7 @@ std::pair<double, int> draw_radius(const SceneConfig& s, std::size_t slot, Scene
 
 // Random sequential addition, largest discs first, with a cell grid for the overlap checks.
 std::vector<SceneDisc> random_packing(const SceneConfig& s, const Domain& domain) {
+  check_memory(static_cast<double>(s.count), 0.0, 0.0, "scene.count = " + std::to_string(s.count));
   SceneRandom rng(s.seed);
   const auto slots = material_slots(s, static_cast<std::size_t>(s.count));
   std::vector<std::pair<double, int>> radii(static_cast<std::size_t>(s.count));
@@ -108,10 +124,20 @@ std::vector<SceneDisc> random_packing(const SceneConfig& s, const Domain& domain
   const double xlo = s.region[0], xhi = s.region[1], ylo = s.region[2], yhi = s.region[3];
   const double r_max = radii.front().first;
   if (xhi - xlo < 2 * r_max || yhi - ylo < 2 * r_max)
-    throw InputError("scene.region is smaller than the largest disc (diameter " + std::to_string(2 * r_max) + ")");
-  const double cell = 2.0 * r_max;
-  const int nx = std::max(1, static_cast<int>((xhi - xlo) / cell)),
-            ny = std::max(1, static_cast<int>((yhi - ylo) / cell));
+    throw InputError(
+        "scene.region (empty: walls.box_region, else the domain) is smaller than the largest disc "
+        "(diameter " +
+        std::to_string(2 * r_max).substr(0, 12) + " m; scene.radius_max, scene.sizes or scene.material_radius_max)");
+  // Cells of side >= the largest diameter, at most about 4 per disc (the placement does not depend on the
+  // cells: they only find the candidates; a region far larger than the discs gets larger cells).
+  const double cell = 2.0 * r_max, cap = 4.0 * static_cast<double>(radii.size()) + 64.0;
+  double fx = std::clamp(std::floor((xhi - xlo) / cell), 1.0, cap),
+         fy = std::clamp(std::floor((yhi - ylo) / cell), 1.0, cap);
+  while (fx * fy > cap) {
+    double& larger = fx >= fy ? fx : fy;
+    larger = std::max(1.0, std::floor(0.5 * larger));
+  }
+  const int nx = static_cast<int>(fx), ny = static_cast<int>(fy);
   const double cx = (xhi - xlo) / nx, cy = (yhi - ylo) / ny;
   std::vector<std::vector<std::size_t>> grid(static_cast<std::size_t>(nx) * ny);
   std::vector<SceneDisc> out;
@@ -161,6 +187,24 @@ std::string resolve(const std::string& file, const std::string& config_dir) {
   return fs::exists(alt) ? alt.string() : file;
 }
 
+// The numbers of one CSV row (file, line): an integer id in [0, 2^53), a finite position, a finite radius
+// > 0, a finite velocity below the speed of light and a finite angular velocity.
+void check_row(const std::string& file, std::size_t lineno, const std::vector<std::string>& tokens,
+               const std::vector<double>& v) {
+  static const char* const kColumns[7] = {"id", "x", "y", "radius", "vx", "vy", "omega"};
+  auto refuse = [&](std::size_t col, const std::string& allowed) {
+    throw InputError("scene.file '" + file + "' line " + std::to_string(lineno) + ": " + kColumns[col] + " = '" +
+                     tokens[col] + "' is not allowed: " + allowed);
+  };
+  if (!(v[0] >= 0.0 && v[0] < 0x1p53 && v[0] == std::floor(v[0]))) refuse(0, "an integer from 0 to 2^53 - 1");
+  for (std::size_t col : {1, 2})
+    if (!std::isfinite(v[col])) refuse(col, "a finite number");
+  if (!(v[3] > 0.0 && std::isfinite(v[3]))) refuse(3, "radius must be > 0 and finite");
+  for (std::size_t col = 4; col < v.size(); ++col)
+    if (!std::isfinite(v[col]) || (col < 6 && std::fabs(v[col]) > 299792458.0))
+      refuse(col, col < 6 ? "a finite speed below the speed of light" : "a finite number");
+}
+
 std::vector<SceneDisc> csv(const SceneConfig& s, const Domain& domain, const std::string& config_dir) {
   const std::string path = resolve(s.file, config_dir);
   std::ifstream in(path);
@@ -195,6 +239,7 @@ std::vector<SceneDisc> csv(const SceneConfig& s, const Domain& domain, const std
       throw InputError("scene.file '" + s.file + "' line " + std::to_string(lineno) +
                        ": expected 'id,x,y,radius' or 'id,x,y,radius,vx,vy,omega', each optionally with a last "
                        "column material");
+    check_row(s.file, lineno, tokens, v);
     SceneDisc d{static_cast<std::int64_t>(v[0]), {v[1], v[2]}, v[3], s.velocity, s.omega};
     if (!material.empty()) {
       const auto it = std::find(s.material_names.begin(), s.material_names.end(), material);
@@ -204,13 +249,21 @@ std::vector<SceneDisc> csv(const SceneConfig& s, const Domain& domain, const std
       d.material = static_cast<int>(it - s.material_names.begin());
     }
     if (v.size() == 7) d.v += Vec2{v[4], v[5]}, d.omega += v[6];
-    if (!(d.radius > 0.0))
-      throw InputError("scene.file '" + s.file + "' line " + std::to_string(lineno) + ": radius must be > 0");
+    if (!std::isfinite(d.v.x) || !std::isfinite(d.v.y) || !std::isfinite(d.omega))
+      throw InputError("scene.file '" + s.file + "' line " + std::to_string(lineno) +
+                       ": the velocity plus scene.vx, scene.vy, scene.omega is not finite");
     base.push_back(d);
   }
   if (s.replicate_x == 1 && s.replicate_y == 1) return base;
+  const double copies = static_cast<double>(s.replicate_x) * s.replicate_y;
+  check_memory(static_cast<double>(base.size()) * copies, 0.0, 0.0,
+               "scene.replicate_x x scene.replicate_y copies of the " + std::to_string(base.size()) + " discs of '" +
+                   s.file + "'");
   std::int64_t id_span = 0;
   for (const auto& d : base) id_span = std::max(id_span, d.gid + 1);
+  if (static_cast<double>(id_span) * copies > 0x1p62)
+    throw ConfigError("keys 'scene.replicate_x', 'scene.replicate_y': the copies of the ids of '" + s.file +
+                      "' (up to " + std::to_string(id_span - 1) + ") would pass 2^62");
   const double px = domain.length_x() / s.replicate_x, py = domain.length_y() / s.replicate_y;
   std::vector<SceneDisc> out;
   for (int cy = 0; cy < s.replicate_y; ++cy)
@@ -228,9 +281,9 @@ std::vector<SceneDisc> csv(const SceneConfig& s, const Domain& domain, const std
 std::vector<SceneDisc> build_scene(const SceneConfig& scene, const Domain& domain, const std::string& config_dir) {
   std::vector<SceneDisc> discs;
   if (scene.type == "lattice_square")
-    discs = lattice(scene, false);
+    discs = lattice(scene, domain, false);
   else if (scene.type == "lattice_hex")
-    discs = lattice(scene, true);
+    discs = lattice(scene, domain, true);
   else if (scene.type == "random")
     discs = random_packing(scene, domain);
   else

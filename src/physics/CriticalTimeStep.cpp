@@ -11,15 +11,21 @@
 
 namespace rondel {
 
-double mode_limit(double omega, double zeta) { return (2.0 / omega) * (std::sqrt(1.0 + zeta * zeta) - zeta); }
+double mode_limit(double omega, double zeta) {
+  // sqrt(1 + zeta^2) - zeta = 1 / (sqrt(1 + zeta^2) + zeta): the second form for a huge damping (the first
+  // cancels to 0, or overflows), the first below (the steps of every run so far, bit for bit).
+  if (zeta > 1e3) return (2.0 / omega) / (std::hypot(1.0, zeta) + zeta);
+  return (2.0 / omega) * (std::sqrt(1.0 + zeta * zeta) - zeta);
+}
 
 namespace {
 
 struct Best {
   double dt = INFINITY;
   const char* mode = "";
+  // A NaN limit (a parameter too large or too small for double precision) is kept: the set-up refuses it.
   void consider(double limit, const char* name) {
-    if (limit < dt) dt = limit, mode = name;
+    if (!std::isnan(dt) && (std::isnan(limit) || limit < dt)) dt = limit, mode = name;
   }
 };
 
@@ -112,13 +118,13 @@ CriticalStep critical_time_step(const LawSelection& laws, const ContactParamTabl
       std::string mode;
       for (int w : has_walls ? options.wall_materials : std::vector<int>{}) {
         const double dt = contact_critical_step(laws, params.wall(a, static_cast<std::size_t>(w)), A, wall, &mode, u);
-        if (dt < best.dt) best = {dt, mode, label(a, Ra) + " / wall", 0.0};
+        if (!std::isnan(best.dt) && !(dt >= best.dt)) best = {dt, mode, label(a, Ra) + " / wall", 0.0};
       }
       for (std::size_t b = 0; b < materials.size(); ++b) {
         if (materials[b].R_max <= 0.0) continue;
         for (double Rb : radii(materials[b])) {
           const double dt = contact_critical_step(laws, params.pair(a, b), A, body(materials[b], Rb), &mode, u);
-          if (dt < best.dt) best = {dt, mode, label(a, Ra) + " / " + label(b, Rb), 0.0};
+          if (!std::isnan(best.dt) && !(dt >= best.dt)) best = {dt, mode, label(a, Ra) + " / " + label(b, Rb), 0.0};
         }
       }
     }

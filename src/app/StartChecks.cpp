@@ -1,0 +1,166 @@
+#include "app/StartChecks.hpp"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <sstream>
+
+#include "app/Format.hpp"
+#include "core/Errors.hpp"
+#include "core/MemoryLimit.hpp"
+#include "physics/LawRegistry.hpp"
+
+namespace rondel::start_checks {
+
+namespace {
+
+constexpr double kLightSpeed = 299792458.0;
+
+bool normal_positive(double v) { return std::isfinite(v) && v >= DBL_MIN; }
+
+std::string material_prefix(const Config& c, const Material& m) {
+  return c.materials.size() > 1 || m.name != "default" ? "material." + m.name : std::string("material");
+}
+
+std::string radius_keys(const Config& c) {
+  const SceneConfig& s = c.scene;
+  if (s.type == "lattice_square" || s.type == "lattice_hex") return "scene.radius = " + fmt(s.radius);
+  if (s.type == "random" && s.distribution == "list") return "scene.sizes";
+  if (s.type == "random" && !s.material_radius_min.empty())
+    return "scene.material_radius_min, scene.material_radius_max";
+  if (s.type == "random")
+    return "scene.radius_min = " + fmt(s.radius_min) + ", scene.radius_max = " + fmt(s.radius_max);
+  return "the radii of scene.file '" + s.file + "'";
+}
+
+std::string velocity_keys(const Config& c) {
+  std::string keys = "scene.vx = " + fmt(c.scene.velocity.x) + ", scene.vy = " + fmt(c.scene.velocity.y) +
+                     ", scene.omega = " + fmt(c.scene.omega);
+  if (c.scene.type == "csv" || c.scene.type == "file")
+    keys += " and the velocities of scene.file '" + c.scene.file + "'";
+  return keys;
+}
+
+}  // namespace
+
+std::string scene_keys(const Config& c) {
+  const SceneConfig& s = c.scene;
+  std::string keys;
+  if (s.type == "lattice_square" || s.type == "lattice_hex")
+    keys = "scene.nx, scene.ny, scene.radius, scene.spacing, scene.x0, scene.y0";
+  else if (s.type == "random")
+    keys = "scene.count, scene.region (or walls.box_region), " + radius_keys(c);
+  else
+    keys = "the discs of scene.file '" + s.file + "'" +
+           (s.type == "csv" ? ", scene.replicate_x, scene.replicate_y" : std::string());
+  return keys + "; domain.xlo, domain.xhi, domain.ylo, domain.yhi" +
+         (c.walls.empty() ? "" : "; walls.box, walls.box_region, walls.lines, walls.segments");
+}
+
+std::string critical_keys(const Config& c) {
+  std::ostringstream s;
+  const LawCatalog& laws = law_catalog();
+  const std::string selected[3] = {c.normal_law, c.tangential_law, c.rolling_law};
+  const LawKind* kinds[3] = {&laws.normal, &laws.tangential, &laws.rolling};
+  // Every parameter of the selected blocks: the defaults (disc-disc, then [wall_contact]'s disc-wall values
+  // where they differ), then each pair block's values that differ from the defaults.
+  const ContactParams &p = c.params.pair(0, 0), &w = c.params.wall(0, 0);
+  const std::size_t n = c.materials.size();
+  for (int k = 0; k < 3; ++k) {
+    const LawInfo* law = kinds[k]->find(selected[k]);
+    if (!law || !law->block) continue;
+    const std::string block = law->block->section;
+    for (const ParamSpec& spec : law->block->params) {
+      if (p.*spec.target >= 0.0) s << block << "." << spec.key << " = " << fmt(p.*spec.target) << ", ";
+      if (w.*spec.target >= 0.0 && w.*spec.target != p.*spec.target)
+        s << "wall_contact." << spec.key << " = " << fmt(w.*spec.target) << ", ";
+      for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t b = 0; b < n; ++b) {
+          const double pair = c.params.pair(a, b).*spec.target, wall = c.params.wall(a, b).*spec.target;
+          const std::string names = block + "." + c.materials[a].name + ".";
+          if (b >= a && pair >= 0.0 && pair != p.*spec.target)
+            s << names << c.materials[b].name << "." << spec.key << " = " << fmt(pair) << ", ";
+          if (wall >= 0.0 && wall != w.*spec.target)
+            s << names << "wall." << c.materials[b].name << "." << spec.key << " = " << fmt(wall) << ", ";
+        }
+    }
+  }
+  for (const Material& m : c.materials) {
+    const std::string prefix = material_prefix(c, m);
+    s << prefix << ".density = " << fmt(m.density) << ", " << prefix << ".thickness = " << fmt(m.thickness) << ", ";
+    if (c.normal_law == "hertz")
+      s << prefix << ".youngs_modulus = " << fmt(m.youngs_modulus) << ", " << prefix
+        << ".poisson_ratio = " << fmt(m.poisson_ratio) << ", ";
+  }
+  if (c.normal_law == "hertz") s << "run.max_overlap = " << fmt(c.max_overlap) << ", ";
+  s << radius_keys(c);
+  return s.str();
+}
+
+void check_masses(const Config& c, const std::vector<MaterialInfo>& materials) {
+  for (std::size_t k = 0; k < materials.size() && k < c.materials.size(); ++k) {
+    const MaterialInfo& info = materials[k];
+    if (info.R_max <= 0.0) continue;  // no disc of this material
+    const Material& m = c.materials[k];
+    for (const double R : {info.R_min, info.R_max}) {
+      const double mass = m.mass(R), inertia = m.inertia(mass, R);
+      if (normal_positive(mass) && normal_positive(inertia)) continue;
+      const std::string prefix = material_prefix(c, m);
+      throw ConfigError("a disc of radius " + fmt(R) + " m has mass " + fmt(mass) + " kg and moment of inertia " +
+                        fmt(inertia) + " kg m^2, not positive finite numbers a run can divide by: from " + prefix +
+                        ".density = " + fmt(m.density) + ", " + prefix + ".thickness = " + fmt(m.thickness) + ", " +
+                        prefix + ".body = " + body_name(m.body) + " and " + radius_keys(c));
+    }
+  }
+}
+
+void check_time_step(const Config& c, const CriticalStep& critical, double dt, double R_min) {
+  if (!normal_positive(critical.dt))
+    throw ConfigError("the critical time step is " + fmt(critical.dt) + " s" +
+                      (critical.mode.empty() ? std::string() : " (" + critical.mode + " mode, " + critical.pair + ")") +
+                      ", not a positive finite step: the stiffness, damping, density or radius is too large or too "
+                      "small for double precision; the keys that set it: " +
+                      critical_keys(c));
+  if (!normal_positive(dt))
+    throw ConfigError("the time step is " + fmt(dt) + " s (run.dt = " + fmt(c.dt) + ", run.safety = " + fmt(c.safety) +
+                      " x the critical step " + fmt(critical.dt) + " s), not a positive finite step");
+  if (!std::isfinite(dt * static_cast<double>(c.steps)))
+    throw ConfigError("run.steps = " + std::to_string(c.steps) + " x the time step " + fmt(dt) +
+                      " s is not a finite time: lower run.steps or run.dt");
+  // A disc at rest falls g dt^2 / 2 in the first step: more than the overlap the run allows, and the first
+  // contact (a wall, a disc below) already passes run.max_overlap. Ordinary runs are far below (1e-3 of it).
+  const double fall = 0.5 * std::hypot(c.gravity.x, c.gravity.y) * dt * dt;
+  if (fall > c.max_overlap * R_min)
+    throw ConfigError("gravity.x = " + fmt(c.gravity.x) + ", gravity.y = " + fmt(c.gravity.y) +
+                      " moves a disc at rest by " + fmt(fall) + " m in one time step of " + fmt(dt) +
+                      " s, more than run.max_overlap = " + fmt(c.max_overlap) + " x the smallest radius " + fmt(R_min) +
+                      " m: the contacts are too soft or the discs too heavy for the time step (run.dt = " + fmt(c.dt) +
+                      ", run.safety = " + fmt(c.safety) + "); the keys that set the critical step " + fmt(critical.dt) +
+                      " s: " + critical_keys(c));
+}
+
+void check_cells(const Config& c, double range) {
+  // As CellGrid: floor(length / range) cells per side, at least 1, at most 1e5.
+  auto per_side = [range](double length) { return std::clamp(std::floor(length / range), 1.0, 1.0e5); };
+  const double cells = per_side(c.domain.length_x()) * per_side(c.domain.length_y());
+  const double per_cell = c.partitioner == "metis" ? kBytesPerMetisCell : kBytesPerCell;
+  check_memory(
+      0.0, cells, per_cell,
+      "the domain (domain.xlo, domain.xhi, domain.ylo, domain.yhi) in cells of side >= the interaction range " +
+          fmt(range) + " m (2 x the largest radius + neighbour.skin; " + radius_keys(c) + ")");
+}
+
+void check_initial_motion(const Config& c, const DiscStore& discs) {
+  for (std::size_t i = 0; i < discs.n_owned(); ++i) {
+    const Vec2 v = discs.velocity[i];
+    const double speed = std::hypot(v.x, v.y) + std::fabs(discs.omega[i]) * discs.radius[i];
+    const double ke =
+        0.5 * discs.mass[i] * (v.x * v.x + v.y * v.y) + 0.5 * discs.inertia[i] * discs.omega[i] * discs.omega[i];
+    if (std::isfinite(ke) && speed <= kLightSpeed) continue;
+    throw ConfigError("disc " + std::to_string(discs.gid[i]) + " starts with speed |v| + |omega| R = " + fmt(speed) +
+                      " m/s and kinetic energy " + fmt(ke) +
+                      " J: a finite energy and a speed below the speed of light are allowed; from " + velocity_keys(c));
+  }
+}
+
+}  // namespace rondel::start_checks
