@@ -8,7 +8,7 @@ void ratio against mu_r).
       [--models wang,alonso_marroquin] [--seeds 2015,2016,2017] [--jobs 2] [--strain 0.15] [--quick]
 
 Stage 1 prepares one sample per seed with inputs/biaxial_wang_prepare.ini (--scene.seed=SEED, isotropic servo
-to --pressure; OUT/prep_sSEED/); stage 2 shears every (seed, mu_r, model) with inputs/biaxial_wang.ini
+to --pressure, frictionless by default (--prep-mu 0) for samples as dense as W15's; OUT/prep_sSEED/); stage 2 shears every (seed, mu_r, model) with inputs/biaxial_wang.ini
 (OUT/MODEL_murMU_sSEED/; the prepared contact history dropped, --run.reset_history=true). The shear runs
 go in the order seed, then mu_r, then model, so an interrupted sweep has every point of the first sample
 first. Finished runs (summary.txt present) are reused: run the same command again to resume or extend it.
@@ -64,6 +64,9 @@ def main(argv=None):
     ap.add_argument("--strain", type=float, default=0.15, help="axial strain to reach")
     ap.add_argument("--steps", type=int, default=0, help="shear steps (overrides --strain)")
     ap.add_argument("--prep-steps", type=int, default=200000)
+    ap.add_argument("--prep-mu", type=float, default=0.0,
+                    help="coulomb.mu and wang.mu_r of the preparation (default 0: frictionless, the densest "
+                         "samples, e0 about 0.22; the input's 0.25 and 0.1 give 0.26)")
     ap.add_argument("--window", type=float, default=0.05, help="residual window: the last WINDOW of axial strain")
     ap.add_argument("--jobs", type=int, default=2, help="runs in parallel (1 rank each)")
     ap.add_argument("--prep-extra", action="append", default=[],
@@ -92,6 +95,8 @@ def main(argv=None):
         ap.error("--steps must be >= 0 and --prep-steps >= 1")
     if not a.window > 0:
         ap.error("--window must be > 0")
+    if not a.prep_mu >= 0:
+        ap.error("--prep-mu must be >= 0")
     if not a.pressure > 0 or not a.rate > 0:
         ap.error("--pressure and --rate must be > 0")
     return run_tool(TOOL, sweep, a)
@@ -143,7 +148,8 @@ def sweep(a):
         if not done(d):
             cmd = [a.rondel, a.prepare, f"--run.output={d}", "--run.overwrite=true", "--run.progress=false",
                    f"--run.steps={a.prep_steps}", f"--scene.seed={s}",
-                   f"--walls.control=top:servo:{p:g} right:servo:{p:g}"] + a.prep_extra
+                   f"--walls.control=top:servo:{p:g} right:servo:{p:g}",
+                   f"--coulomb.mu={a.prep_mu:g}", f"--wang.mu_r={a.prep_mu:g}"] + a.prep_extra
             jobs.append((cmd, d + ".log", d))
     run_all(jobs, a.jobs, "prepare", failed)
     if failed:
