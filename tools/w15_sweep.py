@@ -11,7 +11,8 @@ Stage 1 prepares one sample per seed with inputs/biaxial_wang_prepare.ini (--sce
 to --pressure, frictionless by default (--prep-mu 0) for samples as dense as W15's; OUT/prep_sSEED/); stage 2 shears every (seed, mu_r, model) with inputs/biaxial_wang.ini
 (OUT/MODEL_murMU_sSEED/; the prepared contact history dropped, --run.reset_history=true). The shear runs
 go in the order seed, then mu_r, then model, so an interrupted sweep has every point of the first sample
-first. Finished runs (summary.txt present) are reused: run the same command again to resume or extend it.
+first. Finished runs (summary.txt present) are reused: run the same command again to resume or extend it;
+--collect-only writes the tables and figures of the runs finished so far and runs nothing.
 
 Per run (s1 = wall_syy, s3 = wall_sxx, compression +): the macroscopic friction sin(phi) = (s1 - s3)/(s1 + s3)
 at its peak and its mean over the residual window (the last --window of axial strain), the friction angles,
@@ -72,6 +73,8 @@ def main(argv=None):
     ap.add_argument("--prep-extra", action="append", default=[],
                     help="more --section.key=value for the preparation runs")
     ap.add_argument("--extra", action="append", default=[], help="more --section.key=value for the shear runs")
+    ap.add_argument("--collect-only", action="store_true",
+                    help="run nothing: tables and figures from the runs finished so far (e.g. beside a running sweep)")
     ap.add_argument("--quick", action="store_true",
                     help="tiny preset for CI: mu_r 0 and 0.5, one seed, 30,000 shear steps")
     add_figure_options(ap, dpi=150)
@@ -145,7 +148,7 @@ def sweep(a):
     for s in seeds:
         d = os.path.join(a.out, f"prep_s{s}")
         preps[s] = d
-        if not done(d):
+        if not done(d) and not a.collect_only:
             cmd = [a.rondel, a.prepare, f"--run.output={d}", "--run.overwrite=true", "--run.progress=false",
                    f"--run.steps={a.prep_steps}", f"--scene.seed={s}",
                    f"--walls.control=top:servo:{p:g} right:servo:{p:g}",
@@ -162,7 +165,7 @@ def sweep(a):
             for m in models:
                 d = run_dir(a.out, m, mu, s)
                 runs.append((m, mu, s, d))
-                if done(d):
+                if done(d) or a.collect_only:
                     continue
                 cmd = [a.rondel, a.shear, f"--scene.file={preps[s]}", "--run.progress=false",
                        "--run.reset_history=true", f"--contact.rolling={m}", f"--wang.mu_r={mu:g}",
@@ -172,7 +175,11 @@ def sweep(a):
                 steps = a.steps or int(math.ceil(math.log(1.0 / (1.0 - a.strain)) / (a.rate * dts[(m, mu)])))
                 cmd += [f"--run.output={d}", "--run.overwrite=true", f"--run.steps={steps}"]
                 jobs.append((cmd, d + ".log", d))
-    print(f"{len(runs) - len(jobs)} shear run(s) reused, {len(jobs)} to run ({a.jobs} at a time)", flush=True)
+    if a.collect_only:
+        print(f"--collect-only: {sum(done(r[3]) for r in runs)} of {len(runs)} shear runs finished; running none",
+              flush=True)
+    else:
+        print(f"{len(runs) - len(jobs)} shear run(s) reused, {len(jobs)} to run ({a.jobs} at a time)", flush=True)
     run_all(jobs, a.jobs, "shear", failed)
 
     rows = collect(a, runs)

@@ -7,7 +7,7 @@ One 400-disc sample of the W15 set-up prepared briefly, sheared 30,000 steps wit
 rolling models (wang = W15 model 1, alonso_marroquin = model 2). Checks: the table has one row per model
 and mu_r with finite values in range; at mu_r = 0 the two models' measures.csv are the same byte for byte
 (both laws give a zero couple then) and table.md says so; at mu_r = 0.5 they differ (the law was switched);
-a second call reuses every run; bad options exit 1 with one line; a failing rondel run exits 2.
+a second call reuses every run; --collect-only runs nothing; bad options exit 1 with one line; a failing rondel run exits 2.
 Prints 'N passed, N failed'.
 """
 import csv
@@ -95,6 +95,14 @@ def main():
             check("second call reuses every run", rc2 == 0 and "4 shear run(s) reused, 0 to run" in so2
                   and os.path.getmtime(os.path.join(out, "wang_mur0.5_s2015", "measures.csv")) == before,
                   (rc2, so2[-1000:], se2[-1000:]))
+
+            # --collect-only beside a run not made yet: the table of the finished runs, nothing run.
+            rc4, so4, se4 = tool("--out", out, "--rondel", rondel, "--mu-r", "0,0.5,0.9", "--seeds", "2015", "--steps",
+                                 "30000", "--window", "0.001", "--no-plot", "--collect-only")
+            n4 = len(list(csv.DictReader(open(os.path.join(out, "table.csv")))))
+            check("--collect-only: 4 of 6 runs finished, table of 4, nothing run",
+                  rc4 == 0 and "4 of 6 shear runs finished; running none" in so4 and n4 == 4
+                  and not os.path.exists(os.path.join(out, "wang_mur0.9_s2015")), (rc4, n4, so4[-800:], se4[-800:]))
 
             # A rondel run that fails (an unknown key): exit 2, the failure named.
             rc3, so3, se3 = tool("--out", out, "--rondel", rondel, "--mu-r", "0.2", "--models", "wang", "--seeds",
