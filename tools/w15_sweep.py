@@ -7,11 +7,13 @@ void ratio against mu_r).
   python3 tools/w15_sweep.py --out rondel-output-w15/sweep [--mu-r 0,0.05,0.1,0.2,0.3,0.5,0.7,1.0]
       [--models wang,alonso_marroquin] [--seeds 2015,2016,2017] [--jobs 2] [--strain 0.15] [--quick]
 
-Stage 1 prepares one sample per seed with inputs/biaxial_wang_prepare.ini (--scene.seed=SEED, isotropic servo
-to --pressure, frictionless by default (--prep-mu 0) for samples as dense as W15's; OUT/prep_sSEED/); stage 2 shears every (seed, mu_r, model) with inputs/biaxial_wang.ini
-(OUT/MODEL_murMU_sSEED/; the prepared contact history dropped, --run.reset_history=true). The shear runs
-go in the order seed, then mu_r, then model, so an interrupted sweep has every point of the first sample
-first. Finished runs (summary.txt present) are reused: run the same command again to resume or extend it;
+Stage 1 prepares one sample per seed with inputs/biaxial_wang_prepare.ini (--scene.seed=SEED, isotropic
+servo to --pressure, frictionless by default (--prep-mu 0) for samples as dense as W15's; OUT/prep_sSEED/);
+stage 2 shears every (seed, mu_r, model) with inputs/biaxial_wang.ini (OUT/MODEL_murMU_sSEED/; the prepared
+contact history dropped, --run.reset_history=true; run.max_overlap 0.2, --max-overlap, which changes nothing
+but the abort test for the linear normal law). The shear runs go in the order seed, then mu_r, then model, so
+an interrupted sweep has every point of the first sample first. Finished runs (summary.txt with 'status:
+complete') are reused, stopped or failed ones run again: run the same command again to resume or extend it;
 --collect-only writes the tables and figures of the runs finished so far and runs nothing.
 
 Per run (s1 = wall_syy, s3 = wall_sxx, compression +): the macroscopic friction sin(phi) = (s1 - s3)/(s1 + s3)
@@ -39,7 +41,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import biaxial  # noqa: E402
-from biaxial_sweep import done, probe_dt, run, wall_seconds  # noqa: E402
+from biaxial_sweep import probe_dt, run, wall_seconds  # noqa: E402
 from rondel import CheckFailed, UsageError  # noqa: E402
 from rondel.cli import ArgumentParser, add_figure_options, check_figure_options, pyplot, run_tool, save_figure  # noqa: E402,E501
 
@@ -68,6 +70,9 @@ def main(argv=None):
     ap.add_argument("--prep-mu", type=float, default=0.0,
                     help="coulomb.mu and wang.mu_r of the preparation (default 0: frictionless, the densest "
                          "samples, e0 about 0.22; the input's 0.25 and 0.1 give 0.26)")
+    ap.add_argument("--max-overlap", type=float, default=0.2,
+                    help="run.max_overlap of the shear runs (default 0.2: with mu_r >= 0.7 the deviator reaches 5 "
+                         "times the lateral stress and chains against the walls pass the input's 0.1)")
     ap.add_argument("--window", type=float, default=0.05, help="residual window: the last WINDOW of axial strain")
     ap.add_argument("--jobs", type=int, default=2, help="runs in parallel (1 rank each)")
     ap.add_argument("--prep-extra", action="append", default=[],
@@ -98,11 +103,23 @@ def main(argv=None):
         ap.error("--steps must be >= 0 and --prep-steps >= 1")
     if not a.window > 0:
         ap.error("--window must be > 0")
+    if not 0 < a.max_overlap < 1:
+        ap.error("--max-overlap must be in (0, 1)")
     if not a.prep_mu >= 0:
         ap.error("--prep-mu must be >= 0")
     if not a.pressure > 0 or not a.rate > 0:
         ap.error("--pressure and --rate must be > 0")
     return run_tool(TOOL, sweep, a)
+
+
+def done(outdir):
+    """The run in OUTDIR ran to its end: summary.txt says 'status: complete' (a run stopped by a signal writes
+    one too, with 'status: stopped ...'; a run that failed writes none)."""
+    try:
+        with open(os.path.join(outdir, "summary.txt")) as f:
+            return any(line.strip() == "status: complete" for line in f)
+    except OSError:
+        return False
 
 
 def parse_lists(a):
@@ -169,6 +186,7 @@ def sweep(a):
                     continue
                 cmd = [a.rondel, a.shear, f"--scene.file={preps[s]}", "--run.progress=false",
                        "--run.reset_history=true", f"--contact.rolling={m}", f"--wang.mu_r={mu:g}",
+                       f"--run.max_overlap={a.max_overlap:g}",
                        f"--walls.control=top:strain_rate:{a.rate:g} left:servo:{p:g} right:servo:{p:g}"] + a.extra
                 if not a.steps and (m, mu) not in dts:  # the step depends on the laws, not on the sample
                     dts[(m, mu)] = probe_dt(cmd, os.path.join(a.out, f"probe_{m}_mur{mu:g}"))
@@ -270,8 +288,8 @@ def write_tables(a, rows, same):
         for (m, mu), g in sorted(agg.items(), key=lambda x: (x[0][1], x[0][0])):
             w.writerow([m, mu, g["n"]] + [repr(x) for q in QUANTITIES for x in g[q]])
     with open(os.path.join(a.out, "table.md"), "w") as f:
-        f.write("| model | mu_r | n | sin phi peak | sin phi residual | phi peak [deg] | phi residual [deg] | e0 | e residual |\n"
-                "|---|---|---|---|---|---|---|---|---|\n")
+        f.write("| model | mu_r | n | sin phi peak | sin phi residual | phi peak [deg] | phi residual [deg] | e0 "
+                "| e residual |\n|---|---|---|---|---|---|---|---|---|\n")
         for (m, mu), g in sorted(agg.items(), key=lambda x: (x[0][1], x[0][0] != "wang")):
             f.write(f"| {m} | {mu:g} | {g['n']} | {pm(g['sin_peak'], '.3f')} | {pm(g['sin_res'], '.3f')} | "
                     f"{pm(g['phi_peak'], '.1f')} | {pm(g['phi_res'], '.1f')} | {pm(g['e0'], '.4f')} | "
@@ -283,8 +301,8 @@ def write_tables(a, rows, same):
         if pairs:
             f.write("\nModel 2 (alonso_marroquin) against model 1 (wang), on the means: differences 2 - 1; "
                     "dilatancy = e residual - e0.\n\n"
-                    "| mu_r | n (1/2) | d sin phi peak | d sin phi residual | e residual 2/1 - 1 | dilatancy 2/1 - 1 |\n"
-                    "|---|---|---|---|---|---|\n")
+                    "| mu_r | n (1/2) | d sin phi peak | d sin phi residual | e residual 2/1 - 1 "
+                    "| dilatancy 2/1 - 1 |\n|---|---|---|---|---|---|\n")
             for mu in pairs:
                 g1, g2 = agg[("wang", mu)], agg[("alonso_marroquin", mu)]
                 d1 = g1["e_res"][0] - g1["e0"][0]

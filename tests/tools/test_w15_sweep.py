@@ -7,7 +7,8 @@ One 400-disc sample of the W15 set-up prepared briefly, sheared 30,000 steps wit
 rolling models (wang = W15 model 1, alonso_marroquin = model 2). Checks: the table has one row per model
 and mu_r with finite values in range; at mu_r = 0 the two models' measures.csv are the same byte for byte
 (both laws give a zero couple then) and table.md says so; at mu_r = 0.5 they differ (the law was switched);
-a second call reuses every run; --collect-only runs nothing; bad options exit 1 with one line; a failing rondel run exits 2.
+a second call reuses every run; --collect-only runs nothing; bad options exit 1 with one line; a failing
+rondel run exits 2.
 Prints 'N passed, N failed'.
 """
 import csv
@@ -36,9 +37,9 @@ def tool(*args):
 def have_matplotlib():
     try:
         import matplotlib  # noqa: F401
-        return True
     except ImportError:
         return False
+    return True
 
 
 def read(path):
@@ -95,6 +96,16 @@ def main():
             check("second call reuses every run", rc2 == 0 and "4 shear run(s) reused, 0 to run" in so2
                   and os.path.getmtime(os.path.join(out, "wang_mur0.5_s2015", "measures.csv")) == before,
                   (rc2, so2[-1000:], se2[-1000:]))
+
+            # A run stopped by a signal (its summary says so) is run again, the others reused.
+            summ_path = os.path.join(out, "alonso_marroquin_mur0.5_s2015", "summary.txt")
+            text = open(summ_path).read()
+            with open(summ_path, "w") as f:
+                f.write(text.replace("status: complete", "status: stopped by a signal; resume with --resume X"))
+            rc5, so5, se5 = tool("--quick", "--out", out, "--rondel", rondel, "--no-plot")
+            check("a stopped run is run again, the others reused", rc5 == 0 and "3 shear run(s) reused, 1 to run" in so5
+                  and "status: complete" in open(summ_path).read()
+                  and meas("alonso_marroquin", 0.5) != meas("wang", 0.5), (rc5, so5[-1000:], se5[-1000:]))
 
             # --collect-only beside a run not made yet: the table of the finished runs, nothing run.
             rc4, so4, se4 = tool("--out", out, "--rondel", rondel, "--mu-r", "0,0.5,0.9", "--seeds", "2015", "--steps",
