@@ -71,8 +71,8 @@ def main(argv=None):
                     help="coulomb.mu and wang.mu_r of the preparation (default 0: frictionless, the densest "
                          "samples, e0 about 0.22; the input's 0.25 and 0.1 give 0.26)")
     ap.add_argument("--max-overlap", type=float, default=0.2,
-                    help="run.max_overlap of the shear runs (default 0.2: with mu_r >= 0.7 the deviator reaches 5 "
-                         "times the lateral stress and chains against the walls pass the input's 0.1)")
+                    help="run.max_overlap of the shear runs (default 0.2: with mu_r >= 0.7, s1 reaches 5 times the "
+                         "lateral stress and some contacts pass the input's 0.1)")
     ap.add_argument("--window", type=float, default=0.05, help="residual window: the last WINDOW of axial strain")
     ap.add_argument("--jobs", type=int, default=2, help="runs in parallel (1 rank each)")
     ap.add_argument("--prep-extra", action="append", default=[],
