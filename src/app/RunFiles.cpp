@@ -27,6 +27,17 @@ bool same_directory(const fs::path& a, const fs::path& b) {
   return fs::equivalent(a, b, ec) && !ec;
 }
 
+// Whether process `pid` runs on this host: it exists and is not a zombie (a killed process that its parent
+// has not reaped yet holds nothing open any more).
+bool process_runs(long pid) {
+  if (pid <= 0 || (::kill(static_cast<pid_t>(pid), 0) != 0 && errno != EPERM)) return false;
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return true;  // no /proc: trust kill()
+  const auto paren = line.rfind(')');
+  return paren == std::string::npos || paren + 2 >= line.size() || line[paren + 2] != 'Z';
+}
+
 // Rank 0: cuts a resumed run's table (diagnostics.csv, measures.csv: the step in the first column) back to the
 // rows of steps up to `step`, so that the rows the interrupted run wrote after its checkpoint are not there
 // twice. The header and any line that does not start with a step are kept. Written to a temporary file
@@ -128,7 +139,7 @@ void RunFiles::take_lock(const fs::path& dir) {
     long pid = 0;
     std::string owner_host;
     std::ifstream(path) >> pid >> owner_host;
-    const bool alive = pid > 0 && owner_host == host && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM);
+    const bool alive = owner_host == host && process_runs(pid);
     if (alive || (pid > 0 && owner_host != host) || attempt > 0)
       throw ConfigError("run.output = '" + config_.output + "' is in use by another run (process " +
                         std::to_string(pid) + " on " + (owner_host.empty() ? std::string("?") : owner_host) +

@@ -25,9 +25,10 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rondel_run import Checks  # noqa: E402
 
 STEPS = 6000
+# 3,600 discs: about 2e7 disc-steps, long enough (seconds) for the kill to land mid-run on an idle machine.
 SCENE = [os.path.join(ROOT, "inputs", "deposition.ini"), f"--run.steps={STEPS}", "--scene.type=lattice_hex",
-         "--scene.nx=16", "--scene.ny=8", "--scene.spacing=0.004", "--scene.radius=0.002", "--scene.x0=0.01",
-         "--scene.y0=0.002", "--output.checkpoint_every=300", "--diagnostics.every=50", "--run.progress=false"]
+         "--scene.nx=120", "--scene.ny=30", "--scene.spacing=0.0022", "--scene.radius=0.001", "--scene.x0=0.01",
+         "--scene.y0=0.001", "--output.checkpoint_every=300", "--diagnostics.every=50", "--run.progress=false"]
 # diagnostics.csv columns that depend on the decomposition, and the ledger's columns.
 DECOMPOSITION = {"imbalance", "ghost_fraction", "migrated"}
 LEDGER = {"W_gravity", "W_walls", "W_normal", "W_tangential", "W_rolling", "E_stored", "D_slip", "D_rolling_plastic",
@@ -48,22 +49,55 @@ def checkpoints(out):
 
 
 def kill_run(cmd, env, out, rng):
-    """Starts cmd in its own process group, kills the group with SIGKILL once a checkpoint after step 600 is
-    there, after a random further delay; returns whether the run was still going (no summary.txt)."""
+    """Starts cmd in its own process group and kills the group with SIGKILL once the checkpoint of a random
+    step (600 to half the run) is there, after a random further delay of up to 50 ms; returns whether the run
+    was still going (no summary.txt)."""
+    target = rng.randrange(600, STEPS // 2 + 1, 300)
     p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env, cwd=ROOT,
                          start_new_session=True)
     deadline = time.time() + 300
     while time.time() < deadline and p.poll() is None:
-        if any(int(n[11:21]) >= 600 for n in checkpoints(out)):
+        if any(int(n[11:21]) >= target for n in checkpoints(out)):
             break
-        time.sleep(0.02)
-    time.sleep(rng.uniform(0.0, 0.5))
+        time.sleep(0.005)
+    time.sleep(rng.uniform(0.0, 0.05))
     try:
         os.killpg(p.pid, signal.SIGKILL)
     except ProcessLookupError:
         pass
     p.wait()
+    # The launcher may start the ranks in a session of their own: kill every process of this run, as a crash
+    # of the node would, and wait until they are gone (an orphaned rank holds the directory's lock).
+    deadline = time.time() + 30
+    while time.time() < deadline:
+        running = run_processes(out)
+        if not running:
+            break
+        for pid in running:
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+        time.sleep(0.05)
     return not os.path.exists(os.path.join(out, "summary.txt"))
+
+
+def run_processes(out):
+    """The live (not zombie) processes whose command line names --run.output=OUT."""
+    found = []
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/cmdline", "rb") as f:
+                args = f.read().split(b"\0")
+            with open(f"/proc/{entry}/stat") as f:
+                state = f.read().rsplit(")", 1)[1].split()[0]
+        except OSError:
+            continue
+        if state != "Z" and f"--run.output={out}".encode() in args:
+            found.append(int(entry))
+    return found
 
 
 def read(path):
