@@ -1,5 +1,7 @@
 #include "app/Checkpointing.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -30,7 +32,12 @@ std::vector<fs::path> h5_files(const fs::path& dir, const char* prefix) {
 
 Checkpointing::Checkpointing(std::string directory, int keep, std::vector<std::string> snapshot_fields,
                              const Domain& domain, const Communicator& comm)
-    : dir_(std::move(directory)), keep_(keep), fields_(std::move(snapshot_fields)), domain_(domain), comm_(comm) {}
+    : dir_(std::move(directory)),
+      keep_(keep),
+      fields_(std::move(snapshot_fields)),
+      domain_(domain),
+      comm_(comm),
+      token_(comm.max(comm.root() ? static_cast<std::int64_t>(getpid()) : std::int64_t{0})) {}
 
 std::string Checkpointing::file_name(const char* prefix, std::int64_t step) {
   char buf[64];
@@ -41,9 +48,12 @@ std::string Checkpointing::file_name(const char* prefix, std::int64_t step) {
 std::string Checkpointing::write_checkpoint(const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
                                             const ContactTable& wall_rows, const WallSet& walls, double wall_seconds) {
   const fs::path final_path = fs::path(dir_) / file_name("checkpoint", header.step);
-  std::string part_name = ".";  // hidden and never matched by checkpoint_*.h5 until complete
+  // Hidden and never matched by checkpoint_*.h5 until complete; a name of its own per attempt (rank 0's
+  // process id and a counter), so that nothing a killed attempt left behind (the file, or an MPI-IO lock
+  // named after it) is met again.
+  std::string part_name = ".";
   part_name += file_name("checkpoint", header.step);
-  part_name += ".part";
+  part_name += "." + std::to_string(token_) + "-" + std::to_string(attempts_++) + ".part";
   const fs::path part = fs::path(dir_) / part_name;
   try {
     writer_.write(part.string(), header, discs, pairs, wall_rows, walls, comm_, {}, wall_seconds);
@@ -85,7 +95,11 @@ void Checkpointing::adopt_snapshots(std::int64_t step) {
       // not a complete snapshot: left out of the series
     }
   }
-  if (!comm_.root() || later.empty()) return;
+  if (!comm_.root()) return;
+  // What a killed checkpoint attempt left (its temporary file) goes.
+  for (const auto& e : fs::directory_iterator(dir_))
+    if (e.path().filename().string().rfind(".checkpoint_", 0) == 0) fs::remove(e.path());
+  if (later.empty()) return;
   for (const fs::path& p : later) fs::remove(p);
   write_xdmf();
 }

@@ -10,7 +10,7 @@
 namespace rondel {
 
 // Checkpoint and snapshot files of an output directory (docs/design.md section 7, FORMAT.md):
-//  - checkpoint_<step>.h5, written under a temporary name (.checkpoint_<step>.h5.part) and renamed when
+//  - checkpoint_<step>.h5, written under a temporary name (.checkpoint_<step>.h5.<pid>-<attempt>.part) and renamed when
 //    complete, so a killed writer never leaves a file that looks usable; the newest `keep` are kept;
 //  - snapshot_<step>.h5 with the selected fields, and snapshots.xdmf listing them for ParaView: per snapshot a
 //    grid of discs (one vertex cell per disc) and a grid of walls (one line cell per wall, drawn within
@@ -50,6 +50,8 @@ class Checkpointing {
   std::vector<std::string> fields_;
   Domain domain_;
   const Communicator& comm_;
+  std::int64_t token_;        // rank 0's process id: part of every temporary checkpoint name
+  std::int64_t attempts_ = 0;  // checkpoints attempted by this run (the other part)
   StateWriter writer_;  // kept across files: its buffers are reused
   struct Snapshot {
     std::string file;

@@ -1,10 +1,17 @@
 #include "parallel/Communicator.hpp"
 
+#include <cstdlib>
+
 namespace rondel {
 
 MpiEnvironment::MpiEnvironment(int* argc, char*** argv) {
   int ready = 0;
   MPI_Initialized(&ready);
+  // Open MPI's MPI-IO (OMPIO) opens a shared-file-pointer component with every file, and its "sm" component
+  // keeps a POSIX semaphore named after the file in /dev/shm: a process killed inside MPI_File_open leaves
+  // it behind, and every later open of a file of that name on the machine waits on it for good. Rondel uses
+  // no shared file pointer, so that component is left out (unless the user set the parameter).
+  if (!ready) setenv("OMPI_MCA_sharedfp", "^sm", 0);
   if (!ready) MPI_Init(argc, argv);
 }
 
