@@ -50,9 +50,9 @@ class Checkpointing {
   std::vector<std::string> fields_;
   Domain domain_;
   const Communicator& comm_;
-  std::int64_t token_;        // rank 0's process id: part of every temporary checkpoint name
+  std::int64_t token_;         // rank 0's process id: part of every temporary checkpoint name
   std::int64_t attempts_ = 0;  // checkpoints attempted by this run (the other part)
-  StateWriter writer_;  // kept across files: its buffers are reused
+  StateWriter writer_;         // kept across files: its buffers are reused
   struct Snapshot {
     std::string file;
     std::int64_t step, discs;
