@@ -115,7 +115,8 @@ def report(args):
     if bad:
         raise RondelFileError(f.path, f"corrupted: {len(bad)} of {checked} datasets fail their checksum: "
                               + ", ".join(bad))
-    print(f"  checksums: {checked} datasets verified")
+    print(f"  checksums: {checked} datasets verified" +
+          (", and the attributes" if f.attributes_checksum is not None else ""))
     if args.config:
         print("  configuration:")
         for line in f.config.text.splitlines():

@@ -17,17 +17,20 @@ namespace rondel {
 //    `domain`, docs/paraview.md).
 class Checkpointing {
  public:
-  Checkpointing(std::string directory, int keep, std::vector<std::string> snapshot_fields, const Domain& domain,
-                const Communicator& comm);
+  // `verify`: each checkpoint is read back (verify_state_file) before it is renamed into place and older
+  // ones are removed.
+  Checkpointing(std::string directory, int keep, bool verify, std::vector<std::string> snapshot_fields,
+                const Domain& domain, const Communicator& comm);
 
-  // Collective. Returns the path written. A failure (IoError, on every rank) removes the partial file and
-  // keeps the previous checkpoints.
+  // Collective. Returns the path written. A failure (IoError, on every rank: the disk, or a file that does
+  // not read back as written) removes the partial file and keeps the previous checkpoints.
   std::string write_checkpoint(const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
                                const ContactTable& wall_rows, const WallSet& walls, double wall_seconds);
   std::string write_snapshot(const StateHeader& header, DiscStore& discs, const WallSet& walls, std::int64_t n_discs);
 
-  // The newest checkpoint of `directory` that opens and is complete (collective); throws InputError naming
-  // the directory when there is none. `skipped` receives the files passed over, with the reason.
+  // The newest checkpoint of `directory` that passes verify_state_file (collective): it opens, is complete,
+  // and its attributes and datasets match their checksums; throws InputError naming the directory when there
+  // is none. `skipped` receives the files passed over, with the reason.
   static std::string newest_checkpoint(const std::string& directory, const Communicator& comm,
                                        std::vector<std::string>* skipped = nullptr);
   static std::string file_name(const char* prefix, std::int64_t step);
@@ -47,6 +50,7 @@ class Checkpointing {
 
   std::string dir_;
   int keep_;
+  bool verify_;
   std::vector<std::string> fields_;
   Domain domain_;
   const Communicator& comm_;

@@ -13,6 +13,7 @@
 #include <iostream>
 
 #include "core/Errors.hpp"
+#include "core/FaultInjection.hpp"
 #include "parallel/Agreement.hpp"
 
 namespace rondel {
@@ -76,6 +77,9 @@ void cut_table(const fs::path& path, std::int64_t step) {
   if (ec) throw IoError("cannot replace '" + path.string() + "': " + ec.message());
 }
 
+// Whether writing the text file `path` failed: `ok` false, or a fault injected for it (core/FaultInjection.hpp).
+bool failed(bool ok, const fs::path& path) { return !ok || injected_fault("text:" + path.filename().string(), 0); }
+
 }  // namespace
 
 RunFiles::~RunFiles() {
@@ -89,8 +93,8 @@ void RunFiles::prepare(const std::string& checkpoint, std::int64_t step) {
   // error (a directory in use, a file it cannot write) stops every rank.
   const bool resuming = !checkpoint.empty();
   agree(comm_, [&] { claim_directory(checkpoint); });
-  checkpoints_ = std::make_unique<Checkpointing>(config_.output, config_.checkpoint_keep, config_.snapshot_fields,
-                                                 config_.domain, comm_);
+  checkpoints_ = std::make_unique<Checkpointing>(config_.output, config_.checkpoint_keep, config_.verify_checkpoints,
+                                                 config_.snapshot_fields, config_.domain, comm_);
   if (resuming)
     agree(comm_, [&] { checkpoints_->adopt_snapshots(step); });
   else
@@ -178,14 +182,18 @@ std::string RunFiles::write_failure(const fs::path& path) {
 void RunFiles::write_failed(const fs::path& path) { throw IoError(write_failure(path)); }
 
 void RunFiles::check_stream(const std::ostream& out, const fs::path& path) {
-  if (!out.good()) write_failed(path);
+  if (failed(out.good(), path)) write_failed(path);
 }
 
 void RunFiles::close_checked(std::ofstream& out, const fs::path& path) {
   out.flush();
-  check_stream(out, path);
+  const bool written = !failed(out.good(), path);
   out.close();
-  if (out.fail()) throw IoError("cannot close '" + path.string() + "' (disk full?)");
+  if (!written || out.fail()) {
+    std::error_code ec;
+    fs::remove(path, ec);  // not left to be taken for the whole file
+    write_failed(path);
+  }
 }
 
 void RunFiles::check_log() {
@@ -212,7 +220,8 @@ void RunFiles::log_file_only(const std::string& line) {
 void RunFiles::write_diagnostics(const DiagnosticsRow& row) {
   if (!comm_.root()) return;
   diag_.write(row);
-  if (!diag_.good()) write_failed(fs::path(config_.output) / "diagnostics.csv");
+  if (failed(diag_.good(), fs::path(config_.output) / "diagnostics.csv"))
+    write_failed(fs::path(config_.output) / "diagnostics.csv");
 }
 
 void RunFiles::write_measures(const MeasuresRow& row) {
@@ -236,7 +245,7 @@ void RunFiles::flush_tables() {
   if (!comm_.root()) return;
   const fs::path dir(config_.output);
   // The rows of diagnostics.csv and measures.csv reach their files (the writers flush them once a second).
-  if (!diag_.flush()) write_failed(dir / "diagnostics.csv");
+  if (failed(diag_.flush(), dir / "diagnostics.csv")) write_failed(dir / "diagnostics.csv");
   if (measures_.is_open()) check_stream(measures_.flush(), dir / "measures.csv");
 }
 

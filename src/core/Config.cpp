@@ -107,6 +107,7 @@ void read_output(const Reader& r, Config& c) {
   c.checkpoint_keep = r.get<int>("output.checkpoint_keep");
   check(c.checkpoint_keep >= 1, "output.checkpoint_keep", "must be >= 1", std::to_string(c.checkpoint_keep));
   c.checkpoint_at_end = r.get<bool>("output.checkpoint_at_end");
+  c.verify_checkpoints = r.get<bool>("output.verify_checkpoints");
   c.thermo_every = r.get<std::int64_t>("output.thermo_every");
   check(c.thermo_every >= 0, "output.thermo_every", "must be >= 0", std::to_string(c.thermo_every));
   c.final_format = r.get<std::string>("output.final_format");

@@ -63,6 +63,7 @@ struct Config {
   double checkpoint_minutes = 0.0;
   int checkpoint_keep = 2;
   bool checkpoint_at_end = true;
+  bool verify_checkpoints = true;    // each checkpoint read back before it replaces older ones
   std::int64_t thermo_every = 5000;  // thermo line interval in steps (at diagnostics steps); 0 = off
   std::string final_format = "hex";  // final.csv floats: hex or decimal
   std::string resume_dir;            // --resume DIR (command line only)

@@ -105,6 +105,7 @@ void add_run_sections(po::options_description& all, std::vector<KeySpec>& keys) 
       .number("output.checkpoint_minutes", def(0.0), "min", kNonNegative, "checkpoint also after this much wall time; 0 = off")
       .number("output.checkpoint_keep", def(2), "-", kAtLeastOne, "newest checkpoints kept")
       .flag("output.checkpoint_at_end", def(true), "write a checkpoint after the last step")
+      .flag("output.verify_checkpoints", def(true), "read each checkpoint back (checksums) before older ones go")
       .number("output.thermo_every", def<std::int64_t>(5000), "steps", kCount,
               "thermo line (step, time, KE, contacts, ledger residual, rate) on the terminal and in log.txt, at "
               "the diagnostics steps that are multiples of it and at the last step; 0 = off")

@@ -12,6 +12,12 @@ MpiEnvironment::MpiEnvironment(int* argc, char*** argv) {
   // it behind, and every later open of a file of that name on the machine waits on it for good. Rondel uses
   // no shared file pointer, so that component is left out (unless the user set the parameter).
   if (!ready) setenv("OMPI_MCA_sharedfp", "^sm", 0);
+  // And its MPI-IO implementation of choice is ROMIO where Open MPI has it (romio321 in Open MPI 4): on a
+  // full disk OMPIO's collective writes report the failure on some ranks only (both HDF5 and Rondel then
+  // wait in collectives that the others left) or on none (a checkpoint of holes taken for a good one);
+  // ROMIO reports it on the rank that wrote. A priority only: where there is no ROMIO, OMPIO stays; a user's
+  // own OMPI_MCA_io wins.
+  if (!ready && !std::getenv("OMPI_MCA_io")) setenv("OMPI_MCA_io_romio321_priority", "100", 0);
   if (!ready) MPI_Init(argc, argv);
 }
 

@@ -1,13 +1,19 @@
 #include "parallel/Hdf5File.hpp"
 
+#include <unistd.h>
+
+#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <type_traits>
 
 #include "core/ContactTable.hpp"
 #include "core/Errors.hpp"
+#include "core/FaultInjection.hpp"
+#include "core/FileSpace.hpp"
 #include "core/Vec2.hpp"
 #include "parallel/Agreement.hpp"
+#include "parallel/CanonicalOrder.hpp"
 
 namespace rondel {
 
@@ -71,16 +77,66 @@ struct Handle {
   }
 };
 
+// The objects below a group, depth first (H5Literate's callback).
+struct Walk {
+  std::string prefix;
+  std::vector<std::pair<std::string, bool>>* out;
+};
+herr_t walk_link(hid_t group, const char* name, const H5L_info_t*, void* data) {
+  const auto* walk = static_cast<const Walk*>(data);
+  Handle object{H5Oopen(group, name, H5P_DEFAULT), H5Oclose};
+  if (object.id < 0) return -1;
+  const std::string path = (walk->prefix == "/" ? "/" : walk->prefix + "/") + name;
+  const H5I_type_t type = H5Iget_type(object.id);
+  walk->out->emplace_back(path, type == H5I_DATASET);
+  if (type != H5I_GROUP) return 0;
+  Walk inner{path, walk->out};
+  return H5Literate(object.id, H5_INDEX_NAME, H5_ITER_INC, nullptr, walk_link, &inner) < 0 ? -1 : 0;
+}
+
+// The attributes of one object, hashed into `sum` (H5Aiterate2's callback).
+struct Digest {
+  std::string object;
+  std::uint64_t sum = 0;
+};
+herr_t digest_attribute(hid_t object, const char* name, const H5A_info_t*, void* data) {
+  auto* d = static_cast<Digest*>(data);
+  const std::string n = name;
+  if ((d->object == "/" && n == "complete") || (d->object == "/integrity" && n == "attributes_checksum")) return 0;
+  Handle attr{H5Aopen(object, name, H5P_DEFAULT), H5Aclose};
+  if (attr.id < 0) return -1;
+  Handle type{H5Aget_type(attr.id), H5Tclose};
+  std::string bytes = d->object + '\0' + n + '\0';
+  const std::size_t head = bytes.size(), size = H5Aget_storage_size(attr.id);
+  bytes.resize(head + size);
+  if (type.id < 0 || (size > 0 && H5Aread(attr.id, type.id, bytes.data() + head) < 0)) return -1;
+  d->sum += mix(row_hash(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()) + 0x9e3779b97f4a7c15ULL);
+  return 0;
+}
+
 }  // namespace
 
-Hdf5File::Hdf5File(const std::string& path, Mode mode, const Communicator& comm) : path_(path), comm_(comm.comm()) {
+Hdf5File::Hdf5File(const std::string& path, Mode mode, const Communicator& comm, std::uint64_t reserve_bytes)
+    : path_(path), comm_(comm.comm()), writing_(mode == Mode::create) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become exceptions with the file's name
+  if (writing_) injected_fault_new_file(comm_.rank());
+  const bool reserve = writing_ && reserve_bytes > 0 && comm_.root();
+  const bool injected = reserve && injected_fault("reserve", comm_.rank());
+  std::exception_ptr error;
+  // Before HDF5 writes anything: a disk without the room is found here, and nothing is left behind.
+  if (reserve) {
+    const std::string why = reserve_file_space(path, reserve_bytes, injected);
+    if (!why.empty()) {
+      std::remove(path.c_str());
+      error = std::make_exception_ptr(IoError("not enough space to write '" + path + "': " + why));
+    }
+  }
+  settle(comm_, error);
   Handle fapl{H5Pcreate(H5P_FILE_ACCESS), H5Pclose};
   H5Pset_fapl_mpio(fapl.id, comm.comm(), MPI_INFO_NULL);
-  file_ = mode == Mode::create ? H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id)
-                               : H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.id);
-  std::exception_ptr error;
-  if (file_ < 0 && mode == Mode::create)
+  file_ = writing_ ? H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id)
+                   : H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.id);
+  if (file_ < 0 && writing_)
     error = std::make_exception_ptr(IoError("cannot create the HDF5 file '" + path + "' (is the directory writable?)"));
   else if (file_ < 0)
     error = std::make_exception_ptr(
@@ -90,6 +146,17 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode, const Communicator& comm)
   settle(comm_, error);
   xfer_ = H5Pcreate(H5P_DATASET_XFER);
   H5Pset_dxpl_mpio(xfer_, H5FD_MPIO_COLLECTIVE);
+  // The create emptied the file: reserved again, for the writes to come.
+  if (reserve) {
+    const std::string why = reserve_file_space(path, reserve_bytes, injected);
+    if (!why.empty()) error = std::make_exception_ptr(IoError("not enough space to write '" + path + "': " + why));
+  }
+  try {
+    settle(comm_, error);
+  } catch (...) {
+    abandon();
+    throw;
+  }
 }
 
 Hdf5File::~Hdf5File() {
@@ -97,8 +164,42 @@ Hdf5File::~Hdf5File() {
 }
 
 void Hdf5File::close() {
-  settle_kept();
+  try {
+    settle_kept();
+    // The metadata reaches the file here, where a failure can still be agreed; the close then has nothing
+    // left to write (a close that fails leaves HDF5 with a file it can neither use nor forget).
+    if (writing_ && file_ >= 0)
+      check(H5Fflush(file_, H5F_SCOPE_GLOBAL) >= 0 && !injected_fault("hdf5_close", comm_.rank()),
+            "cannot write its metadata (disk full?)", true);
+  } catch (...) {
+    abandon();
+    throw;
+  }
+  if (xfer_ >= 0) H5Pclose(xfer_);
+  xfer_ = -1;
+  const bool closed = file_ < 0 || H5Fclose(file_) >= 0;
+  file_ = -1;
+  if (!writing_) return;
+  writing_ = false;
+  std::exception_ptr error;
+  if (!closed) error = std::make_exception_ptr(IoError("HDF5 file '" + path_ + "': cannot close it (disk full?)"));
+  try {
+    settle(comm_, error);
+  } catch (...) {
+    if (comm_.root()) std::remove(path_.c_str());
+    throw;
+  }
+}
+
+void Hdf5File::abandon() {
+  // Every rank is here (the error was agreed). Emptying the file gives its space back, so that what the close
+  // still writes (the superblock, the metadata) fits on a disk that the file itself filled.
+  if (writing_ && comm_.root() && file_ >= 0 && ::truncate(path_.c_str(), 0) != 0) {
+    // nothing more to do: the close below may fail, the file is removed anyway
+  }
   close_now();
+  if (writing_ && comm_.root()) std::remove(path_.c_str());
+  writing_ = false;
 }
 
 void Hdf5File::close_now() {
@@ -209,6 +310,57 @@ std::uint64_t Hdf5File::rows(const std::string& name) const {
   return dims[0];
 }
 
+std::vector<std::pair<std::string, bool>> Hdf5File::objects() const {
+  std::vector<std::pair<std::string, bool>> out;
+  Walk root{"/", &out};
+  check(H5Literate(file_, H5_INDEX_NAME, H5_ITER_INC, nullptr, walk_link, &root) >= 0, "cannot list its objects");
+  return out;
+}
+
+std::uint64_t Hdf5File::attribute_digest() const {
+  std::uint64_t sum = 0;
+  std::vector<std::string> paths{"/"};
+  for (const auto& [path, dataset] : objects()) paths.push_back(path);
+  bool ok = true;
+  for (const std::string& path : paths) {
+    Handle object{H5Oopen(file_, path.c_str(), H5P_DEFAULT), H5Oclose};
+    Digest d{path, 0};
+    ok = ok && object.id >= 0 && H5Aiterate2(object.id, H5_INDEX_NAME, H5_ITER_INC, nullptr, digest_attribute, &d) >= 0;
+    sum += d.sum;
+  }
+  check(ok, "cannot read its attributes");
+  return sum;
+}
+
+void Hdf5File::verify_dataset(const std::string& name, std::uint64_t rows) const {
+  Handle set{H5Dopen2(file_, name.c_str(), H5P_DEFAULT), H5Dclose};
+  check(set.id >= 0, "has no dataset " + name);
+  Handle type{H5Dget_type(set.id), H5Tclose};
+  Handle space{H5Dget_space(set.id), H5Sclose};
+  const int dims_n = H5Sget_simple_extent_ndims(space.id);
+  hsize_t dims[2] = {0, 1};
+  const bool shaped = dims_n == 1 || dims_n == 2;
+  if (shaped) H5Sget_simple_extent_dims(space.id, dims, nullptr);
+  check(shaped && dims[0] == rows, "dataset " + name + " has " + std::to_string(dims[0]) +
+                                       " rows where its group has " + std::to_string(rows) + ": the file is damaged");
+  const H5T_class_t cls = H5Tget_class(type.id);
+  const std::size_t size = H5Tget_size(type.id);
+  const bool is_signed = cls == H5T_INTEGER && H5Tget_sign(type.id) == H5T_SGN_2;
+  const std::uint64_t begin = block_begin(rows, comm_.rank(), comm_.size());
+  const std::uint64_t count = block_begin(rows, comm_.rank() + 1, comm_.size()) - begin;
+  const int width = static_cast<int>(dims[1]);
+  if (cls == H5T_FLOAT && size == 8)
+    read<double>(name, begin, count, width);
+  else if (cls == H5T_INTEGER && size == 8 && is_signed)
+    read<std::int64_t>(name, begin, count, width);
+  else if (cls == H5T_INTEGER && size == 4 && is_signed)
+    read<std::int32_t>(name, begin, count, width);
+  else if (cls == H5T_INTEGER && size == 4)
+    read<std::uint32_t>(name, begin, count, width);
+  else
+    check(false, "dataset " + name + " has an element type that Rondel does not write");
+}
+
 template <class T>
 void Hdf5File::write_block(const std::string& name, const T* local, std::uint64_t values, std::uint64_t total,
                            std::uint64_t offset, int width) {
@@ -230,7 +382,9 @@ void Hdf5File::write_block(const std::string& name, const T* local, std::uint64_
   Handle mem{H5Screate_simple(rank, count, nullptr), H5Sclose};
   if (n_local == 0) H5Sselect_none(mem.id), H5Sselect_none(space.id);
   if (total > 0)
-    keep(H5Dwrite(set.id, memory_type<T>(), mem.id, space.id, xfer_, local) >= 0, "cannot write dataset " + name);
+    keep(H5Dwrite(set.id, memory_type<T>(), mem.id, space.id, xfer_, local) >= 0 &&
+             !injected_fault("hdf5_write", comm_.rank()),
+         "cannot write dataset " + name);
   // One reduction: the checksum and the number of ranks that failed so far.
   std::uint64_t sums[2] = {
       row_checksum(reinterpret_cast<const char*>(local), width / components<T>() * sizeof(T), n_local, offset),

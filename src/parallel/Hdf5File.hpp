@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <exception>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "parallel/Communicator.hpp"
@@ -21,12 +22,20 @@ namespace rondel {
 // collective per dataset) or when run() ends. The file is closed (collectively) by run(), close() or the
 // destructor on a normal exit; a destructor that runs during an exception calls nothing collective (the
 // file is left to the HDF5 library's clean-up at exit), so a rank that unwinds alone never blocks in it.
+//
+// A file being written is made known good or removed: its space is reserved first (`reserve_bytes`, when
+// the file system can: a full disk or a quota is then found before HDF5 writes anything, instead of in the
+// middle of a collective write, where some MPI-IO layers report it on one rank only or not at all); its
+// metadata is flushed, checked and agreed before the close, whose result is checked too; a file whose
+// writing failed is emptied (its space given back, so that the close's own writes fit) and removed.
 class Hdf5File {
  public:
   enum class Mode { create, read };
-  Hdf5File(const std::string& path, Mode mode, const Communicator& comm);
+  // `reserve_bytes` (create only): the space to reserve, an estimate from above (0: none).
+  Hdf5File(const std::string& path, Mode mode, const Communicator& comm, std::uint64_t reserve_bytes = 0);
   ~Hdf5File();
-  // Collective: settles the errors kept, then closes the file (idempotent).
+  // Collective: settles the errors kept, flushes a written file (checked), then closes it (checked;
+  // idempotent). A written file that fails here is removed.
   void close();
   // Keeps an error of this rank (e.g. an allocation that failed while preparing a block) to be thrown on
   // every rank at the next dataset write or when run() ends; not collective.
@@ -39,12 +48,11 @@ class Hdf5File {
   void run(F&& f) {
     try {
       f();
-      settle_kept();
+      close();
     } catch (...) {
-      close_now();
+      abandon();
       throw;
     }
-    close_now();
   }
   Hdf5File(const Hdf5File&) = delete;
   Hdf5File& operator=(const Hdf5File&) = delete;
@@ -82,6 +90,16 @@ class Hdf5File {
   // Rows of a dataset (0 when absent).
   std::uint64_t rows(const std::string& name) const;
 
+  // Every object below the root, depth first in name order: (path, true for a dataset, false for a group).
+  std::vector<std::pair<std::string, bool>> objects() const;
+  // The checksum of the attributes (FORMAT.md "attributes_checksum"): the wrapping sum, over every attribute
+  // of every object but /integrity's `attributes_checksum` and the root's `complete`, of a mix of the FNV-1a hash of
+  // "object path \0 name \0 value as stored". Collective only in that a failure is agreed.
+  std::uint64_t attribute_digest() const;
+  // Collective: reads this rank's block of dataset `name` (any type this class writes) and verifies its
+  // checksum; `rows` is the count it must have. InputError on every rank otherwise.
+  void verify_dataset(const std::string& name, std::uint64_t rows) const;
+
  private:
   // Collective: throws on every rank (InputError, or IoError when `writing`) if `ok` is false on any, or
   // if any rank kept an error (that one then).
@@ -90,10 +108,13 @@ class Hdf5File {
   void keep(bool ok, const std::string& what);
   // Collective: every rank throws the kept error of the lowest failing rank, if any.
   void settle_kept();
+  // Collective, after an agreed error: closes without checking; a written file is emptied first and removed.
+  void abandon();
   void close_now();
   std::uint64_t reduce_sum(std::uint64_t local) const;
   std::string path_;
   Communicator comm_;
+  bool writing_ = false;
   hid_t file_ = -1;
   hid_t xfer_ = -1;
   std::exception_ptr kept_;

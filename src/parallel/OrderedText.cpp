@@ -7,6 +7,8 @@
 #include <cstdio>
 
 #include "core/Errors.hpp"
+#include "core/FaultInjection.hpp"
+#include "core/FileSpace.hpp"
 #include "parallel/Agreement.hpp"
 
 namespace rondel {
@@ -30,16 +32,31 @@ void write_ordered_text(const std::string& path, const std::string& header, cons
     for (std::size_t k = 0; k < order.count(); ++k) line(k, text);
   });
   std::uint64_t length = text.size(), offset = 0, pieces = (length + kPiece - 1) / kPiece;
+  std::uint64_t total = length;
   if (comm.size() > 1) {
     comm.count_collective();
     MPI_Exscan(&length, &offset, 1, MPI_UINT64_T, MPI_SUM, comm.comm());
     if (comm.root()) offset = 0;
     pieces = static_cast<std::uint64_t>(comm.max(static_cast<std::int64_t>(pieces)));
+    total = static_cast<std::uint64_t>(comm.sum(static_cast<std::int64_t>(length)));
+  }
+  // The whole file's space first: a full disk is found before any rank writes (a collective write that
+  // fails on one rank is not reported on every rank by every MPI-IO layer).
+  const std::string name = path.substr(path.find_last_of('/') + 1);
+  std::exception_ptr error;
+  if (comm.root()) {
+    const std::string why = reserve_file_space(path, total, injected_fault("text:" + name, comm.rank()));
+    if (!why.empty()) error = std::make_exception_ptr(IoError("cannot write '" + path + "': " + why));
+  }
+  try {
+    settle(comm, error);
+  } catch (...) {
+    if (comm.root()) std::remove(path.c_str());
+    throw;
   }
   MPI_File file = MPI_FILE_NULL;
   int rc = MPI_File_open(comm.comm(), path.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &file);
   comm.count_collective();
-  std::exception_ptr error;
   if (rc != MPI_SUCCESS)
     error = std::make_exception_ptr(IoError("cannot open '" + path + "' for writing: " + mpi_error(rc)));
   try {
@@ -48,7 +65,7 @@ void write_ordered_text(const std::string& path, const std::string& header, cons
     if (comm.root()) std::remove(path.c_str());
     throw;
   }
-  rc = MPI_File_set_size(file, 0);
+  rc = MPI_File_set_size(file, static_cast<MPI_Offset>(total));  // what the file held before goes
   comm.count_collective();
   // Every rank makes the same number of collective writes (an empty one when its block is done).
   for (std::uint64_t p = 0; p < pieces; ++p) {

@@ -94,6 +94,28 @@ void pack_row_bytes(const ContactTable& t, std::size_t r, char* out) {
   });
 }
 
+// Rows of `t` that this rank writes (write_rows books them: disc 1 owned, with state).
+std::int64_t booked_rows(const ContactTable& t, std::size_t n_owned) {
+  std::int64_t n = 0;
+  for (std::size_t r = 0; r < t.size(); ++r) n += static_cast<std::size_t>(t.i1[r]) < n_owned && t.has_state(r);
+  return n;
+}
+
+// The file's size, estimated from above (collective): every record (a snapshot's index and owner columns
+// too), the walls, the text attributes, and HDF5's metadata (about 6 kB for a checkpoint: 64 kB), plus 2 %.
+std::uint64_t estimate_file_bytes(const StateHeader& h, DiscStore& discs, const ContactTable& pairs,
+                                  const ContactTable& wall_rows, std::size_t walls, bool snapshot,
+                                  const Communicator& comm) {
+  const std::size_t n = discs.n_owned();
+  const double local =
+      static_cast<double>(n) * static_cast<double>(record_bytes(discs, kCheckpoint) + (snapshot ? 12 : 0)) +
+      static_cast<double>(booked_rows(pairs, n)) * static_cast<double>(row_bytes(pairs)) +
+      static_cast<double>(booked_rows(wall_rows, n)) * static_cast<double>(row_bytes(wall_rows));
+  const double fixed =
+      static_cast<double>(walls) * 256.0 + static_cast<double>(h.config.size() + h.materials.size()) + 64.0 * 1024.0;
+  return static_cast<std::uint64_t>(1.02 * (comm.sum(local) + fixed));
+}
+
 bool listed(const std::vector<std::string>& fields, const char* name) {
   return std::find(fields.begin(), fields.end(), name) != fields.end();
 }
@@ -207,7 +229,8 @@ void StateWriter::write(const std::string& path, const StateHeader& h, DiscStore
                         const std::vector<std::string>& fields, double wall_seconds) {
   times_ = {};
   const double t0 = now();
-  Hdf5File f(path, Hdf5File::Mode::create, comm);
+  Hdf5File f(path, Hdf5File::Mode::create, comm,
+             estimate_file_bytes(h, discs, pairs, wall_rows, walls.size(), !fields.empty(), comm));
   f.run([&] {
     write_header(f, h);
     write_discs(f, discs, comm, fields);
@@ -223,9 +246,15 @@ void StateWriter::write(const std::string& path, const StateHeader& h, DiscStore
         [&f](const LedgerTermInfo& t, double value) { f.write_attribute("/ledger", std::string(t.name), value); });
     f.create_group("/run_metadata");
     f.write_attribute("/run_metadata", "ranks", static_cast<std::int64_t>(comm.size()));
-    f.write_attribute("/run_metadata", "wall_seconds", wall_seconds);
+    // Rank 0's clock: every rank writes the same value (each keeps its own copy of the metadata).
+    f.write_attribute("/run_metadata", "wall_seconds", comm.max(comm.root() ? wall_seconds : 0.0));
     f.write_attribute("/run_metadata", "rondel_version", std::string(kRondelVersion));
     f.write_attribute("/run_metadata", "rondel_commit", std::string(kRondelCommit));
+    // Over every attribute written above (the datasets' checksums included), as stored; in a group of its
+    // own, which a comparison of two files leaves out with the run metadata and the ledger it covers.
+    const std::uint64_t digest = f.attribute_digest();
+    f.create_group("/integrity");
+    f.write_attribute("/integrity", "attributes_checksum", static_cast<std::int64_t>(digest));
     f.write_attribute("/", "complete", std::int64_t{1});  // last: a file without it was cut short
   });
   times_.hdf5 += now() - t0 - times_.order - times_.columns;
@@ -249,6 +278,19 @@ StateHeader read_header(const Hdf5File& f, const std::string& path) {
     throw InputError("'" + path + "' has format version " + std::to_string(version) + "; this Rondel reads versions " +
                      std::to_string(kOldestReadableFormatVersion) + " to " + std::to_string(kStateFormatVersion));
   if (!f.has_attribute("/", "complete")) throw InputError("'" + path + "' is incomplete (its writer was interrupted)");
+  if (const std::int64_t complete = f.read_int_attribute("/", "complete"); complete != 1)
+    throw InputError("'" + path + "' has complete = " + std::to_string(complete) +
+                     " (1 expected): the file is damaged");
+  if (version >= 4) {
+    if (!f.has_attribute("/integrity", "attributes_checksum"))
+      throw InputError("'" + path + "' has no /integrity attributes_checksum (format version " + std::to_string(version) +
+                       " has one): the file is damaged");
+    const auto stored = static_cast<std::uint64_t>(f.read_int_attribute("/integrity", "attributes_checksum"));
+    if (stored != f.attribute_digest())
+      throw InputError("'" + path +
+                       "': its attributes (the header, the configuration, the ledger, the walls' references or a "
+                       "dataset's checksum) fail their checksum: the file is corrupted");
+  }
   StateHeader h;
   h.kind = f.read_string_attribute("/", "kind");
   h.step = f.read_int_attribute("/", "step");
@@ -276,6 +318,23 @@ StateHeader read_state_header(const std::string& path, const Communicator& comm)
   StateHeader h;
   f.run([&] { h = read_header(f, path); });
   return h;
+}
+
+void verify_state_file(const std::string& path, const Communicator& comm) {
+  Hdf5File f(path, Hdf5File::Mode::read, comm);
+  f.run([&] {
+    read_header(f, path);
+    // A group's datasets have the rows of its first one (/discs/force as many as /discs/flags, ...);
+    // a history group those of its table.
+    std::vector<std::pair<std::string, std::uint64_t>> tables;
+    for (const auto& [object, dataset] : f.objects()) {
+      if (!dataset) continue;
+      const std::string table = object.substr(0, object.find('/', 1));
+      auto it = std::find_if(tables.begin(), tables.end(), [&](const auto& t) { return t.first == table; });
+      if (it == tables.end()) it = tables.insert(tables.end(), {table, f.rows(object)});
+      f.verify_dataset(object, it->second);
+    }
+  });
 }
 
 std::uint64_t state_file_discs(const std::string& path, const Communicator& comm) {

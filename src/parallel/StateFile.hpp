@@ -18,11 +18,12 @@ class Hdf5File;
 // The HDF5 layout of checkpoints and snapshots (FORMAT.md). Written collectively by every rank into one
 // file; discs in ascending gid and contact rows in ascending key, so the content does not depend on the rank
 // count (run metadata under /run_metadata and the ledger under /ledger excepted).
-inline constexpr std::int64_t kStateFormatVersion = 3;
+inline constexpr std::int64_t kStateFormatVersion = 4;
 // The oldest version a reader takes: version 2 only dropped datasets of version 1 (a pair's f1, tq1, tq2, and
 // M2 of an objective rolling law), so a version 1 file holds everything a restart reads; version 3 added the
 // circle walls (kind 2) and the rotation of walls (/walls/centre, radius, omega, angle), which a file of an
-// older version does not have (its walls neither rotate nor are circles).
+// older version does not have (its walls neither rotate nor are circles); version 4 added
+// /integrity:attributes_checksum (over every attribute), which a file of an older version is read without.
 inline constexpr std::int64_t kOldestReadableFormatVersion = 1;
 
 struct StateHeader {
@@ -88,6 +89,11 @@ std::size_t peak_checkpoint_structure_bytes();
 // Collective reads. The header is checked (format name and version, completeness); discs and rows come as
 // this rank's block of the file, to be sent to their owners by the caller.
 StateHeader read_state_header(const std::string& path, const Communicator& comm);
+// Collective: the whole file checked, as --resume does before it takes a checkpoint: the header (format,
+// version, `complete` = 1, the attributes' checksum), then every dataset read in blocks over the ranks
+// against its checksum and against the row count of its group. InputError naming the file and the first
+// thing wrong.
+void verify_state_file(const std::string& path, const Communicator& comm);
 // Number of discs the file holds.
 std::uint64_t state_file_discs(const std::string& path, const Communicator& comm);
 // The datasets of /discs the file holds (a snapshot has those of its output.snapshot_fields, and "index").

@@ -7,10 +7,11 @@ import numpy as np
 from .config import Config
 from .errors import RondelFileError
 
-FORMAT_VERSION = 3
+FORMAT_VERSION = 4
 # Versions this reader takes: 2 only dropped contact datasets of 1 that the tools do not read; 3 added
-# circle walls (/walls/kind 2) and wall rotation (/walls/centre, radius, omega, angle).
-READABLE_VERSIONS = (1, 2, 3)
+# circle walls (/walls/kind 2) and wall rotation (/walls/centre, radius, omega, angle); 4 the root's
+# /integrity attributes_checksum.
+READABLE_VERSIONS = (1, 2, 3, 4)
 FLAG_FIXED = 1
 FLAG_GLUED = 2
 M64 = (1 << 64) - 1
@@ -49,6 +50,35 @@ def checksum(data):
         z = (z ^ (z >> np.uint64(27))) * np.uint64(0x94d049bb133111eb)
         z = z ^ (z >> np.uint64(31))
     return int(z.sum(dtype=np.uint64)) & M64
+
+
+def _fnv_mix(data):
+    h = 0xcbf29ce484222325
+    for b in data:
+        h = ((h ^ b) * 0x100000001b3) & M64
+    z = (h + 0x9e3779b97f4a7c15) & M64
+    z = ((z ^ (z >> 30)) * 0xbf58476d1ce4e5b9) & M64
+    z = ((z ^ (z >> 27)) * 0x94d049bb133111eb) & M64
+    return z ^ (z >> 31)
+
+
+def attributes_checksum(f):
+    """The attributes_checksum of FORMAT.md over an open h5py File: the sum mod 2^64, over every attribute of
+    every object but /integrity's attributes_checksum and the root's complete, of mix(FNV-1a(path NUL name NUL value as
+    stored) + 0x9e3779b97f4a7c15)."""
+    h5py = _h5py()
+    objects = [("/", f)]
+    f.visititems(lambda name, obj: objects.append(("/" + name, obj)))
+    total = 0
+    for path, obj in objects:
+        for name in obj.attrs:
+            if (path, name) in (("/", "complete"), ("/integrity", "attributes_checksum")):
+                continue
+            aid = h5py.h5a.open(obj.id, name.encode())
+            raw = np.zeros((), dtype=f"V{aid.get_storage_size()}")
+            aid.read(raw, mtype=aid.get_type())
+            total = (total + _fnv_mix(path.encode() + b"\0" + name.encode() + b"\0" + raw.tobytes())) & M64
+    return total
 
 
 def step_of_name(path):
@@ -105,6 +135,11 @@ class StateFile:
             raise RondelFileError(self.path, f"has format version {self.format_version}; this reader reads "
                                   f"versions {READABLE_VERSIONS[0]} to {READABLE_VERSIONS[-1]}")
         self.complete = a.get("complete") == 1
+        # Version 4: the stored and the recomputed checksum of the attributes (None for older files).
+        self.attributes_checksum = None
+        if "integrity" in f and "attributes_checksum" in f["integrity"].attrs:
+            stored = int(f["integrity"].attrs["attributes_checksum"]) & M64
+            self.attributes_checksum = (stored, attributes_checksum(f))
         if not self.complete and not allow_incomplete:
             raise RondelFileError(self.path, "is incomplete (no complete = 1 attribute: the writer was cut short)")
         self.kind = a.get("kind", "?")
@@ -171,6 +206,11 @@ class StateFile:
                 bad.append(f"{name} (no checksum)")
             elif self.checksums[name] != checksum(np.asarray(arr)):
                 bad.append(name)
+        if self.format_version is not None and self.format_version >= 4:
+            if self.attributes_checksum is None:
+                bad.append("the attributes (no attributes_checksum)")
+            elif self.attributes_checksum[0] != self.attributes_checksum[1]:
+                bad.append("the attributes (attributes_checksum)")
         return len(data), bad
 
     def disc(self, name, hint=True):
