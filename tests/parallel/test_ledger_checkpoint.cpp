@@ -124,6 +124,12 @@ TEST(LedgerCheckpoint, OlderCheckpointWithoutDDampingReadsItAsZero) {
     const hid_t f = H5Fopen(file.path().c_str(), H5F_ACC_RDWR, fapl);
     ASSERT_GE(f, 0);
     EXPECT_GE(H5Adelete_by_name(f, "/ledger", "D_damping", H5P_DEFAULT), 0);
+    // Such a writer wrote format version 3, without the attributes' checksum of version 4.
+    EXPECT_GE(H5Adelete_by_name(f, "/integrity", "attributes_checksum", H5P_DEFAULT), 0);
+    const hid_t version = H5Aopen_by_name(f, "/", "format_version", H5P_DEFAULT, H5P_DEFAULT);
+    const std::int64_t three = 3;
+    EXPECT_GE(H5Awrite(version, H5T_NATIVE_INT64, &three), 0);
+    H5Aclose(version);
     H5Fclose(f);
     H5Pclose(fapl);
   }

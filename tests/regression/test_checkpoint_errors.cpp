@@ -36,6 +36,7 @@
 #include "core/Config.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"
+#include "parallel/Hdf5File.hpp"
 #include "parallel/StateFile.hpp"
 #include "support/Assertions.hpp"
 #include "support/Quiet.hpp"
@@ -139,9 +140,12 @@ struct H5 {
   }
   ~H5() { H5Fclose(file); }
   void set_int(const char* object, const char* name, std::int64_t v) const {
-    const hid_t a = H5Aopen_by_name(file, object, name, H5P_DEFAULT, H5P_DEFAULT);
+    // The object held open while its attribute is written (HDF5 1.10 cannot write one opened by path).
+    const hid_t o = H5Oopen(file, object, H5P_DEFAULT);
+    const hid_t a = H5Aopen(o, name, H5P_DEFAULT);
     H5Awrite(a, H5T_NATIVE_INT64, &v);
     H5Aclose(a);
+    H5Oclose(o);
   }
   void remove(const char* object, const char* name) const { H5Adelete_by_name(file, object, name, H5P_DEFAULT); }
   void set_string(const char* object, const char* name, const std::string& v) const {
@@ -169,6 +173,16 @@ struct H5 {
     return n;
   }
 };
+
+// After an edit that stands for what a writer meant (not a corruption): the attributes' checksum made to fit.
+void restamp(const fs::path& file) {
+  std::uint64_t digest = 0;
+  {
+    const Hdf5File f(file.string(), Hdf5File::Mode::read, Communicator(MPI_COMM_SELF));
+    digest = f.attribute_digest();
+  }
+  H5(file).set_int("/integrity", "attributes_checksum", static_cast<std::int64_t>(digest));
+}
 
 // A fixture with one valid checkpoint (step 1500, Wang rolling), made once for the suite.
 class CheckpointErrors : public ::testing::Test {
@@ -363,6 +377,7 @@ TEST_F(CheckpointErrors, LawsOrHistorySlotsDiffer) {
   // Same laws, but the file's history slots are not the kernel's.
   const fs::path slots = copy("slots.h5");
   H5(slots).set_string("/", "history_slots", "xi,x_r,extra");
+  restamp(slots);
   const std::string s = restart_refusal<InputError>(slots, out("slots"));
   EXPECT_TRUE(test::names(s, slots.string()));
   EXPECT_TRUE(test::names(s, "xi,x_r,extra"));
@@ -452,6 +467,91 @@ TEST_F(CheckpointErrors, InterruptedCheckpointIsNeverPicked) {
   QuietCout quiet;
   Simulation sim(config_for(*dir_ / "interrupted-resumed"), self, true, first.string());
   EXPECT_EQ(sim.step_count(), 300);
+}
+
+// Every attribute of every object (root, groups, datasets): (object path, attribute name).
+std::vector<std::pair<std::string, std::string>> all_attributes(const fs::path& file) {
+  std::vector<std::pair<std::string, std::string>> out;
+  std::vector<std::string> objects{"/"};
+  {
+    Hdf5File f(file.string(), Hdf5File::Mode::read, Communicator(MPI_COMM_SELF));
+    for (const auto& [path, dataset] : f.objects()) objects.push_back(path);
+  }
+  const H5 h(file);
+  for (const std::string& o : objects) {
+    const hid_t obj = H5Oopen(h.file, o.c_str(), H5P_DEFAULT);
+    std::vector<std::string> names;
+    H5Aiterate2(
+        obj, H5_INDEX_NAME, H5_ITER_INC, nullptr,
+        [](hid_t, const char* name, const H5A_info_t*, void* data) -> herr_t {
+          static_cast<std::vector<std::string>*>(data)->push_back(name);
+          return 0;
+        },
+        &names);
+    H5Oclose(obj);
+    for (const std::string& n : names) out.emplace_back(o, n);
+  }
+  return out;
+}
+
+// Flips bit `bit` of the stored value of attribute `name` of `object` (its bytes as stored, no conversion).
+void flip_attribute_bit(const fs::path& file, const std::string& object, const std::string& name, std::size_t bit) {
+  const H5 h(file);
+  // The object held open while its attribute is written (HDF5 1.10 cannot write one opened by path).
+  const hid_t obj = H5Oopen(h.file, object.c_str(), H5P_DEFAULT);
+  const hid_t a = H5Aopen(obj, name.c_str(), H5P_DEFAULT);
+  const hid_t type = H5Aget_type(a);
+  std::vector<unsigned char> bytes(H5Aget_storage_size(a));
+  EXPECT_GE(H5Aread(a, type, bytes.data()), 0) << object << ":" << name;
+  bytes[(bit / 8) % bytes.size()] ^= static_cast<unsigned char>(1u << (bit % 8));
+  EXPECT_GE(H5Awrite(a, type, bytes.data()), 0) << object << ":" << name;
+  H5Tclose(type);
+  H5Aclose(a);
+  H5Oclose(obj);
+}
+
+// A flipped bit in any attribute of the newest checkpoint (the header, the configuration, the ledger, the
+// walls' reference lengths, the run metadata, a dataset's checksum, `complete` and the attributes' own
+// checksum): --resume passes over it to the previous checkpoint, naming the file and why.
+TEST_F(CheckpointErrors, AFlippedBitInAnyAttributeIsPassedOver) {
+  const fs::path run = *dir_ / "flips";
+  const Communicator self(MPI_COMM_SELF);
+  {
+    QuietCout quiet;
+    Simulation sim(config_for(run, "wang", {"--run.overwrite=true"}), self, true);
+    for (int s = 0; s < 200; ++s) sim.step();
+    sim.write_checkpoint();
+    for (int s = 0; s < 200; ++s) sim.step();
+    sim.write_checkpoint();
+  }
+  const fs::path older = run / Checkpointing::file_name("checkpoint", 200);
+  const fs::path newest = run / Checkpointing::file_name("checkpoint", 400);
+  ASSERT_EQ(Checkpointing::newest_checkpoint(run.string(), self), newest.string());
+  const auto attributes = all_attributes(newest);
+  ASSERT_GT(attributes.size(), 50u) << "the walk found too few attributes";
+  const fs::path pristine = *dir_ / "flips-pristine.h5";
+  fs::copy_file(newest, pristine);
+  std::size_t k = 0;
+  for (const auto& [object, name] : attributes) {
+    fs::copy_file(pristine, newest, fs::copy_options::overwrite_existing);
+    flip_attribute_bit(newest, object, name, 8 * k + 3 * k % 8);  // a different byte and bit each time
+    ++k;
+    std::vector<std::string> skipped;
+    EXPECT_EQ(Checkpointing::newest_checkpoint(run.string(), self, &skipped), older.string())
+        << "a flipped bit in " << object << ":" << name << " was not found";
+    ASSERT_EQ(skipped.size(), 1u) << object << ":" << name;
+    EXPECT_TRUE(test::names(skipped[0], newest.string())) << skipped[0];
+  }
+  // `complete` is checked by value.
+  fs::copy_file(pristine, newest, fs::copy_options::overwrite_existing);
+  H5(newest).set_int("/", "complete", 0);
+  std::vector<std::string> skipped;
+  EXPECT_EQ(Checkpointing::newest_checkpoint(run.string(), self, &skipped), older.string());
+  ASSERT_EQ(skipped.size(), 1u);
+  EXPECT_TRUE(test::names(skipped[0], "complete = 0"));
+  // Untouched, it is taken again.
+  fs::copy_file(pristine, newest, fs::copy_options::overwrite_existing);
+  EXPECT_EQ(Checkpointing::newest_checkpoint(run.string(), self), newest.string());
 }
 
 // run.overwrite = true replaces an earlier run: its checkpoints must not be taken for the new run's.

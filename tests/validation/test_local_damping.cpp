@@ -95,7 +95,9 @@ TEST(LocalDamping, FreeFallAcceleratesAtGTimesOneMinusAlpha) {
     // (less the first kick from rest, undamped: a share of order 1/steps).
     EXPECT_NEAR(f.residual, start, 1e-12 * f.W_g);
     EXPECT_NEAR(f.damping_share, alpha, 1e-3);
-    if (alpha == 0.0) EXPECT_EQ(f.damping_share, 0.0);
+    if (alpha == 0.0) {
+      EXPECT_EQ(f.damping_share, 0.0);
+    }
   }
 }
 
