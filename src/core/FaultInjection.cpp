@@ -10,7 +10,7 @@ namespace {
 
 struct Fault {
   std::string site;
-  int rank = -1;         // -1: every rank
+  int rank = -1;          // -1: every rank
   std::int64_t from = 1;  // the visit (or file) from which it fires
   bool set = false;
 };

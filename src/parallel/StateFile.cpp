@@ -283,8 +283,8 @@ StateHeader read_header(const Hdf5File& f, const std::string& path) {
                      " (1 expected): the file is damaged");
   if (version >= 4) {
     if (!f.has_attribute("/integrity", "attributes_checksum"))
-      throw InputError("'" + path + "' has no /integrity attributes_checksum (format version " + std::to_string(version) +
-                       " has one): the file is damaged");
+      throw InputError("'" + path + "' has no /integrity attributes_checksum (format version " +
+                       std::to_string(version) + " has one): the file is damaged");
     const auto stored = static_cast<std::uint64_t>(f.read_int_attribute("/integrity", "attributes_checksum"));
     if (stored != f.attribute_digest())
       throw InputError("'" + path +

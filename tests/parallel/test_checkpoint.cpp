@@ -120,8 +120,8 @@ class SharedTempDir {
 // exit status and the first lines of its report. Rank 0 only.
 std::string h5diff(const fs::path& a, const fs::path& b, const fs::path& scratch) {
   const fs::path report = scratch / "h5diff.txt";
-  const std::string cmd = "h5diff --exclude-path /run_metadata --exclude-path /ledger --exclude-path /integrity '" + a.string() + "' '" +
-                          b.string() + "' > '" + report.string() + "' 2>&1";
+  const std::string cmd = "h5diff --exclude-path /run_metadata --exclude-path /ledger --exclude-path /integrity '" +
+                          a.string() + "' '" + b.string() + "' > '" + report.string() + "' 2>&1";
   const int status = std::system(cmd.c_str());
   const int code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
   if (code == 0) return "";

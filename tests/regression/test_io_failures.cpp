@@ -237,8 +237,9 @@ TEST(IoFailures, ADatasetOneRowShortIsPassedOverOrRefusedOnEveryRank) {
     o = rondel_on(dir, ranks, "--resume " + test::quoted(alone));
     expect_stopped(o, 1, "no complete checkpoint", tag + ", resume");
 
-    o = rondel_on(dir, ranks,
-                  deposition(dir / "from-file", 10) + " --scene.type=file --scene.file=" + test::quoted(dir / "short.h5"));
+    o = rondel_on(
+        dir, ranks,
+        deposition(dir / "from-file", 10) + " --scene.type=file --scene.file=" + test::quoted(dir / "short.h5"));
     expect_stopped(o, 1, "rondel: input error:", tag + ", scene file");
     EXPECT_NE(o.err.find("short.h5"), std::string::npos) << tag << "; stderr:\n" << o.err;
   }
