@@ -10,8 +10,8 @@ Preparation (--prep): servo (inputs/biaxial_prepare.ini, the default) or underco
 the J05 specimen built in --ucm-layers layers to the planar void ratio --ucm-e, then consolidated; its shear runs
 are named ..._ucm). --damping ALPHA runs the shear stage with run.local_damping = ALPHA (names ..._aALPHA).
 Writes OUT/prep_P/ (prepare runs), OUT/MODEL_dDELTA_pP_rRATE/ (shear runs), OUT/table.csv, OUT/table.md,
-OUT/phi_vs_delta.png (--format pdf|svg, --dpi), plus curves from tools/biaxial.py (OUT/curves_*). Existing finished runs (a
-summary.txt present) are reused, so the sweep can be extended. Run lengths: --prep-steps, --strain
+OUT/phi_vs_delta.png (--format pdf|svg, --dpi), plus curves from tools/biaxial.py (OUT/curves_*). Existing finished runs (summary.txt
+with 'status: complete') are reused, so the sweep can be extended. Run lengths: --prep-steps, --strain
 (target axial strain; steps = ln(1/(1-strain)) / (rate dt), the top wall moves at a constant true strain
 rate) or --steps. Exit status: 0 done, 1 bad input or usage, 2 a rondel run failed.
 """
@@ -66,7 +66,20 @@ def probe_dt(cmd, outdir):
 
 
 def done(outdir):
-    return os.path.exists(os.path.join(outdir, "summary.txt"))
+    """The run in OUTDIR ran to its end: its summary.txt says 'status: complete'. A run stopped by a signal
+    writes a summary.txt too (with 'status: stopped by a signal ...') and one that failed writes none: both
+    run again."""
+    try:
+        with open(os.path.join(outdir, "summary.txt")) as f:
+            return any(line.strip() == "status: complete" for line in f)
+    except OSError:
+        return False
+
+
+def ucm_done(d):
+    """tools/undercompaction.py finished in D: its own OUT/summary.txt (written last) and a complete
+    consolidation run."""
+    return os.path.exists(os.path.join(d, "summary.txt")) and done(os.path.join(d, "consolidated"))
 
 
 def main(argv=None):
@@ -142,7 +155,7 @@ def sweep(a):
         if ucm:
             d = os.path.join(a.out, f"ucm_{p/1e3:g}kPa")
             preps[p] = os.path.join(d, "consolidated")
-            if not done(preps[p]):
+            if not ucm_done(d):
                 cmd = [sys.executable, os.path.join(HERE, "undercompaction.py"), "--out", d, "--rondel", a.rondel,
                        "--pressure", f"{p:g}", "--layers", str(a.ucm_layers), "--e", f"{a.ucm_e:g}",
                        "--seed", str(a.ucm_seed)]
@@ -192,7 +205,7 @@ def sweep(a):
     rows = []
     for m, dlt, p, r, d in runs:
         path = os.path.join(d, "measures.csv")
-        if not os.path.exists(path):
+        if not done(d) or not os.path.exists(path):  # a stopped run's measures end early: left out
             continue
         meas = biaxial.read_measures(path)
         res = biaxial.friction_angles(meas["eps_axial"], meas["wall_syy"], meas["wall_sxx"], a.window)
