@@ -7,7 +7,7 @@
 // the file size per disc and the checkpoint overhead at an interval of --every steps. The write is also
 // split into its phases (ordering, copying into blocks, HDF5) by a StateWriter of its own.
 //   mpirun -n P rondel_bench_io [--discs 100000] [--steps 20] [--warmup 5] [--repeat 3] [--every 10000]
-//                               [--output DIR] [--keep]
+//                               [--output DIR] [--keep] [--no-verify]
 // Writes go to the page cache; "write + sync" adds a sync(2) of the file system after the write, the time
 // to get the bytes to the disk.
 #include <unistd.h>
@@ -39,6 +39,7 @@ struct Options {
   long discs = 100000, steps = 20, warmup = 5, repeat = 3, every = 10000;
   std::string output = "rondel-bench-io";
   bool keep = false;
+  bool no_verify = false;  // output.verify_checkpoints = false: no read-back of each checkpoint
 };
 
 Options parse(int argc, char** argv) {
@@ -50,7 +51,8 @@ Options parse(int argc, char** argv) {
                                {"--repeat", &o.repeat},
                                {"--every", &o.every},
                                {"--output", &o.output},
-                               {"--keep", &o.keep}});
+                               {"--keep", &o.keep},
+                               {"--no-verify", &o.no_verify}});
   if (o.discs < 16) throw rondel::ConfigError("rondel_bench_io: --discs must be at least 16");
   if (o.steps < 1 || o.repeat < 1 || o.every < 1 || o.warmup < 0)
     throw rondel::ConfigError("rondel_bench_io: --steps, --repeat and --every must be >= 1, --warmup >= 0");
@@ -80,12 +82,14 @@ rondel::Config lattice_config(const Options& o, long& nx, long& ny) {
   char ini[4096];
   std::snprintf(ini, sizeof ini,
                 "[run]\nsteps = 0\nprogress = false\noutput = %s\noverwrite = true\n[diagnostics]\nevery = 1000000\n"
+                "[output]\nverify_checkpoints = %s\n"
                 "[domain]\nxlo = 0\nxhi = %.17g\nylo = 0\nyhi = %.17g\nperiodic_x = true\nperiodic_y = true\n"
                 "[linear]\nk_n = 1e7\ne = 0.5\n[coulomb]\nk_s = 7.5e6\nmu = 0.5\n"
                 "[contact]\nrolling = wang\n[wang]\nk_r = 2e6\nmu_r = 0.1\n"
                 "[scene]\ntype = lattice_square\nnx = %ld\nny = %ld\nradius = %.17g\nspacing = %.17g\n"
                 "x0 = %.17g\ny0 = %.17g\nomega = 20\nmax_initial_overlap = 0.01\n",
-                o.output.c_str(), nx * spacing, ny * spacing, nx, ny, R, spacing, 0.5 * spacing, 0.5 * spacing);
+                o.output.c_str(), o.no_verify ? "false" : "true", nx * spacing, ny * spacing, nx, ny, R, spacing,
+                0.5 * spacing, 0.5 * spacing);
   return rondel::parse_config_text(ini);
 }
 

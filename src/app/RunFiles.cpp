@@ -269,7 +269,13 @@ void RunFiles::write_results(const std::string& summary, const std::string& json
   for (const auto& n : names) files += (files.empty() ? "\"" : ", \"") + n + "\"";
   std::ofstream summary_json(dir / "summary.json");
   summary_json << json << ",\n  \"output_files\": [" << files << "]\n}\n";
-  close_checked(summary_json, dir / "summary.json");
+  try {
+    close_checked(summary_json, dir / "summary.json");
+  } catch (const IoError&) {
+    std::error_code ec;
+    fs::remove(dir / "summary.txt", ec);  // its status line must not stand for a run that ended in an error
+    throw;
+  }
 }
 
 }  // namespace rondel

@@ -138,6 +138,7 @@ TEST(IoFailures, TextOutputsThatCannotBeWrittenAreReported) {
       expect_stopped(o, 5, "rondel: I/O error: cannot write '" + (run / file).string() + "'", tag);
       EXPECT_FALSE(fs::exists(run / file)) << tag;
       EXPECT_FALSE(fs::exists(run / "summary.json")) << tag << ": a failed run wrote summary.json";
+      EXPECT_FALSE(fs::exists(run / "summary.txt")) << tag << ": a failed run wrote summary.txt";
     }
   }
 }
