@@ -142,8 +142,13 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode, const Communicator& comm,
     error = std::make_exception_ptr(
         InputError("cannot open the HDF5 file '" + path + "' (missing, truncated or not an HDF5 file)"));
   // A rank that opened the file while another failed keeps its handle open: closing it would wait for the
-  // rank that has none.
-  settle(comm_, error);
+  // rank that has none. The space reserved for a file that could not be created goes.
+  try {
+    settle(comm_, error);
+  } catch (...) {
+    if (reserve) std::remove(path.c_str());
+    throw;
+  }
   xfer_ = H5Pcreate(H5P_DATASET_XFER);
   H5Pset_dxpl_mpio(xfer_, H5FD_MPIO_COLLECTIVE);
   // The create emptied the file: reserved again, for the writes to come.
