@@ -263,12 +263,11 @@ def plot(a, rows):
         if not math.isnan(b):
             ax.axvspan(b - (0 if math.isnan(bs) else bs), b + (0 if math.isnan(bs) else bs), alpha=0.12,
                        color=ax.lines[-1].get_color())
-    ax.set_yticks(y, [f"{r['variant']} (n {r['n']})" for r in rows], fontsize=7)
+    ax.set_yticks(y, [f"{'baseline' if k == 0 else r['variant']} (n {r['n']})" for k, r in enumerate(rows)], fontsize=7)
     ax.set_xlabel("friction angle at delta = 0, 200 kPa [deg]")
     ax.grid(alpha=0.3, axis="x")
     ax.legend(fontsize=8)
-    ax.set_title("J05 biaxial set-up: one factor at a time against the baseline (band: baseline mean ± sd)",
-                 fontsize=9)
+    ax.set_title("J05 set-up, one factor at a time (bars: ± 1 sd; bands: baseline)", fontsize=9)
     print("wrote " + save_figure(fig, os.path.join(a.out, "sensitivity"), a))
 
 
