@@ -19,6 +19,7 @@ Variants (subfolders of OUT; each one a biaxial_sweep.py output folder):
   e028      target e 0.28 (consolidation to 200 kPa ends near 0.25 to 0.27)
   e031      target e 0.31 (to end near 0.28 after the consolidation)
   e028mu05  target e 0.28 with the layer stages at mu 0.5 (the shear stage's; looser layers)
+  e028c     as e028mu05, and the consolidation at mu 1 (a preparation friction only: the shear stage keeps 0.5)
   n4000     4000 discs in a 360 mm wide box (the baseline's aspect ratio, width and height x 2); --size-samples
             seeds; the shear domain widened (domain.xhi 0.45, domain.yhi 0.7)
   aspect1   1008 discs in a 231 mm wide box: height / width about 1 instead of 1.65
@@ -56,8 +57,8 @@ QUANTITIES = ("e0", "phi_peak", "phi_res", "phi_peak_early", "phi_peak_lw", "phi
 
 
 def variants(a):
-    """(factor, label, subfolder, sweep options, layer-stage mu or None, link the base preparations, rate,
-    damping) of every variant, the baseline first."""
+    """(factor, label, subfolder, sweep options, undercompaction.py options of a preparation run here (None: the
+    sweep prepares), link the base preparations, rate, damping) of every variant, the baseline first."""
     e, W, N = a.e, a.width, a.count
     v = [("baseline", f"e {e:g}, {N} discs, {W * 1e3:g} mm wide, 0.1 /s, alpha 0, walls mu 0", "base", [],
           None, False, 0.1, 0.0)]
@@ -67,11 +68,15 @@ def variants(a):
               ("rate", "0.2 /s", "base", ["--rate", "0.2"], None, False, 0.2, 0.0),
               ("walls", "wall friction 0.5", "wallmu", ["--extra=--wall_contact.mu=0.5"], None, True, 0.1, 0.0)]
     else:
-        v += [("preparation", "layer mu 0.1 (target e 0.25)", "mu01", [], 0.1, False, 0.1, 0.0),
-              ("void_ratio", "target e 0.22 (layer mu 0.1)", "e022", ["--ucm-e", "0.22"], 0.1, False, 0.1, 0.0),
+        v += [("preparation", "layer mu 0.1 (target e 0.25)", "mu01", [], ["--mu", "0.1"], False, 0.1, 0.0),
+              ("void_ratio", "target e 0.22 (layer mu 0.1)", "e022", ["--ucm-e", "0.22"], ["--mu", "0.1"], False,
+               0.1, 0.0),
               ("void_ratio", "target e 0.28", "e028", ["--ucm-e", "0.28"], None, False, 0.1, 0.0),
               ("void_ratio", "target e 0.31", "e031", ["--ucm-e", "0.31"], None, False, 0.1, 0.0),
-              ("void_ratio", "target e 0.28 (layer mu 0.5)", "e028mu05", ["--ucm-e", "0.28"], 0.5, False, 0.1, 0.0),
+              ("void_ratio", "target e 0.28 (layer mu 0.5)", "e028mu05", ["--ucm-e", "0.28"], ["--mu", "0.5"], False,
+               0.1, 0.0),
+              ("void_ratio", "target e 0.28 (layer mu 0.5, consolidation mu 1)", "e028c", ["--ucm-e", "0.28"],
+               ["--mu", "0.5", "--consolidate-mu", "1"], False, 0.1, 0.0),
               ("rate", "0.2 /s", "base", ["--rate", "0.2"], None, False, 0.2, 0.0),
               ("rate", "0.05 /s", "base", ["--rate", "0.05"], None, False, 0.05, 0.0),
               ("damping", "local damping 0.7", "base", ["--damping", "0.7"], None, False, 0.1, 0.7),
@@ -133,10 +138,10 @@ def option(opts, key, default):
     return vals[-1] if vals else default
 
 
-def prepare_direct(a, sub, opts, mu, seeds):
-    """Preparations with another layer-stage friction MU than undercompaction.py's default: run it here, into
-    the folder biaxial_sweep.py would use (it then reuses them). Only the preparation's own options: the
-    shear stage's --extra (e.g. a wider domain) must not reach it."""
+def prepare_direct(a, sub, opts, prep, seeds):
+    """Preparations with undercompaction.py options PREP that biaxial_sweep.py does not pass (the layer and
+    consolidation friction), or without the shear stage's --extra (a wider domain, which the preparation sets
+    itself): run here, into the folder biaxial_sweep.py would use (it then reuses them)."""
     count, width = option(opts, "--ucm-count", str(a.count)), option(opts, "--ucm-width", repr(a.width))
     e = option(opts, "--ucm-e", f"{a.e:g}")
     for seed in seeds:
@@ -146,7 +151,7 @@ def prepare_direct(a, sub, opts, mu, seeds):
         os.makedirs(os.path.dirname(d), exist_ok=True)
         cmd = [sys.executable, os.path.join(HERE, "undercompaction.py"), "--out", d, "--rondel", a.rondel,
                "--pressure", "200000", "--layers", str(a.layers), "--e", e, "--seed", str(seed), "--count", count,
-               "--width", width, "--extra=--run.max_overlap=0.2"] + (["--mu", f"{mu:g}"] if mu is not None else [])
+               "--width", width, "--extra=--run.max_overlap=0.2"] + prep
         with open(d + ".log", "w") as f:
             rc = subprocess.call(cmd, stdout=f, stderr=subprocess.STDOUT, cwd=ROOT)
         print(f"prepare {d}: rc {rc}", flush=True)
@@ -171,7 +176,7 @@ def study(a):
     vs = variants(a)
     failed = []
     # The variants that share the base preparations: link them (wallmu); run the base ones first.
-    for factor, label, sub, opts, mu, link, rate, damping in vs:
+    for factor, label, sub, opts, prep, link, rate, damping in vs:
         n = a.size_samples if sub == "n4000" else a.samples
         vseeds = [a.ucm_seed + k for k in range(n)]
         from_table = a.baseline_table and sub == "base" and rate in (0.1, 0.05) and damping == 0.0
@@ -183,8 +188,8 @@ def study(a):
                 dst = os.path.join(a.out, sub, f"ucm_200kPa_s{s}")
                 if not os.path.lexists(dst):
                     os.symlink(os.path.join("..", "base", f"ucm_200kPa_s{s}"), dst)
-        if mu is not None or sub == "n4000":
-            prepare_direct(a, sub, opts, mu, vseeds)
+        if prep is not None or sub == "n4000":
+            prepare_direct(a, sub, opts, prep or [], vseeds)
         log = os.path.join(a.out, f"{factor}_{sub}_{rate:g}_{damping:g}.log")
         with open(log, "w") as f:
             rc = subprocess.call(sweep_cmd(a, sub, opts, n), stdout=f, stderr=subprocess.STDOUT, cwd=ROOT)
@@ -193,7 +198,7 @@ def study(a):
             failed.append(label)
 
     runs, rows = [], []
-    for factor, label, sub, opts, mu, link, rate, damping in vs:
+    for factor, label, sub, opts, prep, link, rate, damping in vs:
         n = a.size_samples if sub == "n4000" else a.samples
         vseeds = [a.ucm_seed + k for k in range(n)]
         if a.baseline_table and sub == "base" and rate in (0.1, 0.05) and damping == 0.0:
