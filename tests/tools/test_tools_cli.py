@@ -123,6 +123,7 @@ def main():
         user_error("repose", run, "--dpi", "0")
         user_error("error_vs_runtime", "--rondel", missing)
         user_error("biaxial_sweep", "--rondel", missing)
+        user_error("biaxial_sensitivity", "--rondel", missing)
         user_error("h5info", os.path.join(run, "log.txt"))
         rc, out, err = tool("repose", os.path.join(run, "checkpoint_0000000300.h5"), "--out", f"{tmp}/flat", "--no-plot")
         check("repose on a flat layer: exit 2 (no heap), one line", rc == 2 and "Traceback" not in err
