@@ -24,25 +24,12 @@ const fs::path kSource = RONDEL_SOURCE_DIR;
 // Seconds before `timeout` stops a command: a hang fails the test instead of the CTest timeout.
 constexpr int kLimit = 120;
 
-bool have(const std::string& program) {
-  return std::system(("command -v " + program + " > /dev/null 2>&1").c_str()) == 0;
-}
-
-// `mpirun -n RANKS rondel ARGS` in `dir` with a clean MPI environment (this test may itself run under
-// mpirun; the run-as-root permissions stay).
 Outcome rondel_on(const TempDir& dir, int ranks, const std::string& args) {
-  std::string env = test::without_mpi_launch(true);
-  if (geteuid() == 0) env += " OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1";
-  return test::run_in(dir, env,
-                      "timeout " + std::to_string(kLimit) + " mpirun -n " + std::to_string(ranks) +
-                          " --oversubscribe " + test::quoted(test::rondel_executable()) + " " + args);
+  return test::mpirun_rondel(dir, ranks, args, "", kLimit);
 }
 
-std::size_t count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-  return n;
-}
+bool have(const std::string& program) { return test::have_program(program); }
+std::size_t count(const std::string& text, const std::string& what) { return test::occurrences(text, what); }
 
 TEST(ExitCodes, ErrorOnTheLastRankOnlyIsPrintedOnceWithItsCode) {
   if (!have("mpirun")) GTEST_SKIP() << "mpirun is not installed";

@@ -34,25 +34,12 @@ using test::TempDir;
 const fs::path kSource = RONDEL_SOURCE_DIR;
 constexpr int kLimit = 120;  // seconds before `timeout` stops a command: a hang fails the test
 
-bool have(const std::string& program) {
-  return std::system(("command -v " + program + " > /dev/null 2>&1").c_str()) == 0;
-}
-
-// `mpirun -n RANKS rondel ARGS` in `dir` with a clean MPI environment plus `env` (VAR=value ...).
 Outcome rondel_on(const TempDir& dir, int ranks, const std::string& args, const std::string& env = "") {
-  std::string e = test::without_mpi_launch(true);
-  if (geteuid() == 0) e += " OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1";
-  if (!env.empty()) e += " " + env;
-  return test::run_in(dir, e,
-                      "timeout " + std::to_string(kLimit) + " mpirun -n " + std::to_string(ranks) +
-                          " --oversubscribe " + test::quoted(test::rondel_executable()) + " " + args);
+  return test::mpirun_rondel(dir, ranks, args, env, kLimit);
 }
 
-std::size_t count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-  return n;
-}
+bool have(const std::string& program) { return test::have_program(program); }
+std::size_t count(const std::string& text, const std::string& what) { return test::occurrences(text, what); }
 
 // The deposition scene, small and short: a checkpoint every 50 steps, `steps` steps, into `run`.
 std::string deposition(const fs::path& run, int steps = 150) {

@@ -1,6 +1,7 @@
 #pragma once
 // Test support: running the real executables from a test, as a shell command in a scratch directory.
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -56,6 +57,31 @@ inline Outcome run_in(const TempDir& dir, const std::string& env, const std::str
   o.out = read_file(dir / "stdout.txt");
   o.err = read_file(dir / "stderr.txt");
   return o;
+}
+
+// Whether `program` is on the PATH.
+inline bool have_program(const std::string& program) {
+  return std::system(("command -v " + program + " > /dev/null 2>&1").c_str()) == 0;
+}
+
+// `mpirun -n RANKS rondel ARGS` in `dir` under `timeout LIMIT` (a hang fails the caller's test instead of the
+// CTest timeout), with a clean MPI environment (the caller may itself run under mpirun; the run-as-root
+// permissions stay) plus `env` (" VAR=value ...").
+inline Outcome mpirun_rondel(const TempDir& dir, int ranks, const std::string& args, const std::string& env = "",
+                             int limit = 120) {
+  std::string e = without_mpi_launch(true);
+  if (geteuid() == 0) e += " OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1";
+  if (!env.empty()) e += " " + env;
+  return run_in(dir, e,
+                "timeout " + std::to_string(limit) + " mpirun -n " + std::to_string(ranks) + " --oversubscribe " +
+                    quoted(rondel_executable()) + " " + args);
+}
+
+// How often `what` occurs in `text`.
+inline std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
 }
 
 }  // namespace rondel::test

@@ -21,6 +21,15 @@ def make_run(rondel, out):
     return out
 
 
+def run_tool(tool, *args, timeout=600):
+    """Runs the Python tool TOOL with ARGS (MPI allowed as root): (exit code, stdout, stderr)."""
+    import sys
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    p = subprocess.run([sys.executable, tool] + [str(x) for x in args], capture_output=True, text=True, env=env,
+                       timeout=timeout)
+    return p.returncode, p.stdout, p.stderr
+
+
 class Checks:
     """PASS/FAIL lines, one per check, and the closing 'N passed, N failed' line with its exit status."""
 

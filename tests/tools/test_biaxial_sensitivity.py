@@ -15,23 +15,19 @@ import csv
 import math
 import os
 import shutil
-import subprocess
 import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOOL = os.path.abspath(os.path.join(HERE, "..", "..", "tools", "biaxial_sensitivity.py"))
 sys.path.insert(0, HERE)
-from rondel_run import Checks  # noqa: E402
+from rondel_run import Checks, run_tool  # noqa: E402
 
 check = Checks()
 
 
 def tool(*args):
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    p = subprocess.run([sys.executable, TOOL] + [str(x) for x in args], capture_output=True, text=True, env=env,
-                       timeout=600)
-    return p.returncode, p.stdout, p.stderr
+    return run_tool(TOOL, *args)
 
 
 def main():
