@@ -459,9 +459,9 @@ def launch_all(jobs, n, failed):
                 failed.append(d)
 
 
-def check_preset(out, preset):
+def check_preset(out, preset, write=True):
     """OUT/sweep.txt names the preset (quick or full) the sweep's runs were made with: a sweep into OUT with the
-    other preset is refused (it would reuse runs of another size)."""
+    other preset is refused (it would reuse runs of another size). WRITE: write it when there is none."""
     path = os.path.join(out, "sweep.txt")
     line = f"preset: {preset}"
     if os.path.isfile(path):
@@ -469,7 +469,7 @@ def check_preset(out, preset):
             old = f.readline().strip()
         if old != line:
             raise UsageError(f"{out} holds a sweep made with '{old}', not '{line}': use another --out")
-    else:
+    elif write:
         with open(path, "w") as f:
             f.write(line + "\n")
 
@@ -499,7 +499,7 @@ def sweep(a):
         quick = []
     out = os.path.abspath(a.out)
     os.makedirs(out, exist_ok=True)
-    check_preset(out, "quick" if a.quick else "full")
+    check_preset(out, "quick" if a.quick else "full", write=not a.collect_only)
     fill = os.path.join(out, "fill")
     dirs = {law: os.path.join(out, law) for law in laws}
     failed = []
