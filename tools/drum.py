@@ -26,8 +26,9 @@ against time). PREFIX defaults to RUN_DIR/drum.
 
 --sweep runs inputs/drum.ini for every law of --laws and every mu_r of --mu-r (mu_r = 0 is one run with
 contact.rolling = none, shared by the laws) into DIR/LAW_muMU/ (DIR/none/), --jobs runs at a time, each on
---ranks ranks; a run that finished before (its summary.txt exists) is reused, so a sweep stopped half way
-resumes where it stopped. Each run is measured as above; the sweep writes DIR/table.csv, DIR/table.md and
+--ranks ranks; a run that finished before (its summary.txt says 'status: complete') is reused and any other
+(stopped by a signal, killed, failed) runs again from its start, so a sweep stopped half way resumes where it
+stopped. Each run is measured as above; the sweep writes DIR/table.csv, DIR/table.md and
 DIR/angle_vs_mu_r.png. The rolling law's parameters: wang k_r = 2.857e5 N/m (inputs/drum.ini) and mu_r;
 constant_torque mu_r (f_lim its default 0.08); any other law takes its parameters from --set LAW.KEY=VALUE.
 Exit status: 0 done, 1 a missing or unreadable input or a bad option, 2 nothing measurable or a run failed.
@@ -287,7 +288,13 @@ def run_dir_name(law, mu_r):
 
 
 def done(d):
-    return os.path.exists(os.path.join(d, "summary.txt"))
+    """The run in D ran to its end: its summary.txt says 'status: complete'. A run stopped by a signal writes a
+    summary.txt too ('status: stopped by a signal ...') and one that failed writes none: both run again."""
+    try:
+        with open(os.path.join(d, "summary.txt")) as f:
+            return any(line.strip() == "status: complete" for line in f)
+    except OSError:
+        return False
 
 
 def launch(cmd, d, log):

@@ -4,6 +4,8 @@
   python3 tools/sandpile.py RUN_DIR [RUN_DIR ...] [--out PREFIX] [--label TEXT ...] [--t0 SECONDS]
                             [--floor Y] [--chamber-top Y] [--axis X] [--window 0.2 0.8] [--tol METRES]
                             [--hline HEIGHT LABEL ...]
+  python3 tools/sandpile.py --sweep [--out DIR] [--laws jiang_plastic,constant_torque] [--jobs 2] [--ranks 1]
+                            [--steps N | LAW=N,...] [--quick] [--collect-only] [--rondel build/rondel]
 
 RUN_DIR: a discharge run (inputs/sandpile_discharge.ini, inputs/sandpile_discharge_constant.ini); one
 curve per run (e.g. one per rolling law). Frames: every snapshot_*.h5 (needs position and radius in
@@ -39,9 +41,30 @@ PREFIX_pile_<k>.png (the final pile of run k with its surface points and flank f
 --dpi, --no-plot (CSV only).
 
 PREFIX defaults to RUN_DIR/sandpile for one run, ./sandpile for several. Files are read with tools/rondel
-(docs/python.md). Exit status: 0 done, 1 a missing or unreadable input or a bad option, 2 no pile could
-be measured in the final frame of a run.
+(docs/python.md).
+
+--sweep runs the study: inputs/sandpile_fill.ini once into DIR/fill, then the discharge of every law of --laws
+(jiang_plastic: inputs/sandpile_discharge.ini, constant_torque: inputs/sandpile_discharge_constant.ini) from the
+filled hopper (--scene.file=DIR/fill) into DIR/LAW, --jobs at a time on --ranks ranks each, every run with a
+checkpoint every --checkpoint-every steps (default 50,000 = 1 s). --steps sets the discharge's length (default
+the scene's 750,000 = 15 s; e.g. --steps constant_torque=1750000 runs that law to t = 39.5 s). A run counts as
+finished when its summary.txt says 'status: complete' and its newest checkpoint is at the wanted step: it is
+reused. A run that is not (stopped by a signal, killed, or finished at fewer steps) is resumed from its newest
+checkpoint with rondel --resume (the contact history kept); one without a checkpoint runs afresh, and so does
+every discharge after the fill has run (again). Run the same command again to resume or extend a sweep;
+--collect-only runs nothing and measures the discharges complete so far. Every complete discharge is measured
+as above: DIR/sandpile_height.csv, DIR/sandpile_summary.csv, DIR/sandpile_height.png (all laws on one figure),
+DIR/sandpile_pile_LAW.png, and DIR/table.csv (one row per law: final heights, settling, drift, angles of
+repose, kinetic energy, the newest checkpoint's step and the wall time of the run's last rondel call).
+DIR/sweep.txt names the preset; a sweep into DIR with the other preset is refused. rondel's output goes to
+DIR/fill.log and DIR/LAW.log.
+--quick: the CI preset (a few seconds per run): 300 discs, 30,000 steps (0.6 s) of filling, 50,000 steps (1 s)
+of discharge, a snapshot every 2,500 steps, a checkpoint every 25,000, --drift 0.4.
+
+Exit status: 0 done, 1 a missing or unreadable input or a bad option, 2 no pile could be measured in the final
+frame of a run, or a run of the sweep failed (the table holds the others).
 """
+import concurrent.futures as cf
 import csv
 import math
 import os
@@ -49,9 +72,13 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from rondel import CheckFailed, RondelFileError, UsageError, open_file, open_run  # noqa: E402
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+from rondel import CheckFailed, Config, RondelFileError, UsageError, open_file, open_run, step_of_name  # noqa: E402
 from rondel.cli import ArgumentParser, add_figure_options, check_figure_options, pyplot, run_tool, save_figure  # noqa: E402,E501
+from biaxial_sweep import done, wall_seconds  # noqa: E402
+from biaxial_sweep import run as launch  # noqa: E402
 import repose  # noqa: E402
 
 TOOL = "sandpile"
@@ -126,7 +153,6 @@ def frames(run):
     """Paths of the frames in step order: every snapshot, and the newest checkpoint if it is later."""
     snaps = run.snapshot_paths()
     cps = run.checkpoint_paths()
-    from rondel import step_of_name
     out = list(snaps)
     if cps and (not snaps or step_of_name(cps[-1]) > step_of_name(snaps[-1])):
         out.append(cps[-1])
@@ -318,6 +344,23 @@ def print_summary(s):
         print(f"  kinetic energy at the end (diagnostics.csv): {s['ke_end']:.3g} J")
 
 
+def write_outputs(prefix, results, a, names=None):
+    """PREFIX_height.csv, PREFIX_summary.csv and the figures (PREFIX_height, PREFIX_pile_<name>, name = the run's
+    index unless NAMES gives one per result); prints the summaries."""
+    os.makedirs(os.path.dirname(os.path.abspath(prefix)), exist_ok=True)
+    write_csvs(prefix, results)
+    figures = []
+    if not a.no_plot:
+        figures.append(plot_heights(prefix, results, a))
+        for k, r in enumerate(results):
+            pos, radius, rep = r["final"]
+            name = names[k] if names else r["index"]
+            figures.append(repose.plot(f"{prefix}_pile_{name}", pos, radius, rep, r["summary"]["label"], a))
+    for r in results:
+        print_summary(r["summary"])
+    print(f"wrote {prefix}_height.csv, {prefix}_summary.csv" + "".join(", " + f for f in figures))
+
+
 def analyse(a):
     if a.label and len(a.label) != len(a.runs):
         raise UsageError(f"--label: {len(a.label)} labels for {len(a.runs)} runs")
@@ -326,25 +369,203 @@ def analyse(a):
             raise RondelFileError(path, "no such run directory")
     if a.out is None:
         a.out = os.path.join(a.runs[0], "sandpile") if len(a.runs) == 1 else "sandpile"
-    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
     results = [analyse_run(p, a, k) for k, p in enumerate(a.runs)]
-    write_csvs(a.out, results)
-    figures = []
-    if not a.no_plot:
-        figures.append(plot_heights(a.out, results, a))
-        for r in results:
-            pos, radius, rep = r["final"]
-            figures.append(repose.plot(f"{a.out}_pile_{r['index']}", pos, radius, rep, r["summary"]["label"], a))
-    for r in results:
-        print_summary(r["summary"])
-    print(f"wrote {a.out}_height.csv, {a.out}_summary.csv" + "".join(", " + f for f in figures))
+    write_outputs(a.out, results, a)
+    return 0
+
+
+# --------------------------------------------------------------------------------------------- sweep
+
+DISCHARGE = {"jiang_plastic": "sandpile_discharge.ini", "constant_torque": "sandpile_discharge_constant.ini"}
+FILL = "sandpile_fill.ini"
+CHECKPOINT_EVERY = 50000  # 1 s of simulated time at dt = 2e-5 s
+# --quick: 300 discs (250 + 50, the scene's fractions) in the scene's region, 0.6 s of filling, 1 s of discharge,
+# a snapshot every 0.05 s, a checkpoint half way through the discharge; a few seconds of computing per run.
+QUICK = dict(count=300, fill_steps=30000, steps=50000, snapshot_every=2500, checkpoint_every=25000, drift=0.4)
+TABLE_COLUMNS = ["law", "label", "steps", "t0", "t_end", "height_top", "height_centre", "height_axis", "settled_at",
+                 "drift", "drift_window", "left", "right", "mean", "discs", "discs_above", "discs_pile", "ke_end",
+                 "wall_s", "run"]
+
+
+def parse_steps(text, laws, default):
+    """{law: discharge steps} from --steps: 'N' for every law and/or 'LAW=N' for one (LAW=N wins over N, in any
+    order); the laws not named keep DEFAULT[law]."""
+    every, one = {}, {}
+    for item in (x.strip() for x in (text or "").split(",")):
+        if not item:
+            continue
+        law, _, value = item.rpartition("=")
+        try:
+            n = int(value)
+        except ValueError:
+            raise UsageError(f"--steps '{text}': '{item}' is not N or LAW=N") from None
+        if n < 1:
+            raise UsageError(f"--steps '{text}': the step count {n} must be >= 1")
+        if law and law not in laws:
+            raise UsageError(f"--steps '{text}': '{law}' is not one of the sweep's laws ({','.join(laws)})")
+        if law:
+            one[law] = n
+        else:
+            every = {name: n for name in laws}
+    return {**default, **every, **one}
+
+
+def scene_steps(ini):
+    """run.steps of an input file."""
+    try:
+        return int(Config.from_file(ini).get("run", "steps", ""))
+    except ValueError:
+        raise RondelFileError(ini, "has no integer run.steps") from None
+
+
+def reached(d):
+    """The step of the newest checkpoint in D (-1 without one)."""
+    cps = open_run(d).checkpoint_paths() if os.path.isdir(d) else []
+    return step_of_name(cps[-1]) if cps else -1
+
+
+def stage(a, name, d, fresh_cmd, target, redo=False):
+    """(job or None, what): the rondel call that brings run D to TARGET steps. Reused when it is complete at
+    TARGET (or beyond) and REDO is not set; resumed (rondel --resume D --run.steps=TARGET, the contact history
+    kept) when it holds a checkpoint below TARGET: a run stopped by a signal, or killed, or complete at fewer
+    steps (extended); otherwise run afresh into D."""
+    prefix = ([a.mpiexec, "-n", str(a.ranks), "--oversubscribe"] if a.ranks > 1 else []) + [a.rondel]
+    step = reached(d)
+    if not redo and done(d) and step >= target:
+        return None, f"{name}: complete at step {step}, reused"
+    if not redo and 0 <= step < target:
+        cmd = prefix + ["--resume", d, f"--run.steps={target}", "--run.progress=false",
+                        f"--output.checkpoint_every={a.checkpoint_every}"] + a.rondel_arg
+        return (cmd, d + ".log", d), f"{name}: resumed from step {step} to {target}"
+    cmd = prefix + fresh_cmd + [f"--run.output={d}", "--run.overwrite=true", "--run.progress=false",
+                                f"--run.steps={target}", f"--output.checkpoint_every={a.checkpoint_every}"]
+    return (cmd, d + ".log", d), f"{name}: run afresh ({target} steps)"
+
+
+def launch_all(jobs, n, failed):
+    """Run JOBS [(cmd, log, dir)] N at a time; a run that exits non-zero or ends without 'status: complete'
+    is reported and added to FAILED."""
+    if not jobs:
+        return
+    with cf.ThreadPoolExecutor(n) as ex:
+        futures = {ex.submit(launch, cmd, log): (log, d) for cmd, log, d in jobs}
+        for fu in cf.as_completed(futures):
+            log, d = futures[fu]
+            rc, secs = fu.result()
+            ok = rc == 0 and done(d)
+            print(f"{os.path.basename(d)}: {'done' if ok else 'FAILED'} (exit {rc}) in {secs:.1f} s"
+                  + ("" if ok else f": see {log}"), flush=True)
+            if not ok:
+                failed.append(d)
+
+
+def check_preset(out, preset, write=True):
+    """OUT/sweep.txt names the preset (quick or full) the sweep's runs were made with: a sweep into OUT with the
+    other preset is refused (it would reuse runs of another size). WRITE: write it when there is none."""
+    path = os.path.join(out, "sweep.txt")
+    line = f"preset: {preset}"
+    if os.path.isfile(path):
+        with open(path) as f:
+            old = f.readline().strip()
+        if old != line:
+            raise UsageError(f"{out} holds a sweep made with '{old}', not '{line}': use another --out")
+    elif write:
+        with open(path, "w") as f:
+            f.write(line + "\n")
+
+
+def sweep(a):
+    laws = list(dict.fromkeys(x.strip() for x in a.laws.split(",") if x.strip()))
+    bad = [x for x in laws if x not in DISCHARGE]
+    if bad or not laws:
+        raise UsageError(f"--laws: {','.join(bad) or 'none given'}: choose from {','.join(DISCHARGE)}")
+    if a.jobs < 1 or a.ranks < 1 or a.checkpoint_every < 1:
+        raise UsageError("--jobs, --ranks and --checkpoint-every must be >= 1")
+    if not a.collect_only and not os.access(a.rondel, os.X_OK):
+        raise UsageError(f"the rondel executable '{a.rondel}' does not exist or is not executable (build it: "
+                         "bash tools/setup.sh rondel, or pass --rondel)")
+    inputs = {law: os.path.join(a.inputs, DISCHARGE[law]) for law in laws}
+    fill_ini = os.path.join(a.inputs, FILL)
+    for ini in [fill_ini] + list(inputs.values()):
+        if not os.path.isfile(ini):
+            raise RondelFileError(ini, "no such input file")
+    if a.quick:
+        fill_steps = QUICK["fill_steps"]
+        steps = parse_steps(a.steps, laws, {law: QUICK["steps"] for law in laws})
+        quick = [f"--scene.count={QUICK['count']}", f"--output.snapshot_every={QUICK['snapshot_every']}"]
+    else:
+        fill_steps = scene_steps(fill_ini)
+        steps = parse_steps(a.steps, laws, {law: scene_steps(inputs[law]) for law in laws})
+        quick = []
+    out = os.path.abspath(a.out)
+    os.makedirs(out, exist_ok=True)
+    check_preset(out, "quick" if a.quick else "full", write=not a.collect_only)
+    fill = os.path.join(out, "fill")
+    dirs = {law: os.path.join(out, law) for law in laws}
+    failed = []
+
+    # Stage 1: the fill (gate closed), once.
+    job, what = stage(a, "fill", fill, [fill_ini] + quick + a.rondel_arg, fill_steps)
+    new_fill = job is not None and not a.collect_only
+    if a.collect_only:
+        print("--collect-only: running nothing", flush=True)
+    else:
+        print(what, flush=True)
+        launch_all([job] if job else [], 1, failed)
+        if failed:
+            raise CheckFailed(f"the fill stage failed: see {fill}.log")
+
+    # Stage 2: one discharge per law from the filled hopper; after a new fill every discharge runs afresh.
+    jobs = []
+    for law in laws:
+        cmd = [inputs[law], f"--scene.file={fill}"] + quick + a.rondel_arg
+        job, what = stage(a, law, dirs[law], cmd, steps[law], redo=new_fill)
+        if a.collect_only:
+            print(f"{law}: {'complete' if done(dirs[law]) else 'not complete'} at step {reached(dirs[law])}",
+                  flush=True)
+        else:
+            print(what, flush=True)
+            if job:
+                jobs.append(job)
+    if not a.collect_only:
+        launch_all(jobs, a.jobs, failed)
+
+    # Measure every complete discharge.
+    measured, errors = [], []
+    for law in laws:
+        if not done(dirs[law]):
+            continue
+        try:
+            r = analyse_run(dirs[law], a, len(measured))
+        except CheckFailed as e:
+            errors.append(str(e))
+            print(f"{TOOL}: {law}: {e}", file=sys.stderr)
+            continue
+        measured.append((law, r))
+    if measured:
+        write_outputs(os.path.join(out, "sandpile"), [r for _, r in measured], a, [law for law, _ in measured])
+    with open(os.path.join(out, "table.csv"), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(TABLE_COLUMNS)
+        for law, r in measured:
+            s = dict(r["summary"], law=law, steps=reached(dirs[law]), wall_s=wall_seconds(dirs[law]))
+            w.writerow([fmt(s[c]) for c in TABLE_COLUMNS])
+    print(f"wrote {os.path.join(out, 'table.csv')} ({len(measured)} of {len(laws)} laws)", flush=True)
+    if failed:
+        raise CheckFailed(f"{len(failed)} run(s) failed: " + ", ".join(failed))
+    if errors:
+        raise CheckFailed(f"{len(errors)} run(s) could not be measured: " + "; ".join(errors))
+    if not measured and not a.collect_only:
+        raise CheckFailed("no discharge of the sweep is complete")
     return 0
 
 
 def main(argv=None):
     ap = ArgumentParser(TOOL, description=__doc__)
-    ap.add_argument("runs", nargs="+", metavar="RUN_DIR", help="discharge run directories (one curve each)")
-    ap.add_argument("--out", default=None, help="output prefix (default RUN_DIR/sandpile, or ./sandpile)")
+    ap.add_argument("runs", nargs="*", metavar="RUN_DIR", help="discharge run directories (one curve each)")
+    ap.add_argument("--out", default=None,
+                    help="output prefix (default RUN_DIR/sandpile, or ./sandpile); with --sweep the sweep's directory "
+                         "(default rondel-output/sandpile_sweep)")
     ap.add_argument("--label", nargs="+", default=None, help="one label per run (default: the rolling law)")
     ap.add_argument("--t0", type=float, default=None,
                     help="time [s] added to the run's times (default: the time of the scene.file state)")
@@ -356,12 +577,38 @@ def main(argv=None):
                     help="flank fit window, fractions of the pile height (default 0.2 0.8)")
     ap.add_argument("--tol", type=float, default=None,
                     help="settling tolerance on the height [m] (default: the mean diameter)")
-    ap.add_argument("--drift", type=float, default=2.0, help="window [s] of the final height change (default 2)")
+    ap.add_argument("--drift", type=float, default=None,
+                    help="window [s] of the final height change (default 2; 0.4 with --quick)")
     ap.add_argument("--hline", nargs=2, action="append", metavar=("HEIGHT", "LABEL"), default=None,
                     help="a reference height [m] drawn across the height plot (repeatable), e.g. a published value")
+    g = ap.add_argument_group("sweep (--sweep)")
+    g.add_argument("--sweep", action="store_true", help="run the fill and the discharge of every law, then measure")
+    g.add_argument("--laws", default=",".join(DISCHARGE), help="rolling laws, comma-separated (default: both)")
+    g.add_argument("--jobs", type=int, default=2, help="discharge runs at a time (default 2)")
+    g.add_argument("--ranks", type=int, default=1, help="MPI ranks per run (default 1)")
+    g.add_argument("--steps", default="",
+                   help="discharge steps: N for every law, or LAW=N,... (default: the scene's run.steps)")
+    g.add_argument("--checkpoint-every", type=int, default=None,
+                   help=f"output.checkpoint_every of every run (default {CHECKPOINT_EVERY}, "
+                        f"{QUICK['checkpoint_every']} with --quick)")
+    g.add_argument("--quick", action="store_true",
+                   help="tiny preset for CI: 300 discs, 0.6 s of filling, 1 s of discharge")
+    g.add_argument("--collect-only", action="store_true",
+                   help="run nothing: measure the discharges complete so far (e.g. beside a running sweep)")
+    g.add_argument("--rondel", default=os.path.join(ROOT, "build", "rondel"),
+                   help="the rondel executable (default: build/rondel of this checkout)")
+    g.add_argument("--mpiexec", default="mpirun", help="MPI launcher for --ranks > 1 (default mpirun)")
+    g.add_argument("--inputs", default=os.path.join(ROOT, "inputs"),
+                   help=f"folder of {FILL} and the discharge scenes (default: inputs/ of this checkout)")
+    g.add_argument("--rondel-arg", action="append", default=[], metavar="--SECTION.KEY=VALUE",
+                   help="an extra option of every run (repeatable), e.g. --rondel-arg=--neighbour.skin=0.003")
     add_figure_options(ap, dpi=150)
     a = ap.parse_args(argv)
     check_figure_options(ap, a)
+    if a.drift is None:
+        a.drift = QUICK["drift"] if a.quick else 2.0
+    if a.checkpoint_every is None:
+        a.checkpoint_every = QUICK["checkpoint_every"] if a.quick else CHECKPOINT_EVERY
     if a.drift <= 0:
         ap.error(f"--drift {a.drift:g} must be > 0")
     if a.tol is not None and a.tol <= 0:
@@ -373,6 +620,15 @@ def main(argv=None):
     lo, hi = a.window
     if not 0.0 <= lo < hi <= 1.0:
         ap.error(f"--window {lo:g} {hi:g}: need 0 <= LO < HI <= 1")
+    if a.sweep:
+        if a.runs or a.label or a.t0 is not None:
+            ap.error("--sweep takes no RUN_DIR, --label or --t0 (the runs are its own: --out DIR)")
+        a.out = a.out or os.path.join("rondel-output", "sandpile_sweep")
+        return run_tool(TOOL, sweep, a)
+    if not a.runs:
+        ap.error("give a RUN_DIR, or --sweep")
+    if a.quick or a.collect_only:
+        ap.error("--quick and --collect-only go with --sweep")
     return run_tool(TOOL, analyse, a)
 
 

@@ -12,8 +12,8 @@
 2. With the rondel executable (argv[1]): a tiny drum run (50 discs in a drum of 0.02 m turning at 5 rad/s,
    40,000 steps = 0.64 s, snapshots every 4,000) is measured (exit 0, an angle between 0 and 60 deg: the bed
    leans the way the drum turns), and the sweep mode runs two laws and two mu_r (mu_r = 0 shared: three
-   runs, two jobs at a time, 300 steps each on inputs/drum.ini), writes its table, and a second call reuses
-   every finished run.
+   runs, two jobs at a time, 300 steps each on inputs/drum.ini), writes its table, a second call reuses
+   every finished run, and a third runs again the one whose summary.txt was made to say it stopped.
 3. Errors: a missing run directory and a directory without snapshots give exit status 1 with a message.
 Exits non-zero on any failure and prints 'N passed, N failed'.
 """
@@ -186,6 +186,18 @@ seed = 3
     p = subprocess.run([PY, TOOL, *args], capture_output=True, text=True, env=env)
     check("sweep again: exit 0, every run reused", p.returncode == 0 and p.stdout.count("reused") == 3,
           p.stdout[-1500:] + p.stderr[-500:])
+    stopped = os.path.join(out_dir, "wang_mu0.2", "summary.txt")
+    if os.path.isfile(stopped):
+        with open(stopped) as f:
+            text = f.read()
+        with open(stopped, "w") as f:
+            f.write(text.replace("status: complete", "status: stopped by a signal; resume with --resume x"))
+        p = subprocess.run([PY, TOOL, *args], capture_output=True, text=True, env=env)
+        with open(stopped) as f:
+            again = f.read()
+        check("sweep with a run stopped (its summary.txt says so): that run again, the others reused",
+              p.returncode == 0 and p.stdout.count("reused") == 2 and "wang_mu0.2: done" in p.stdout
+              and "status: complete" in again, p.stdout[-1500:] + p.stderr[-500:])
 
 
 def errors(tmp):

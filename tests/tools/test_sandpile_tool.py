@@ -15,14 +15,26 @@ alone; the settling time (t = 4.5 + 3 s) and the height change over the last 2 s
 angles within 1.5 deg of 25, 35 and 30; the label taken from the rolling law's block; the CSV and figure
 files (PNG and PDF, with a --hline); a user error (missing directory, no floor to find, wrong --label
 count, a --hline height that is not a number) exits 1 with one line and no traceback; a final frame
-without a heap (only the rolled-away discs) exits 2. Exits non-zero on any failure, prints 'N passed,
-N failed'.
+without a heap (only the rolled-away discs) exits 2.
+
+The sweep (--sweep): its --steps parser, and its usage errors (a law it has no scene for, a RUN_DIR beside
+--sweep, --quick without --sweep). With the rondel executable (argv[1]), the --quick sweep end to end (300
+discs: 0.6 s of filling, the two discharges 1 s each, two jobs): exit 0, every run 'status: complete', one
+table row per law with finite heights below the chamber's ceiling, t0 = 0.6 s and t_end = 1.6 s, the figures;
+a second call runs nothing (every run reused, no summary.txt rewritten, the same table); a discharge whose
+summary.txt says stopped and whose newest checkpoint is half way is resumed from it, one stopped without a
+checkpoint runs afresh, and both end with the final.csv of the first call byte for byte; --steps LAW=N extends a
+complete run (resumed, the table's steps and t_end follow); --collect-only runs nothing and tables the complete
+runs only; the full preset into the quick sweep's folder is refused (exit 1, nothing run); a fill stopped half
+way is resumed and then both discharges run afresh, again to the same final.csv. Exits non-zero on any failure,
+prints 'N passed, N failed'.
 """
 import contextlib
 import csv
 import io
 import math
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -240,9 +252,147 @@ def main():
         rc, out, err = run_command(run5, "--no-plot")
         check("no heap in the chamber at the end (only discs that rolled away): exit 2, one line",
               rc == 2 and "Traceback" not in err and "sandpile: error:" in err and "no heap" in err, (rc, err))
+        sweep_options()
+        if len(sys.argv) > 1:
+            sweep_end_to_end(sys.argv[1], tmp)
+        else:
+            print("no rondel executable given: the sweep end to end is not tested")
     failed = results.count(False)
     print(f"{results.count(True)} passed, {failed} failed")
     return 1 if failed else 0
+
+
+LAWS = ["jiang_plastic", "constant_torque"]
+
+
+def sweep_options():
+    laws = LAWS
+    default = {"jiang_plastic": 750000, "constant_torque": 750000}
+    check("--steps '': the scenes' steps", sandpile.parse_steps("", laws, default) == default)
+    got = sandpile.parse_steps("constant_torque=1750000,1000", laws, default)
+    check("--steps LAW=N wins over N in any order", got == {"jiang_plastic": 1000, "constant_torque": 1750000}, got)
+    for bad in ("wang=5", "x", "0", "jiang_plastic=-3"):
+        try:
+            sandpile.parse_steps(bad, laws, default)
+            check(f"--steps '{bad}' refused", False, "accepted")
+        except sandpile.UsageError:
+            check(f"--steps '{bad}' refused", True)
+    rc, out, err = run_command("--sweep", "--laws", "wang", "--out", "unused", "--rondel", PY)
+    user_error("--sweep --laws wang (no scene for it)", rc, err)
+    rc, out, err = run_command("--sweep", "some_run")
+    user_error("--sweep with a RUN_DIR", rc, err)
+    rc, out, err = run_command("some_run", "--quick")
+    user_error("--quick without --sweep", rc, err)
+
+
+def status(d):
+    try:
+        with open(os.path.join(d, "summary.txt")) as f:
+            return [line.strip() for line in f if line.startswith("status:")]
+    except OSError:
+        return []
+
+
+def stop(d, keep_checkpoints):
+    """Make run D look stopped by a signal: its summary.txt says so, and only its KEEP_CHECKPOINTS oldest
+    checkpoints stay (a signal writes one where it stops; 0: killed before its first)."""
+    with open(os.path.join(d, "summary.txt")) as f:
+        text = f.read()
+    with open(os.path.join(d, "summary.txt"), "w") as f:
+        f.write(text.replace("status: complete", f"status: stopped by a signal; resume with --resume {d}"))
+    cps = sorted(x for x in os.listdir(d) if re.fullmatch(r"checkpoint_\d+\.h5", x))
+    for x in cps[keep_checkpoints:]:
+        os.remove(os.path.join(d, x))
+
+
+def sweep_end_to_end(rondel, tmp):
+    out = os.path.join(tmp, "sweep")
+    runs = ["fill"] + LAWS
+    base = ["--sweep", "--quick", "--out", out, "--rondel", rondel, "--jobs", "2"]
+
+    def sweep(*extra):
+        rc, so, se = run_command(*base, *extra)
+        return rc, so, se, (read_rows(os.path.join(out, "table.csv"))
+                            if os.path.isfile(os.path.join(out, "table.csv")) else [])
+
+    rc, so, se, table = sweep()
+    check("quick sweep: exit 0", rc == 0, so[-2000:] + se[-2000:])
+    for name in runs:
+        check(f"quick sweep: {name} status: complete", status(os.path.join(out, name)) == ["status: complete"],
+              status(os.path.join(out, name)))
+    check("quick sweep: one table row per law, in --laws order", [r["law"] for r in table] == LAWS, table)
+    for r in table:
+        law = r["law"]
+        h = [float(r[k] or "nan") for k in ("height_top", "height_centre", "height_axis")]
+        check(f"{law}: heights finite, 0 < centre < top < the chamber's 0.35 m", all(map(math.isfinite, h))
+              and 0 < h[1] < h[0] < CEILING - FLOOR, h)
+        check(f"{law}: most of the 300 discs in the pile", int(r["discs"]) == 300 and int(r["discs_pile"]) > 200,
+              (r["discs"], r["discs_pile"]))
+        check(f"{law}: t0 = 0.6 s (the quick fill), t_end = 1.6 s, 50,000 steps",
+              abs(float(r["t0"]) - 0.6) < 1e-9 and abs(float(r["t_end"]) - 1.6) < 1e-9 and r["steps"] == "50000",
+              (r["t0"], r["t_end"], r["steps"]))
+        check(f"{law}: angles finite", all(math.isfinite(float(r[k] or "nan")) for k in ("left", "right", "mean")), r)
+    for name in ["sandpile_height.png"] + [f"sandpile_pile_{law}.png" for law in LAWS]:
+        p = os.path.join(out, name)
+        check(f"quick sweep: {name} written", os.path.isfile(p) and os.path.getsize(p) > 1000, p)
+    if rc != 0 or len(table) != 2:
+        return
+    finals = {law: open(os.path.join(out, law, "final.csv"), "rb").read() for law in LAWS}
+    mtimes = {name: os.stat(os.path.join(out, name, "summary.txt")).st_mtime_ns for name in runs}
+
+    rc, so, se, table2 = sweep("--no-plot")
+    check("again: exit 0, all three runs reused, none run",
+          rc == 0 and so.count(", reused") == 3 and "afresh" not in so and "resumed" not in so, so[-2000:] + se)
+    check("again: no summary.txt rewritten", all(
+        os.stat(os.path.join(out, name, "summary.txt")).st_mtime_ns == mtimes[name] for name in runs))
+    check("again: the same table", table2 == table, (table, table2))
+
+    stop(os.path.join(out, "jiang_plastic"), 1)     # stopped half way: its checkpoint at 25,000 stays
+    stop(os.path.join(out, "constant_torque"), 0)   # stopped before its first checkpoint
+    rc, so, se, table3 = sweep("--no-plot")
+    check("stopped runs: exit 0", rc == 0, so[-2000:] + se[-2000:])
+    check("stopped with a checkpoint: resumed from it", "jiang_plastic: resumed from step 25000 to 50000" in so, so)
+    check("stopped without one: run afresh", "constant_torque: run afresh" in so, so)
+    check("stopped runs: the fill reused", "fill: complete at step 30000, reused" in so, so)
+    for law in LAWS:
+        d = os.path.join(out, law)
+        check(f"{law}: status: complete again", status(d) == ["status: complete"], status(d))
+        check(f"{law}: the first call's final.csv byte for byte",
+              open(os.path.join(d, "final.csv"), "rb").read() == finals[law])
+    check("stopped runs: one table row per law again", [r["law"] for r in table3] == LAWS, table3)
+
+    rc, so, se, table4 = sweep("--no-plot", "--steps", "jiang_plastic=60000")
+    check("--steps jiang_plastic=60000: the complete run extended (resumed), the other reused",
+          rc == 0 and "jiang_plastic: resumed from step 50000 to 60000" in so
+          and "constant_torque: complete at step 50000, reused" in so, so[-2000:] + se[-2000:])
+    rows = {r["law"]: r for r in table4}
+    check("extended: steps 60000, t_end 1.8 s in the table", "jiang_plastic" in rows
+          and rows["jiang_plastic"]["steps"] == "60000" and abs(float(rows["jiang_plastic"]["t_end"]) - 1.8) < 1e-9,
+          rows.get("jiang_plastic"))
+
+    os.remove(os.path.join(out, "constant_torque", "summary.txt"))
+    rc, so, se, table5 = sweep("--no-plot", "--collect-only")
+    check("--collect-only: exit 0, the complete run only in the table, nothing run",
+          rc == 0 and [r["law"] for r in table5] == ["jiang_plastic"]
+          and not os.path.exists(os.path.join(out, "constant_torque", "summary.txt")), so[-2000:] + se[-2000:])
+
+    rc, so, se = run_command("--sweep", "--out", out, "--rondel", rondel, "--no-plot")
+    user_error("the full preset into the quick sweep's folder", rc, se)
+    check("the full preset refused: nothing run", "preset" in se
+          and not os.path.exists(os.path.join(out, "constant_torque", "summary.txt")), se)
+
+    fill_final = open(os.path.join(out, "fill", "final.csv"), "rb").read()
+    stop(os.path.join(out, "fill"), 1)
+    rc, so, se, table6 = sweep("--no-plot")
+    check("a stopped fill: resumed, then both discharges run afresh",
+          rc == 0 and "fill: resumed from step 25000 to 30000" in so and "jiang_plastic: run afresh" in so
+          and "constant_torque: run afresh" in so, so[-2000:] + se[-2000:])
+    check("the resumed fill: its final.csv byte for byte", open(os.path.join(out, "fill", "final.csv"), "rb").read()
+          == fill_final)
+    for law in LAWS:
+        check(f"after the new fill, {law} (50,000 steps again): the first call's final.csv byte for byte",
+              open(os.path.join(out, law, "final.csv"), "rb").read() == finals[law])
+    check("after the new fill: one table row per law", [r["law"] for r in table6] == LAWS, table6)
 
 
 if __name__ == "__main__":
