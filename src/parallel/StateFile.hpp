@@ -86,8 +86,8 @@ void write_state_file(const std::string& path, const StateHeader& header, DiscSt
 // this process so far (for the scaling audit: it must fall as 1/P at a fixed total size).
 std::size_t peak_checkpoint_structure_bytes();
 
-// Collective reads. The header is checked (format name and version, completeness); discs and rows come as
-// this rank's block of the file, to be sent to their owners by the caller.
+// Collective reads (StateReader.cpp). The header is checked (format name and version, completeness); discs and rows
+// come as this rank's block of the file, to be sent to their owners by the caller.
 StateHeader read_state_header(const std::string& path, const Communicator& comm);
 // Collective: the whole file checked, as --resume does before it takes a checkpoint: the header (format,
 // version, `complete` = 1, the attributes' checksum), then every dataset read in blocks over the ranks

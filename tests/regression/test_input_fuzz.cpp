@@ -413,7 +413,7 @@ TEST(InputFuzz, ExecutableRefusesBadInputWithExitOneBeforeWritingAnything) {
 
 TEST(InputFuzz, RefusalsAreAgreedOnThreeRanks) {
   // Every rank finds the same error (a key's value, a derived quantity): each exits 1, the message once.
-  if (std::system("command -v mpirun > /dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun is not installed";
+  if (!test::have_program("mpirun")) GTEST_SKIP() << "mpirun is not installed";
   TempDir dir("rondel-fuzz-ranks");
   test::write_file(dir / "lattice.ini", kLattice);
   std::string env = test::without_mpi_launch(true);
