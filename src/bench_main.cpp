@@ -176,12 +176,14 @@ int main(int argc, char** argv) {
     rondel::Simulation sim(rondel::parse_config_text(std::string(ini) + rolling_block(o.rolling) +
                                                      (o.skin.empty() ? "" : "[neighbour]\nskin = " + o.skin + "\n")),
                            comm, false);
-    for (long s = 0; s < o.warmup; ++s) sim.step();
+    // The steps as a run takes them between outputs (Simulation::advance; no stop requests here).
+    const auto no_stop = [] { return std::int64_t{0}; };
+    sim.advance(o.warmup, no_stop);
     const std::size_t builds0 = sim.neighbour_builds();
     const double comm_before = sim.comm_seconds();
     const rondel::PhaseTimes phases0 = sim.phases();
     const auto t0 = std::chrono::steady_clock::now();
-    for (long s = 0; s < o.steps; ++s) sim.step();
+    sim.advance(o.steps, no_stop);
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     long contacts = 0, border = 0;
     for (std::size_t r = 0; r < sim.pairs().size(); ++r) {

@@ -125,9 +125,21 @@ std::int64_t Runner::stop_flags() {
 
 int Runner::loop(ProgressLine& progress, std::int64_t first) {
   const Config& config = sim_.config();
+  // The steps up to the next one that something looks at (diagnostics, a snapshot, a checkpoint, the end)
+  // run as one advance (Simulation::advance: a pass over the discs less per step); a stop agreed in a step's
+  // reduction ends it early.
+  const auto next_multiple = [](std::int64_t step, std::int64_t every) { return (step / every + 1) * every; };
   while (sim_.step_count() < config.steps) {
-    sim_.request_stop(stop_flags());
-    sim_.step();
+    const std::int64_t now = sim_.step_count();
+    std::int64_t until = std::min(config.steps, next_multiple(now, config.diag_every));
+    if (files_.has_directory() && config.snapshot_every > 0)
+      until = std::min(until, next_multiple(now, config.snapshot_every));
+    if (files_.has_directory() && config.checkpoint_every > 0)
+      until = std::min(until, next_multiple(now, config.checkpoint_every));
+    sim_.advance(until - now, [&] {
+      progress.update(sim_.step_count() - first);
+      return stop_flags();
+    });
     const std::int64_t step = sim_.step_count();
     phases_.restart();
     if (step % config.diag_every == 0 || step == config.steps) record();

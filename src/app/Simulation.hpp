@@ -40,7 +40,23 @@ class Simulation {
   RunSummary run() { return Runner(*this).run(); }
   // One time step (docs/design.md section 4). On several ranks it makes at most one collective call (none
   // on most steps of a scene without controlled walls) and talks point to point with neighbouring ranks.
-  void step();
+  void step() { advance_step(true); }
+  // Up to n steps that nothing looks at in between: each step's closing half kick (step 7) is deferred and
+  // done in the next step's first pass over the discs (Integrator::half_kick_drift), which saves a pass per
+  // step and changes no bit. Before each step `stop_flags()` gives this rank's stop request
+  // (request_stop); after a step whose reduction agreed on a stop it returns early. The state is complete
+  // (full-step velocities, ledger booked) when it returns. Returns the steps taken.
+  template <class StopFlags>
+  std::int64_t advance(std::int64_t n, StopFlags&& stop_flags) {
+    std::int64_t done = 0;
+    while (done < n) {
+      request_stop(stop_flags());
+      advance_step(++done == n);
+      if (stop_agreed_ != 0) break;
+    }
+    close_step();
+    return done;
+  }
   // Collective: agrees on any rank's pending error (every rank throws it) and brings the walls' loads up
   // to this step. Every output below calls it first.
   void settle_errors();
@@ -134,6 +150,11 @@ class Simulation {
   void resume_time_step(double file_dt, const std::string& path);
   void check_initial_state();
   void rebuild();
+  // step() with `close`; without it the closing kick and the step's ledger booking wait for the next step's
+  // drift or close_step().
+  void advance_step(bool close);
+  // The deferred closing kick of the last step and its ledger booking, if one is pending.
+  void close_step();
   // The step's reduction (FusedReduction): returns the largest displacement since the last build over
   // every rank; agrees on errors, stop requests and the balance check; sets the walls' loads.
   double reduce(double moved);
@@ -186,6 +207,10 @@ class Simulation {
   std::int64_t stop_request_ = 0, stop_agreed_ = 0;
   std::int64_t steps_taken_ = 0;
   CommStats step_comm_;
+  // A deferred closing kick (advance): the last step's terms wait for it to be booked.
+  bool kick_pending_ = false;
+  LedgerStep pending_work_;
+  double pending_W_g_ = 0.0, pending_D_open_ = 0.0;
 };
 
 }  // namespace rondel

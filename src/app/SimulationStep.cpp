@@ -30,7 +30,16 @@ void Simulation::rebuild() {
   phases_.lap(PhaseTimes::neighbour);
 }
 
-void Simulation::step() {
+void Simulation::close_step() {
+  if (!kick_pending_) return;
+  phases_.restart();
+  const double D_kick = Integrator::half_kick(discs_, dt_, config_.local_damping);
+  ledger_.add(pending_work_, pending_W_g_, pending_D_open_ + D_kick);
+  kick_pending_ = false;
+  phases_.lap(PhaseTimes::integrate);
+}
+
+void Simulation::advance_step(bool close) {
   phases_.restart();
   const CommStats before = comm_.stats();
   stop_agreed_ = 0;
@@ -41,8 +50,11 @@ void Simulation::step() {
   //    bound when the displacement checks are spaced by it.
   const bool bounds = comm_.size() > 1 && !controlled_walls_ && config_.check_every > 1;
   //    With run.local_damping the kick is damped (docs/physics.md section 9) and books what it took.
+  //    A closing kick the last step deferred (advance) comes first, in the same pass, and books that step.
   const Integrator::Drift drift = Integrator::half_kick_drift(discs_, config_.domain, dt_, BodyForce{config_.gravity},
-                                                              bounds, config_.local_damping);
+                                                              bounds, config_.local_damping, kick_pending_);
+  if (kick_pending_) ledger_.add(pending_work_, pending_W_g_, pending_D_open_ + drift.D_close);
+  kick_pending_ = false;
   drift_speed_ = drift.max_speed, drift_accel_ = drift.max_accel;
   const double W_g = drift.W_g;
   double moved = neighbours_.displacement(drift.max_step, discs_, config_.domain, walls_);
@@ -106,10 +118,15 @@ void Simulation::step() {
   if (controlled_walls_) loads_ = Boundaries::local_loads(walls_, discs_, config_.domain, pairs_, wall_rows_);
   phases_.lap(PhaseTimes::force);
   // 7. Second half kick (diagnostics and output on their schedules: Runner), damped with run.local_damping
-  //    by the half-step velocities.
-  const double D_kick = Integrator::half_kick(discs_, dt_, config_.local_damping);
+  //    by the half-step velocities; deferred to the next step's drift when nothing looks in between.
+  if (close) {
+    const double D_kick = Integrator::half_kick(discs_, dt_, config_.local_damping);
+    ledger_.add(work, W_g, drift.D_damping + D_kick);
+  } else {
+    kick_pending_ = true;
+    pending_work_ = work, pending_W_g_ = W_g, pending_D_open_ = drift.D_damping;
+  }
   phases_.lap(PhaseTimes::integrate);
-  ledger_.add(work, W_g, drift.D_damping + D_kick);
   ++step_;
   time_ += dt_;
   // A balance check every balance_every steps, and once more after a repartition (the imbalance then

@@ -21,7 +21,23 @@ inline double damped_kick(double& v, double f, double m, double h, double alpha)
   return h * (f - fd) * (0.5 * (before + v));
 }
 
-template <bool kBounds, bool kDamp>
+// One half kick of a free disc (the arithmetic of both kicks of the step); adds the work the damping took to
+// D, component by component.
+template <bool kDamp>
+inline void kick(Vec2& v, double& omega, Vec2 force, double torque, double m, double inertia, double h, double alpha,
+                 double& D) {
+  if constexpr (kDamp) {
+    D += damped_kick(v.x, force.x, m, h, alpha);
+    D += damped_kick(v.y, force.y, m, h, alpha);
+    D += damped_kick(omega, torque, inertia, h, alpha);
+  } else {
+    v.x += h * force.x / m;
+    v.y += h * force.y / m;
+    omega += h * torque / inertia;
+  }
+}
+
+template <bool kBounds, bool kDamp, bool kClose>
 Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, const BodyForce& body, double alpha) {
   const double h = 0.5 * dt;
   const std::size_t n = discs.n_owned();
@@ -34,28 +50,20 @@ Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, 
   double* const torque = discs.torque.data();
   Vec2 *const position = discs.position.data(), *const velocity = discs.velocity.data();
   double *const omega = discs.omega.data(), *const theta = discs.theta.data();
-  double W_g = 0.0, step2 = 0.0, v2 = 0.0, a2 = 0.0, D = 0.0;
+  double W_g = 0.0, step2 = 0.0, v2 = 0.0, a2 = 0.0, D = 0.0, D_close = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!(flags[i] & kFlagFixed)) {
       const double m = mass[i];
       Vec2& v = velocity[i];
-      if constexpr (kDamp) {
-        if constexpr (kBounds) {
-          const Vec2 a = (1.0 / m) * Vec2{damped(force[i].x, v.x, alpha), damped(force[i].y, v.y, alpha)};
-          a2 = std::max(a2, dot(a, a));
-        }
-        D += damped_kick(v.x, force[i].x, m, h, alpha);
-        D += damped_kick(v.y, force[i].y, m, h, alpha);
-        D += damped_kick(omega[i], torque[i], inertia[i], h, alpha);
-      } else {
-        if constexpr (kBounds) {
-          const Vec2 a = (1.0 / m) * force[i];
-          a2 = std::max(a2, dot(a, a));
-        }
-        v.x += h * force[i].x / m;
-        v.y += h * force[i].y / m;
-        omega[i] += h * torque[i] / inertia[i];
+      // The last step's closing kick, deferred to this pass (the same arithmetic as half_kick; its damping
+      // work summed apart, in disc order, as half_kick sums it).
+      if constexpr (kClose) kick<kDamp>(v, omega[i], force[i], torque[i], m, inertia[i], h, alpha, D_close);
+      if constexpr (kBounds) {
+        const Vec2 a = kDamp ? (1.0 / m) * Vec2{damped(force[i].x, v.x, alpha), damped(force[i].y, v.y, alpha)}
+                             : (1.0 / m) * force[i];
+        a2 = std::max(a2, dot(a, a));
       }
+      kick<kDamp>(v, omega[i], force[i], torque[i], m, inertia[i], h, alpha, D);
       if constexpr (kBounds) v2 = std::max(v2, dot(v, v));
       const Vec2 dx = dt * v;
       step2 = std::max(step2, dot(dx, dx));
@@ -67,40 +75,46 @@ Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, 
       torque[i] = 0.0;
     }
   }
-  return {W_g, std::sqrt(step2), std::sqrt(v2), std::sqrt(a2), D};
+  return {W_g, std::sqrt(step2), std::sqrt(v2), std::sqrt(a2), D, D_close};
+}
+
+template <bool kClose>
+Integrator::Drift drift_of(DiscStore& discs, const Domain& domain, double dt, const BodyForce& body, bool bounds,
+                           double damping) {
+  if (damping > 0.0)
+    return bounds ? drift_pass<true, true, kClose>(discs, domain, dt, body, damping)
+                  : drift_pass<false, true, kClose>(discs, domain, dt, body, damping);
+  return bounds ? drift_pass<true, false, kClose>(discs, domain, dt, body, 0.0)
+                : drift_pass<false, false, kClose>(discs, domain, dt, body, 0.0);
 }
 
 }  // namespace
 
 Integrator::Drift Integrator::half_kick_drift(DiscStore& discs, const Domain& domain, double dt, const BodyForce& body,
-                                              bool bounds, double damping) {
-  if (damping > 0.0)
-    return bounds ? drift_pass<true, true>(discs, domain, dt, body, damping)
-                  : drift_pass<false, true>(discs, domain, dt, body, damping);
-  return bounds ? drift_pass<true, false>(discs, domain, dt, body, 0.0)
-                : drift_pass<false, false>(discs, domain, dt, body, 0.0);
+                                              bool bounds, double damping, bool close_last) {
+  return close_last ? drift_of<true>(discs, domain, dt, body, bounds, damping)
+                    : drift_of<false>(discs, domain, dt, body, bounds, damping);
 }
 
 double Integrator::half_kick(DiscStore& discs, double dt, double damping) {
   const double h = 0.5 * dt;
+  const std::uint32_t* const flags = discs.flags.data();
+  const double *const mass = discs.mass.data(), *const inertia = discs.inertia.data();
+  const Vec2* const force = discs.force.data();
+  const double* const torque = discs.torque.data();
+  Vec2* const velocity = discs.velocity.data();
+  double* const omega = discs.omega.data();
+  double D = 0.0;
+  const std::size_t n = discs.n_owned();
   if (damping > 0.0) {
-    double D = 0.0;
-    for (std::size_t i = 0; i < discs.n_owned(); ++i) {
-      if (discs.flags[i] & kFlagFixed) continue;
-      const double m = discs.mass[i];
-      D += damped_kick(discs.velocity[i].x, discs.force[i].x, m, h, damping);
-      D += damped_kick(discs.velocity[i].y, discs.force[i].y, m, h, damping);
-      D += damped_kick(discs.omega[i], discs.torque[i], discs.inertia[i], h, damping);
-    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (!(flags[i] & kFlagFixed))
+        kick<true>(velocity[i], omega[i], force[i], torque[i], mass[i], inertia[i], h, damping, D);
     return D;
   }
-  for (std::size_t i = 0; i < discs.n_owned(); ++i) {
-    if (discs.flags[i] & kFlagFixed) continue;
-    const double m = discs.mass[i];
-    discs.velocity[i].x += h * discs.force[i].x / m;
-    discs.velocity[i].y += h * discs.force[i].y / m;
-    discs.omega[i] += h * discs.torque[i] / discs.inertia[i];
-  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (!(flags[i] & kFlagFixed))
+      kick<false>(velocity[i], omega[i], force[i], torque[i], mass[i], inertia[i], h, 0.0, D);
   return 0.0;
 }
 

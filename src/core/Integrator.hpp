@@ -24,6 +24,7 @@ struct Integrator {
     double max_speed = 0.0;  // with `bounds`: largest |v| of a free disc after the half kick
     double max_accel = 0.0;  // with `bounds`: largest |F/m| of a free disc, of the (damped) force it used
     double D_damping = 0.0;  // work the local damping took in the half kick (0 without damping)
+    double D_close = 0.0;    // with `close_last`: the same for the last step's closing kick
   };
   // One pass over the owned discs, the first half of the step:
   //  - the half kick and drift of every free disc: v += F/m dt/2; omega += T/I dt/2; x += v dt;
@@ -37,8 +38,11 @@ struct Integrator {
   //  - the start of each free disc's next force sum, the body force (ForceAssembly::begin does the same for
   //    every disc; the fixed discs and ghosts are left to ForceAssembly::begin_fixed_and_ghosts), once the
   //    kick has used the force.
+  // With `close_last`, the pass first gives each free disc the last step's closing kick (half_kick, which was
+  // deferred: nothing read the full-step velocities in between), then the kick above: the same operations, in
+  // the same order, as half_kick followed by this pass, in one pass over the discs instead of two.
   static Drift half_kick_drift(DiscStore& discs, const Domain& domain, double dt, const BodyForce& body, bool bounds,
-                               double damping = 0.0);
+                               double damping = 0.0, bool close_last = false);
   // v += F/m dt/2; omega += T/I dt/2 (damped when `damping` > 0). Returns the work the damping took.
   static double half_kick(DiscStore& discs, double dt, double damping = 0.0);
 };
