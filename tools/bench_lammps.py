@@ -21,8 +21,9 @@ parse, or a LAMMPS total mass that differs from Rondel's. On a shared machine th
 as the load allows: read the `uptime` line, and compare rates within one round.
 
 Parameter mapping (Rondel's benchmark, bench/README.md -> LAMMPS 29Sep2021):
-  packing           the CSV's discs and their nx x ny copies, ids 1-based in Rondel's gid order; box
-                    nx L by ny L; `dimension 2`, z = 0 in a box of z from -0.5 to 0.5, `fix enforce2d`
+  packing           the CSV's discs and their nx x ny copies, ids 1-based in Rondel's gid order (the copies
+                    numbered in rows across the box, as rondel_bench numbers them); box nx L by ny L;
+                    `dimension 2`, z = 0 in a box of z from -0.5 to 0.5, `fix enforce2d`
   mass              Rondel: pi r^2 (thickness 1, density 1). LAMMPS (this version) gives a sphere
                     4/3 pi r^3 rho, in 2D too: rho = 3/(4 r) per atom makes it pi r^2 (checked by the
                     input: mass(all) against the sum of pi r^2)
@@ -182,24 +183,28 @@ def mean_meff_of_contacts(x, y, r, L):
 
 
 def write_data(path, ids, x, y, r, lo, L, nx, ny):
-    """The LAMMPS data file (atom_style sphere: id type diameter density x y z) of nx x ny copies."""
-    base = len(x)
-    span = int(ids.max()) + 1  # Rondel's gid span of one copy
+    """The LAMMPS data file (atom_style sphere: id type diameter density x y z) of nx x ny copies, in Rondel's
+    gid order: the packing alone keeps its ids; copies are numbered in rows of height twice the largest radius
+    across the box, by x within a row, ties in copy order (scene.replicate_x/y, src/core/SceneBuilder.cpp)."""
+    cx, cy = np.meshgrid(np.arange(nx), np.arange(ny))
+    cx, cy = cx.ravel(), cy.ravel()  # copy order: cy outer, cx inner
+    px = np.concatenate([x + c * L for c in cx])
+    py = np.concatenate([y + c * L for c in cy])
+    pr = np.tile(r, nx * ny)
+    if nx * ny == 1:
+        order = np.argsort(ids, kind="stable")
+    else:
+        row = np.floor((py - lo) / (2.0 * r.max()))
+        order = np.lexsort((np.arange(len(px)), px, row))
     with open(path, "w") as f:
         f.write(f"Rondel benchmark packing, {nx} x {ny} periodic copies ({ME})\n\n")
-        f.write(f"{base * nx * ny} atoms\n1 atom types\n\n")
+        f.write(f"{len(px)} atoms\n1 atom types\n\n")
         f.write(f"{lo!r} {lo + nx * L!r} xlo xhi\n{lo!r} {lo + ny * L!r} ylo yhi\n-0.5 0.5 zlo zhi\n\n")
         f.write("Atoms # sphere\n\n")
-        diam = 2.0 * r
-        dens = 3.0 / (4.0 * r)  # 4/3 pi r^3 rho = pi r^2
-        for cy in range(ny):
-            for cx in range(nx):
-                gid = ids + span * (cy * nx + cx) + 1
-                block = np.column_stack([gid, np.ones(base, dtype=np.int64)])
-                vals = np.column_stack([diam, dens, x + cx * L, y + cy * L])
-                lines = [f"{g} {t} {d!r} {e!r} {px!r} {py!r} 0\n"
-                         for (g, t), (d, e, px, py) in zip(block.tolist(), vals.tolist())]
-                f.writelines(lines)
+        diam = 2.0 * pr[order]
+        dens = 3.0 / (4.0 * pr[order])  # 4/3 pi r^3 rho = pi r^2
+        vals = np.column_stack([diam, dens, px[order], py[order]])
+        f.writelines(f"{k + 1} 1 {d!r} {e!r} {qx!r} {qy!r} 0\n" for k, (d, e, qx, qy) in enumerate(vals.tolist()))
 
 
 def lammps_input(kind, data, skin, gamma_n, steps, warmup):

@@ -24,6 +24,7 @@ struct SceneConfig {
   std::vector<double> sizes, fractions;
   std::uint64_t seed = 1;
   std::int64_t max_attempts = 0;
+  std::string numbering = "placement";  // placement (largest first) | rows (docs/benchmarks.md)
   // csv
   std::string file;
   int replicate_x = 1, replicate_y = 1;

@@ -38,6 +38,8 @@ void check_scene_type(const Reader& r, SceneConfig& s) {
       throw ConfigError("key 'scene.distribution' = " + s.distribution +
                         " is not allowed: uniform_radius | uniform_area | list");
     }
+    if (s.numbering != "placement" && s.numbering != "rows")
+      throw ConfigError("key 'scene.numbering' = " + s.numbering + " is not allowed: placement | rows");
   } else if (s.type == "file") {
     if (s.file.empty())
       throw ConfigError("missing required key 'scene.file' (scene.type = file: a checkpoint or snapshot)");
@@ -49,6 +51,10 @@ void check_scene_type(const Reader& r, SceneConfig& s) {
     throw ConfigError("key 'scene.type' = " + s.type +
                       " is not allowed: lattice_square | lattice_hex | random | csv | file");
   }
+  check(s.type == "random" || s.numbering == "placement", "scene.numbering",
+        "only with scene.type = random (lattices and replicated copies are numbered in rows, a csv file keeps its "
+        "ids)",
+        s.numbering + " with scene.type = " + s.type);
 }
 
 }  // namespace
@@ -72,6 +78,7 @@ void read_scene(const Reader& r, Config& c) {
   s.fractions = numbers(r.get<std::string>("scene.fractions"), "scene.fractions");
   s.seed = static_cast<std::uint64_t>(r.get<std::int64_t>("scene.seed"));  // >= 0 (validate_values)
   s.max_attempts = r.get<std::int64_t>("scene.max_attempts");
+  s.numbering = r.get<std::string>("scene.numbering");
   s.file = r.get<std::string>("scene.file");
   s.replicate_x = r.get<int>("scene.replicate_x");
   s.replicate_y = r.get<int>("scene.replicate_y");

@@ -110,6 +110,23 @@ std::pair<double, int> draw_radius(const SceneConfig& s, std::size_t slot, Scene
   return size(s.sizes.size() - 1);
 }
 
+// Numbers the discs 0, 1, ... in rows of height 2 R_max (R_max their largest radius) from `ylo` up, by x within
+// a row, ties in their present order. The kernel reads the discs in id order (docs/design.md section 5): ids
+// that follow space keep a disc's partners a row of ids away, so its reads stream (docs/benchmarks.md, "The
+// order of the ids").
+void number_in_rows(std::vector<SceneDisc>& discs, double ylo) {
+  double R_max = 0.0;
+  for (const auto& d : discs) R_max = std::max(R_max, d.radius);
+  for (std::size_t k = 0; k < discs.size(); ++k) discs[k].gid = static_cast<std::int64_t>(k);  // the tie-break
+  const double row_height = 2.0 * R_max;
+  std::sort(discs.begin(), discs.end(), [ylo, row_height](const SceneDisc& a, const SceneDisc& b) {
+    const double ra = std::floor((a.x.y - ylo) / row_height), rb = std::floor((b.x.y - ylo) / row_height);
+    if (ra != rb) return ra < rb;
+    return a.x.x != b.x.x ? a.x.x < b.x.x : a.gid < b.gid;
+  });
+  for (std::size_t k = 0; k < discs.size(); ++k) discs[k].gid = static_cast<std::int64_t>(k);
+}
+
 // Random sequential addition, largest discs first, with a cell grid for the overlap checks.
 std::vector<SceneDisc> random_packing(const SceneConfig& s, const Domain& domain) {
   check_memory(static_cast<double>(s.count), 0.0, 0.0, "scene.count = " + std::to_string(s.count));
@@ -177,6 +194,7 @@ std::vector<SceneDisc> random_packing(const SceneConfig& s, const Domain& domain
       throw InputError(m.str());
     }
   }
+  if (s.numbering == "rows") number_in_rows(out, ylo);
   return out;
 }
 
@@ -259,20 +277,24 @@ std::vector<SceneDisc> csv(const SceneConfig& s, const Domain& domain, const std
   check_memory(static_cast<double>(base.size()) * copies, 0.0, 0.0,
                "scene.replicate_x x scene.replicate_y copies of the " + std::to_string(base.size()) + " discs of '" +
                    s.file + "'");
-  std::int64_t id_span = 0;
-  for (const auto& d : base) id_span = std::max(id_span, d.gid + 1);
-  if (static_cast<double>(id_span) * copies > 0x1p62)
-    throw ConfigError("keys 'scene.replicate_x', 'scene.replicate_y': the copies of the ids of '" + s.file +
-                      "' (up to " + std::to_string(id_span - 1) + ") would pass 2^62");
   const double px = domain.length_x() / s.replicate_x, py = domain.length_y() / s.replicate_y;
+  // The copies, numbered anew in rows across the whole box: numbered one after the other, every row of the
+  // file would have a seam whose partners lay a whole copy of ids away.
+  std::vector<std::int64_t> ids(base.size());
+  for (std::size_t k = 0; k < base.size(); ++k) ids[k] = base[k].gid;
+  std::sort(ids.begin(), ids.end());
+  const auto twice = std::adjacent_find(ids.begin(), ids.end());
+  if (twice != ids.end())
+    throw InputError("scene.file '" + s.file + "': disc id " + std::to_string(*twice) + " appears twice");
   std::vector<SceneDisc> out;
+  out.reserve(base.size() * static_cast<std::size_t>(s.replicate_x) * static_cast<std::size_t>(s.replicate_y));
   for (int cy = 0; cy < s.replicate_y; ++cy)
     for (int cx = 0; cx < s.replicate_x; ++cx)
       for (auto d : base) {
-        d.gid += id_span * (cy * s.replicate_x + cx);
         d.x += Vec2{cx * px, cy * py};
         out.push_back(d);
       }
+  number_in_rows(out, domain.ylo);
   return out;
 }
 
