@@ -89,10 +89,11 @@ TEST(SceneNumbering, ReplicatedCopiesAreNumberedInRowsAcrossTheBox) {
     std::ofstream out(file);
     out << "id,x,y,radius\n7,0.75,0.75,0.2\n3,0.25,0.25,0.2\n9,0.75,0.25,0.2\n5,0.25,0.75,0.2\n";
   }
-  const std::string ini = "[run]\nsteps = 1\n[domain]\nxlo = 0\nxhi = 3\nylo = 0\nyhi = 2\nperiodic_x = true\n"
-                          "periodic_y = true\n[linear]\nk_n = 1e5\ne = 0.8\n[coulomb]\nk_s = 7.5e4\nmu = 0.5\n"
-                          "[scene]\ntype = csv\nfile = " +
-                          file + "\nreplicate_x = 3\nreplicate_y = 2\n";
+  const std::string ini =
+      "[run]\nsteps = 1\n[domain]\nxlo = 0\nxhi = 3\nylo = 0\nyhi = 2\nperiodic_x = true\n"
+      "periodic_y = true\n[linear]\nk_n = 1e5\ne = 0.8\n[coulomb]\nk_s = 7.5e4\nmu = 0.5\n"
+      "[scene]\ntype = csv\nfile = " +
+      file + "\nreplicate_x = 3\nreplicate_y = 2\n";
   const Config c = parse_config_text(ini);
   const auto discs = build_scene(c.scene, c.domain, "");
   ASSERT_EQ(discs.size(), 24u);
@@ -120,8 +121,7 @@ TEST(SceneNumbering, ReplicatedCopiesAreNumberedInRowsAcrossTheBox) {
 }
 
 TEST(SceneNumbering, TheKeyIsRefusedWhereItDoesNotApply) {
-  for (const auto& [overrides, what] :
-       std::vector<std::pair<std::vector<std::string>, std::string>>{
+  for (const auto& [overrides, what] : std::vector<std::pair<std::vector<std::string>, std::string>>{
            {{"--scene.numbering=spiral"}, "placement | rows"},
            {{"--scene.numbering=Rows"}, "placement | rows"},
            {{"--scene.type=lattice_square", "--scene.nx=3", "--scene.ny=3", "--scene.radius=0.005",
