@@ -28,11 +28,10 @@ Outcome rondel_on(const TempDir& dir, int ranks, const std::string& args) {
   return test::mpirun_rondel(dir, ranks, args, "", kLimit);
 }
 
-bool have(const std::string& program) { return test::have_program(program); }
 std::size_t count(const std::string& text, const std::string& what) { return test::occurrences(text, what); }
 
 TEST(ExitCodes, ErrorOnTheLastRankOnlyIsPrintedOnceWithItsCode) {
-  if (!have("mpirun")) GTEST_SKIP() << "mpirun is not installed";
+  if (!test::have_program("mpirun")) GTEST_SKIP() << "mpirun is not installed";
   for (const int ranks : {1, 2, 3}) {
     TempDir dir("rondel-exit-behind");
     const fs::path run = dir / "run";
@@ -51,7 +50,7 @@ TEST(ExitCodes, ErrorOnTheLastRankOnlyIsPrintedOnceWithItsCode) {
 TEST(ExitCodes, AnIoErrorOfRankZeroExitsWithFive) {
   // A text output of the run is /dev/full: its rows fail to reach the disk (log.txt and diagnostics.csv at
   // the first output step, measures.csv when it is flushed before the final files); the run stops there.
-  if (!have("mpirun")) GTEST_SKIP() << "mpirun is not installed";
+  if (!test::have_program("mpirun")) GTEST_SKIP() << "mpirun is not installed";
   if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
   for (const char* file : {"log.txt", "diagnostics.csv", "measures.csv"}) {
     for (const int ranks : {1, 3}) {

@@ -38,7 +38,6 @@ Outcome rondel_on(const TempDir& dir, int ranks, const std::string& args, const 
   return test::mpirun_rondel(dir, ranks, args, env, kLimit);
 }
 
-bool have(const std::string& program) { return test::have_program(program); }
 std::size_t count(const std::string& text, const std::string& what) { return test::occurrences(text, what); }
 
 // The deposition scene, small and short: a checkpoint every 50 steps, `steps` steps, into `run`.
@@ -81,7 +80,7 @@ void expect_stopped(const Outcome& o, int code, const std::string& message, cons
 // A checkpoint that fails on one rank only (the second checkpoint of the run, step 100): every rank stops
 // with exit 5, the checkpoint of step 50 is kept and reads back, nothing partial is left, no final files.
 TEST(IoFailures, AFailureOnOneRankOnlyStopsEveryRankAndKeepsThePreviousCheckpoint) {
-  if (!have("mpirun")) GTEST_SKIP() << "mpirun is not installed";
+  if (!test::have_program("mpirun")) GTEST_SKIP() << "mpirun is not installed";
   struct Case {
     std::string site, message;
   };
@@ -115,7 +114,7 @@ TEST(IoFailures, AFailureOnOneRankOnlyStopsEveryRankAndKeepsThePreviousCheckpoin
 // A text output that cannot be written (an injected full disk at the file): exit 5 naming it, and the file
 // is not left behind to be taken for a whole one.
 TEST(IoFailures, TextOutputsThatCannotBeWrittenAreReported) {
-  if (!have("mpirun")) GTEST_SKIP() << "mpirun is not installed";
+  if (!test::have_program("mpirun")) GTEST_SKIP() << "mpirun is not installed";
   for (const char* file : {"final.csv", "summary.txt", "summary.json", "config.ini"}) {
     for (const int ranks : {1, 3}) {
       const std::string tag = std::string(file) + ", " + std::to_string(ranks) + " rank(s)";
@@ -134,7 +133,7 @@ TEST(IoFailures, TextOutputsThatCannotBeWrittenAreReported) {
 // the right to mount (root in a container that allows it); skipped otherwise, the injected cases above
 // stand in.
 TEST(IoFailures, ASmallFileSystem) {
-  if (!have("mpirun")) GTEST_SKIP() << "mpirun is not installed";
+  if (!test::have_program("mpirun")) GTEST_SKIP() << "mpirun is not installed";
   for (const int ranks : {1, 2, 3}) {
     const std::string tag = std::to_string(ranks) + " rank(s)";
     TempDir dir("rondel-io-small");
@@ -204,7 +203,7 @@ void drop_last_row(const fs::path& file, const char* dataset) {
 // passes over it to the previous one with the reason; with no other checkpoint every rank stops with exit
 // 1; read directly as a scene file it stops every rank with exit 1 naming the file.
 TEST(IoFailures, ADatasetOneRowShortIsPassedOverOrRefusedOnEveryRank) {
-  if (!have("mpirun")) GTEST_SKIP() << "mpirun is not installed";
+  if (!test::have_program("mpirun")) GTEST_SKIP() << "mpirun is not installed";
   for (const int ranks : {2, 3}) {
     const std::string tag = std::to_string(ranks) + " ranks";
     TempDir dir("rondel-io-short");
@@ -237,7 +236,7 @@ TEST(IoFailures, ADatasetOneRowShortIsPassedOverOrRefusedOnEveryRank) {
 // after it, and one named after the next attempt's old-style name) blocks no later checkpoint, with Open
 // MPI's OMPIO chosen explicitly too.
 TEST(IoFailures, LeftoversOfAKilledCheckpointBlockNothing) {
-  if (!have("mpirun")) GTEST_SKIP() << "mpirun is not installed";
+  if (!test::have_program("mpirun")) GTEST_SKIP() << "mpirun is not installed";
   TempDir dir("rondel-io-stale");
   const fs::path run = dir / "run";
   ASSERT_EQ(rondel_on(dir, 2, deposition(run, 50)).exit_code, 0);

@@ -44,10 +44,6 @@ const std::string kDefaultScene = [] {
 }();
 constexpr std::size_t kThermoRows = 11;
 
-bool have(const std::string& program) {
-  return std::system(("command -v " + program + " > /dev/null 2>&1").c_str()) == 0;
-}
-
 // Runs `COMMAND` (where RONDEL stands for the executable) in `dir` with a clean MPI environment (this test
 // may itself run under mpirun; the run-as-root permissions stay), stdout and stderr into files.
 Outcome run(const TempDir& dir, std::string command) {
@@ -120,7 +116,7 @@ TEST(Terminal, DefaultSceneInAPipeIsShortWithoutCarriageReturns) {
 
 TEST(Terminal, UnderMpirunInAPipeNoCarriageReturn) {
   // Open MPI gives each rank a pseudo-terminal even when mpirun writes to a pipe: the line must not redraw.
-  if (!have("mpirun")) GTEST_SKIP() << "mpirun is not installed";
+  if (!test::have_program("mpirun")) GTEST_SKIP() << "mpirun is not installed";
   TempDir dir;
   const fs::path out = dir / "run";
   const Outcome o = run(dir, "(mpirun -n 2 --oversubscribe RONDEL " + kDefaultScene + " --run.output=" + out.string() +
@@ -135,7 +131,8 @@ TEST(Terminal, UnderMpirunInAPipeNoCarriageReturn) {
 }
 
 TEST(Terminal, DefaultSceneInAPseudoTerminalIsShort) {
-  if (!have("script")) GTEST_SKIP() << "script (util-linux) is not installed: no pseudo-terminal to test in";
+  if (!test::have_program("script"))
+    GTEST_SKIP() << "script (util-linux) is not installed: no pseudo-terminal to test in";
   TempDir dir;
   const fs::path out = dir / "run";
   const Outcome o =
@@ -182,7 +179,7 @@ fs::path short_run(const TempDir& dir, const std::string& name, const std::strin
 }
 
 TEST(Terminal, SummaryJsonParsesAndHoldsTheRun) {
-  if (!have("python3")) GTEST_SKIP() << "python3 is not installed";
+  if (!test::have_program("python3")) GTEST_SKIP() << "python3 is not installed";
   TempDir dir;
   const fs::path out = short_run(dir, "run", "");
   const std::string check =
