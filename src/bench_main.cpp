@@ -7,7 +7,7 @@
 // built; --no-stream skips it), the model of the bytes a step moves per disc (traffic_model,
 // BenchSupport.hpp) and the bound on disc-steps per second that the two give.
 //   rondel_bench [--discs 10000 x k] [--steps 5000] [--warmup 1000] [--rolling LAW] [--file PATH] [--no-stream]
-//                [--skin S]
+//                [--skin S] [--against LAW [--chunk 100]]
 // Without --file it reads bench/jammed10k.csv of the working directory (a clone's root) and, when that is
 // missing, the one of the source tree it was built from (RONDEL_SOURCE_DIR, set by CMakeLists.txt), so it runs
 // from a build directory as well; the packing is described in bench/README.md. With --file, --discs counts
@@ -17,13 +17,20 @@
 // (iwashita_oda K_r = k_r R*^2, eta = mu_r R*; force_proportional mu_r = 0.1; constant_torque and
 // displacement_damping mu_r = 0.05). --skin S sets neighbour.skin (default: a quarter of the mean radius); a
 // small skin makes the neighbour list rebuild within a few steps, to measure the memory peak of a rebuild.
+// --against LAW builds a second simulation of the same discs with that rolling law and runs the timed steps of
+// the two in alternating chunks of --chunk steps (A B B A ...), printing the second law's rate and the ratio
+// of the rates per chunk pair (median and range) and of the totals: a comparison of two laws that the
+// neighbours of a shared machine disturb far less than separate runs.
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "BenchSupport.hpp"
 #include "app/Simulation.hpp"
@@ -37,7 +44,9 @@ struct Options {
   long discs = 10000, steps = 5000, warmup = 1000;
   std::string file;  // empty: the default packing (default_packing)
   std::string rolling = "none";
-  std::string skin;  // empty: neighbour.skin's default
+  std::string skin;     // empty: neighbour.skin's default
+  std::string against;  // a second rolling law run beside the first, in alternating chunks (empty: none run)
+  long chunk = -1;      // steps per chunk with --against (-1: 100, or --steps when fewer)
   bool no_stream = false;
 };
 
@@ -50,7 +59,17 @@ Options parse(int argc, char** argv) {
                                {"--rolling", &o.rolling},
                                {"--file", &o.file},
                                {"--no-stream", &o.no_stream},
-                               {"--skin", &o.skin}});
+                               {"--skin", &o.skin},
+                               {"--against", &o.against},
+                               {"--chunk", &o.chunk}});
+  if (o.steps <= 0)
+    throw rondel::ConfigError("rondel_bench: --steps must be at least 1, not " + std::to_string(o.steps));
+  if (o.warmup < 0)
+    throw rondel::ConfigError("rondel_bench: --warmup must be 0 or more, not " + std::to_string(o.warmup));
+  if (o.chunk == -1) o.chunk = std::min(100L, o.steps);
+  if (!o.against.empty() && (o.chunk <= 0 || o.chunk > o.steps))
+    throw rondel::ConfigError("rondel_bench: --chunk must be between 1 and --steps (" + std::to_string(o.steps) +
+                              "), not " + std::to_string(o.chunk));
   return o;
 }
 
@@ -104,9 +123,11 @@ constexpr BenchValue kRollingValues[] = {
 };
 
 // The [contact] rolling line and the law's parameter block, from the law's parameter list.
-std::string rolling_block(const std::string& law) {
+std::string rolling_block(const std::string& law, const char* option) {
   const rondel::LawInfo* info = rondel::law_catalog().rolling.find(law);
-  if (!info) throw rondel::ConfigError("rondel_bench: --rolling '" + law + "' is not a rolling law");
+  if (!info)
+    throw rondel::ConfigError("rondel_bench: " + std::string(option) + " '" + law + "' is not a rolling law (" +
+                              rondel::law_catalog().rolling.keywords() + ")");
   std::string text = "[contact]\nrolling = " + law + "\n";
   if (!info->block) return text;
   text += "[" + std::string(info->block->section) + "]\n";
@@ -173,18 +194,48 @@ int main(int argc, char** argv) {
                   "[coulomb]\nk_s = 28571.43\nmu = 0.5\n[scene]\ntype = csv\nfile = %s\nreplicate_x = %ld\n"
                   "replicate_y = %ld\nmax_initial_overlap = 0.2\n",
                   lo, lo + static_cast<double>(nx) * L, lo, lo + static_cast<double>(ny) * L, o.file.c_str(), nx, ny);
-    rondel::Simulation sim(rondel::parse_config_text(std::string(ini) + rolling_block(o.rolling) +
-                                                     (o.skin.empty() ? "" : "[neighbour]\nskin = " + o.skin + "\n")),
-                           comm, false);
+    const auto config_of = [&](const std::string& law, const char* option) {
+      return rondel::parse_config_text(std::string(ini) + rolling_block(law, option) +
+                                       (o.skin.empty() ? "" : "[neighbour]\nskin = " + o.skin + "\n"));
+    };
+    rondel::Simulation sim(config_of(o.rolling, "--rolling"), comm, false);
+    // --against: the second law's simulation of the same discs, held beside the first.
+    std::unique_ptr<rondel::Simulation> other;
+    if (!o.against.empty())
+      other = std::make_unique<rondel::Simulation>(config_of(o.against, "--against"), comm, false);
     // The steps as a run takes them between outputs (Simulation::advance; no stop requests here).
     const auto no_stop = [] { return std::int64_t{0}; };
     sim.advance(o.warmup, no_stop);
+    if (other) other->advance(o.warmup, no_stop);
     const std::size_t builds0 = sim.neighbour_builds();
     const double comm_before = sim.comm_seconds();
     const rondel::PhaseTimes phases0 = sim.phases();
-    const auto t0 = std::chrono::steady_clock::now();
-    sim.advance(o.steps, no_stop);
-    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // Timed by the slowest rank. With --against the two simulations take the timed steps in alternating chunks,
+    // A B B A A B ..., so that a slow spell of a shared machine falls on both; each pair's ratio is kept.
+    const auto timed = [&comm](rondel::Simulation& s, long steps) {
+      comm.barrier();
+      const auto t = std::chrono::steady_clock::now();
+      s.advance(steps, [] { return std::int64_t{0}; });
+      return comm.max(std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count());
+    };
+    double secs = 0.0, other_secs = 0.0;
+    std::vector<double> pair_ratios;  // this law's rate over the other's, per chunk pair
+    if (!other) {
+      secs = timed(sim, o.steps);
+    } else {
+      bool first = true;
+      for (long done = 0; done < o.steps; done += o.chunk, first = !first) {
+        const long c = std::min(o.chunk, o.steps - done);
+        double a = 0.0, b = 0.0;
+        if (first) {
+          a = timed(sim, c), b = timed(*other, c);
+        } else {
+          b = timed(*other, c), a = timed(sim, c);
+        }
+        secs += a, other_secs += b;
+        pair_ratios.push_back(b / a);
+      }
+    }
     long contacts = 0, border = 0;
     for (std::size_t r = 0; r < sim.pairs().size(); ++r) {
       const bool booked = static_cast<std::size_t>(sim.pairs().i1[r]) < sim.discs().n_owned();
@@ -225,8 +276,10 @@ int main(int argc, char** argv) {
           o.discs, nx, ny, o.rolling.c_str(), o.steps, o.warmup, sim.dt(), sim.critical().dt,
           sim.critical().mode.c_str(), comm.size(), secs, rate, all_contacts / n, 2.0 * all_contacts / n, rows / n,
           sim.neighbour_builds() - builds0, store / n, rss / n,
-          peak_reset ? "" : " (with the triad's arrays: use --no-stream)", comm_time, 100.0 * comm_time / secs,
-          ghosts / n, 100.0 * twice / rows);
+          other        ? " (of both simulations: --against)"
+          : peak_reset ? ""
+                       : " (with the triad's arrays: use --no-stream)",
+          comm_time, 100.0 * comm_time / secs, ghosts / n, 100.0 * twice / rows);
       // Per phase: the mean over the ranks, and its share of the mean wall time.
       const double ranks = comm.size();
       if (comm.size() > 1) std::printf("  the phases below: mean over the %d ranks\n", comm.size());
@@ -238,6 +291,17 @@ int main(int argc, char** argv) {
       if (contact_steps > 0.0)
         std::printf("  ns per contact-step   %.2f in the force phase, %.2f in all (rank-seconds / contacts x steps)\n",
                     1e9 * phase[rondel::PhaseTimes::force] / contact_steps, 1e9 * rank_seconds / contact_steps);
+      if (other) {
+        std::vector<double> sorted = pair_ratios;
+        std::sort(sorted.begin(), sorted.end());
+        const std::size_t m = sorted.size();
+        const double median = m % 2 ? sorted[m / 2] : 0.5 * (sorted[m / 2 - 1] + sorted[m / 2]);
+        // Not "disc-steps per second": tools/bench_pairs.sh reads the one line that says so.
+        std::printf("  against %-13s %.4g disc-steps/s, the same steps in %zu chunk pairs of %ld (A B B A ...)\n",
+                    o.against.c_str(), n * static_cast<double>(o.steps) / other_secs, m, o.chunk);
+        std::printf("  rate %s / %s: %.3f median of the pairs (%.3f to %.3f), %.3f of the totals\n", o.rolling.c_str(),
+                    o.against.c_str(), median, sorted.front(), sorted.back(), other_secs / secs);
+      }
       if (o.no_stream)
         std::printf("  stream triad          not measured (--no-stream)\n");
       else

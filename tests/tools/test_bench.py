@@ -9,7 +9,11 @@
   - --discs 15000 (not 10,000 times a copy count) and --discs 0 are refused with a message naming --discs;
   - with the triad (no --no-stream): the bandwidth, the bandwidth bound and the measured fraction of it;
   - the model follows the contact columns: rolling wang (a history slot and two couples more) moves more
-    bytes per row than rolling none.
+    bytes per row than rolling none;
+  - --against LAW runs a second simulation in alternating chunks: still one "disc-steps per second" line, the
+    other law's rate over the same steps, and the ratio (median of the chunk pairs inside their range, and of
+    the totals equal to the two printed rates' ratio); a law that does not exist, a chunk of 0 or longer than
+    --steps, and --steps 0 are refused with a message naming the option.
 Exits non-zero on any failure and prints 'N passed, N failed'.
 """
 import os
@@ -81,6 +85,29 @@ def main():
     check("model: wang moves more bytes per row than none", wang_bytes and none_bytes and wang_bytes > none_bytes,
           (wang_bytes, none_bytes))
     check("peak RSS is the simulation's (reset after the triad)", "with the triad's arrays" not in out, out)
+
+    code, out, err = bench(exe, "--steps", "6", "--warmup", "0", "--rolling", "wang", "--against", "none",
+                           "--chunk", "2", "--no-stream")
+    check("--against: exit 0", code == 0, err)
+    rates = [float(line.split()[3]) for line in out.splitlines() if "disc-steps per second" in line]
+    check("--against: still one 'disc-steps per second' line", len(rates) == 1 and rates[0] > 0, out)
+    m = re.search(r"^  against none\s+(\S+) disc-steps/s, the same steps in 3 chunk pairs of 2 ", out, re.M)
+    check("--against: the other law's rate over 3 chunk pairs of 2 steps", m and float(m.group(1)) > 0, out)
+    r = re.search(r"^  rate wang / none: (\S+) median of the pairs \((\S+) to (\S+)\), (\S+) of the totals$", out, re.M)
+    check("--against: the ratio line", r, out)
+    if m and r and rates:
+        median, lo, hi, totals = (float(g) for g in r.groups())
+        check("--against: median within the pairs' range", 0 < lo <= median <= hi, r.group(0))
+        check("--against: ratio of the totals = ratio of the printed rates",
+              abs(totals - rates[0] / float(m.group(1))) < 2e-3 * totals, (totals, rates[0], m.group(1)))
+    base = ["--warmup", "0", "--no-stream", "--steps"]
+    for args, option in ((base + ["6", "--against", "sideways"], "--against"),
+                         (base + ["6", "--against", "none", "--chunk", "0"], "--chunk"),
+                         (base + ["6", "--against", "none", "--chunk", "7"], "--chunk"), (base + ["0"], "--steps")):
+        code, out, err = bench(exe, *args)
+        check(f"{' '.join(args[3:])} refused naming {option}", code != 0 and option in err and not out, err + out)
+    code, out, err = bench(exe, "--steps", "6", "--warmup", "0", "--no-stream", "--against", "sideways")
+    check("--against: an unknown law's message lists the laws", "wang" in err and "none" in err, err)
 
     failed = results.count(False)
     print(f"{results.count(True)} passed, {failed} failed")
