@@ -16,13 +16,26 @@
 
 namespace rondel {
 
-// The selected laws by keyword (contact.normal, contact.tangential, contact.rolling).
+// The selected laws by keyword (contact.normal, contact.tangential, contact.rolling), and whether any pair or
+// wall may have a rolling dashpot: when none has (c_r = 0 everywhere), the kernel of rolling = wang is the one
+// compiled without the dashpot's terms (RollingWangUndamped), which gives the same bits for less work. The
+// default (true) is right for any parameters.
 struct LawSelection {
   std::string normal = "linear";
   std::string tangential = "coulomb";
   std::string rolling = "none";
+  bool rolling_dashpot = true;
 };
-inline LawSelection law_selection(const Config& c) { return {c.normal_law, c.tangential_law, c.rolling_law}; }
+// True when a pair or a wall of the table sets a rolling dashpot (c_r > 0).
+inline bool any_rolling_dashpot(const ContactParamTable& t) {
+  for (const std::vector<ContactParams>* rows : {&t.pairs(), &t.walls()})
+    for (const ContactParams& p : *rows)
+      if (p.c_r > 0.0) return true;
+  return false;
+}
+inline LawSelection law_selection(const Config& c) {
+  return {c.normal_law, c.tangential_law, c.rolling_law, any_rolling_dashpot(c.params)};
+}
 
 // The kernel and the stored-energy pass instantiated for the selected laws, chosen once at set-up (no
 // per-contact dispatch). `run` and `initial` add every row's force and torques to the discs' sums (begun and

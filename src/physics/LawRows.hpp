@@ -4,6 +4,7 @@
 // fails to compile with the law named in the failed static_assert's instantiation (Row<Law>).
 // Internal to the registry's translation units (LawRegistry.cpp, InitialForces.cpp).
 #include <string>
+#include <type_traits>
 
 #include "core/Errors.hpp"
 #include "core/LawSpec.hpp"
@@ -80,12 +81,19 @@ void with_laws(const LawSelection& laws, F&& f) {
   });
 }
 
-// As with_laws, with the normal law first: f.template operator()<N, T, R>().
+// As with_laws, with the normal law first: f.template operator()<N, T, R>(), R the kernel's variant of the
+// rolling law: wang without its dashpot terms when no pair or wall has one (LawSelection::rolling_dashpot).
 template <class F>
 void with_kernel_laws(const LawSelection& laws, F&& f) {
   if (!law_catalog().normal.find(laws.normal)) unknown(law_catalog().normal, laws.normal);
-  NormalLaws::with(laws.normal,
-                   [&]<class N>() { with_laws(laws, [&]<class T, class R>() { f.template operator()<N, T, R>(); }); });
+  NormalLaws::with(laws.normal, [&]<class N>() {
+    with_laws(laws, [&]<class T, class R>() {
+      if constexpr (std::is_same_v<R, RollingWang>) {
+        if (!laws.rolling_dashpot) return f.template operator()<N, T, RollingWangUndamped>();
+      }
+      f.template operator()<N, T, R>();
+    });
+  });
 }
 
 // KernelOps::initial of the selected laws, instantiated in its own translation unit (InitialForces.cpp)

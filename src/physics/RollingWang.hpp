@@ -5,6 +5,9 @@
 //   trial T_r = -k_r x_r - c_r V_r, capped at mu_r F_n by the capping rule (x_r = -T_r/k_r)  [N]
 //   M = R* T_r, +M on disc 1 and -M on disc 2                                                [N m]
 // Parameters k_r [N/m], mu_r [-], c_r [N s/m] (default 0). History slot: "x_r" [m].
+// RollingWangT<false> is the same law without the dashpot's terms, for runs in which no pair or wall sets c_r
+// (the default): with c_r = 0 it performs the same operations, so it gives the same bits, and saves the tests
+// of c_r on every contact (LawSelection::rolling_dashpot; docs/benchmarks.md, "The cost of the rolling law").
 #include <array>
 #include <cmath>
 
@@ -24,7 +27,8 @@ inline constexpr ParamSpec kWangParams[] = {
 inline constexpr LawBlock kWangBlock{"wang", "Wang et al. 2015 rolling spring-slider (wang, alonso_marroquin)",
                                      kWangParams};
 
-struct RollingWang {
+template <bool kDashpot>
+struct RollingWangT {
   static constexpr const char* name = "wang";
   static constexpr const LawBlock* block = &kWangBlock;
   // The couple stiffness k_r R*^2 and dashpot c_r R*^2 (M = R* T_r with T_r on x_r = R* theta_r).
@@ -36,19 +40,27 @@ struct RollingWang {
 
   static RollingCouple moment(const ContactParams& p, const ContactBodies&, const ContactKinematics& k, double F_n,
                               double dt, double, double, double* const* hist, std::size_t row) {
-    double& x_r = hist[0][row];
-    x_r += k.V_r * dt;
+    // The parameters and the spring in locals, the spring stored once at the end: no store through the
+    // history can make the compiler load a parameter again.
+    double* const spring = hist[0] + row;
+    const double k_r = p.k_r, cap = p.mu_r * F_n, V_r = k.V_r;
+    double x_r = *spring + V_r * dt;
     // Without a dashpot (c_r = 0, the default) the trial is the spring alone and nothing is damped.
-    double trial = -p.k_r * x_r;
-    if (p.c_r > 0.0) trial -= p.c_r * k.V_r;
-    const double before = x_r;
-    const CapResult T = cap_spring_slider(trial, p.mu_r * F_n, p.k_r, x_r);
-    const double M = k.R_star * T.value;
-    RollingCouple c{M, -M};
-    if (T.capped)
-      c.plastic = std::fabs(T.value * (before - x_r));
-    else if (p.c_r > 0.0)
-      c.dashpot = p.c_r * k.V_r * k.V_r * dt;
+    double T = -k_r * x_r;
+    if constexpr (kDashpot)
+      if (p.c_r > 0.0) T -= p.c_r * V_r;
+    RollingCouple c;
+    if (std::fabs(T) > cap) {  // the capping rule (cap_spring_slider): T at the cap, the spring reset to it
+      T = cap * sign(T);
+      const double before = x_r;
+      x_r = -T / k_r;
+      c.plastic = std::fabs(T * (before - x_r));
+    } else if constexpr (kDashpot) {
+      if (p.c_r > 0.0) c.dashpot = p.c_r * V_r * V_r * dt;
+    }
+    *spring = x_r;
+    c.M1 = k.R_star * T;
+    c.M2 = -c.M1;
     return c;
   }
   static double stored(const ContactParams& p, const ContactBodies&, const ContactKinematics&, double,
@@ -58,5 +70,9 @@ struct RollingWang {
   }
   static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) { return k.R_star * p.mu_r * F_n; }
 };
+// The law of the registry (contact.rolling = wang); the kernel selection swaps in RollingWangT<false> when no
+// pair or wall has a rolling dashpot (LawRows.hpp, with_kernel_laws).
+using RollingWang = RollingWangT<true>;
+using RollingWangUndamped = RollingWangT<false>;
 
 }  // namespace rondel

@@ -73,11 +73,13 @@ class OneContactRig {
     stored0_ = stored();
   }
 
-  void step() {
+  // One step; the kernel's ledger terms of the step are added to *ledger when one is given.
+  void step(LedgerStep* ledger = nullptr) {
     Integrator::half_kick_drift(discs_, domain_, dt_, BodyForce{gravity_}, false);
     LedgerStep unused;
     assembly_.begin_fixed_and_ghosts(discs_);
-    ops_.run(KernelContext{discs_, domain_, walls_, params_, dt_}, pairs_, wall_rows_, ForceSums::of(discs_), unused);
+    ops_.run(KernelContext{discs_, domain_, walls_, params_, dt_}, pairs_, wall_rows_, ForceSums::of(discs_),
+             ledger ? *ledger : unused);
     finish();
     Integrator::half_kick(discs_, dt_);
   }

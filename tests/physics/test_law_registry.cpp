@@ -3,7 +3,9 @@
 // as docs/physics.md section 4 writes it, and the resolved configuration holds exactly the selected law's block.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <numbers>
 #include <set>
@@ -190,6 +192,76 @@ TEST(LawRegistry, InitialForcesCommitNoHistory) {
   EXPECT_NEAR(std::fabs(row.M1[0]), R / 2 * p.mu_r * F_n, 1e-12 * F_n) << "the rolling dashpot alone is capped";
   EXPECT_EQ(row.slot[0][0], 0.0) << "xi not committed";
   EXPECT_EQ(row.slot[1][0], 0.0) << "x_r not committed";
+}
+
+// Without a rolling dashpot anywhere (c_r = 0, the default) the kernel of rolling = wang is the one compiled
+// without the dashpot's terms (RollingWangUndamped). With c_r = 0 it performs the same operations as the full
+// law, so every step's state and ledger terms carry the same bits: through loading, the cap, the reversal and
+// the cap the other way, for two discs of equal and unequal radii and for a disc on a wall.
+TEST(LawRegistry, WangWithoutADashpotGivesTheFullLawsBits) {
+  ContactParams p;
+  p.k_n = 1e5;
+  p.k_s = 1e4;
+  p.mu = 0.5;
+  p.k_r = 1e4;
+  p.mu_r = 0.02;
+  const LawSelection full{"linear", "coulomb", "wang", true}, lean{"linear", "coulomb", "wang", false};
+  EXPECT_NE(select_kernel(full).run, select_kernel(lean).run) << "the variant without a dashpot is selected";
+  EXPECT_NE(select_kernel(full).initial, select_kernel(lean).initial);
+  const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+  const double R = 0.01, u0 = 1e-4, dt = 1e-6;
+  for (const double R2 : {R, 0.6 * R, static_cast<double>(INFINITY)}) {
+    SCOPED_TRACE("R2 = " + std::to_string(R2));
+    testing_rig::OneContactRig a(full, p, R, R2, u0, p.k_n * u0), b(lean, p, R, R2, u0, p.k_n * u0);
+    for (testing_rig::OneContactRig* rig : {&a, &b}) {
+      rig->discs().omega[0] = 50.0;
+      rig->start(dt);
+    }
+    int capped = 0, loaded = 0;
+    for (int s = 0; s < 400; ++s) {
+      if (s == 200)  // reverse the spin: the spring unloads and meets the cap the other way
+        for (testing_rig::OneContactRig* rig : {&a, &b}) rig->discs().omega[0] = -50.0;
+      LedgerStep la, lb;
+      a.step(&la);
+      b.step(&lb);
+      const ContactTable &ta = a.row_table(), &tb = b.row_table();
+      ASSERT_EQ(bits(ta.M1[0]), bits(tb.M1[0])) << "step " << s;
+      ASSERT_EQ(bits(ta.slot[1][0]), bits(tb.slot[1][0])) << "x_r, step " << s;
+      ASSERT_EQ(bits(ta.slot[0][0]), bits(tb.slot[0][0])) << "xi, step " << s;
+      ASSERT_EQ(bits(ta.F_t[0]), bits(tb.F_t[0])) << "step " << s;
+      for (std::size_t i = 0; i < a.discs().size(); ++i) {
+        ASSERT_EQ(bits(a.discs().omega[i]), bits(b.discs().omega[i])) << "disc " << i << ", step " << s;
+        ASSERT_EQ(bits(a.discs().velocity[i].x), bits(b.discs().velocity[i].x)) << "disc " << i << ", step " << s;
+        ASSERT_EQ(bits(a.discs().velocity[i].y), bits(b.discs().velocity[i].y)) << "disc " << i << ", step " << s;
+      }
+      ASSERT_EQ(bits(la.W_r), bits(lb.W_r)) << "step " << s;
+      ASSERT_EQ(bits(la.D_r_plastic), bits(lb.D_r_plastic)) << "step " << s;
+      ASSERT_EQ(bits(la.D_r_dashpot), bits(lb.D_r_dashpot)) << "step " << s;
+      ASSERT_EQ(bits(la.D_slip), bits(lb.D_slip)) << "step " << s;
+      if (la.D_r_plastic > 0.0) ++capped;
+      if (ta.M1[0] != 0.0 && la.D_r_plastic == 0.0) ++loaded;
+    }
+    EXPECT_GT(capped, 20) << "the rolling cap is reached";
+    EXPECT_GT(loaded, 20) << "and the spring is loaded below it";
+  }
+}
+
+// The selection keeps the full law as soon as one pair or one wall of the table sets c_r > 0, and a
+// configuration without c_r selects the lean one.
+TEST(LawRegistry, ARollingDashpotInAnyPairOrWallKeepsTheFullWangLaw) {
+  ContactParamTable t(2);
+  EXPECT_FALSE(any_rolling_dashpot(t));
+  t.wall(1).c_r = 1.0;
+  EXPECT_TRUE(any_rolling_dashpot(t)) << "a wall";
+  t.wall(1).c_r = 0.0;
+  t.pair(0, 1).c_r = 0.5;
+  EXPECT_TRUE(any_rolling_dashpot(t)) << "a pair of two materials";
+  const std::vector<std::string> wang{"--contact.rolling=wang", "--wang.k_r=1e4", "--wang.mu_r=0.1",
+                                      "--coulomb.k_s=1e4", "--coulomb.mu=0.5"};
+  EXPECT_FALSE(law_selection(parse_config_text(kBase, wang)).rolling_dashpot);
+  std::vector<std::string> damped = wang;
+  damped.push_back("--wang.c_r=2");
+  EXPECT_TRUE(law_selection(parse_config_text(kBase, damped)).rolling_dashpot);
 }
 
 std::string config_error(const std::vector<std::string>& overrides) {
