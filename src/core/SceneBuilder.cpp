@@ -117,12 +117,10 @@ std::pair<double, int> draw_radius(const SceneConfig& s, std::size_t slot, Scene
 void number_in_rows(std::vector<SceneDisc>& discs, double ylo) {
   double R_max = 0.0;
   for (const auto& d : discs) R_max = std::max(R_max, d.radius);
-  for (std::size_t k = 0; k < discs.size(); ++k) discs[k].gid = static_cast<std::int64_t>(k);  // the tie-break
   const double row_height = 2.0 * R_max;
-  std::sort(discs.begin(), discs.end(), [ylo, row_height](const SceneDisc& a, const SceneDisc& b) {
+  std::stable_sort(discs.begin(), discs.end(), [ylo, row_height](const SceneDisc& a, const SceneDisc& b) {
     const double ra = std::floor((a.x.y - ylo) / row_height), rb = std::floor((b.x.y - ylo) / row_height);
-    if (ra != rb) return ra < rb;
-    return a.x.x != b.x.x ? a.x.x < b.x.x : a.gid < b.gid;
+    return ra != rb ? ra < rb : a.x.x < b.x.x;
   });
   for (std::size_t k = 0; k < discs.size(); ++k) discs[k].gid = static_cast<std::int64_t>(k);
 }
