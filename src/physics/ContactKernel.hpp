@@ -260,7 +260,12 @@ struct ContactKernel {
       W_r = (tab.M1[r] + M.M1) * k.thetadot_r;  // at a wall: its couple on the wall does no work on the discs
     S.roll += Pair{W_r, T.slip};
     if constexpr (Rolling::kActive) {
-      S.loss += Pair{M.plastic, M.dashpot};
+      if constexpr (sparse_loss<Rolling>()) {
+        if (M.plastic != 0.0 || M.dashpot != 0.0) [[unlikely]]
+          S.loss += Pair{M.plastic, M.dashpot};
+      } else {
+        S.loss += Pair{M.plastic, M.dashpot};
+      }
       if constexpr (breaks<Rolling>()) S.E_r_break += M.released;
     }
     if constexpr (kWall) {
@@ -353,7 +358,7 @@ struct ContactKernel {
       const TangentialForce T = Tangential::force(p, row.b, k, F_n, dt, hist.t(), hist.row);
       RollingCouple M;
       if constexpr (Rolling::kActive) {
-        if (p.rolling) {
+        if (rolls_every_row<Rolling>() || p.rolling) [[likely]] {
           // The plain call for the linear normal law and a law without an exact split.
           if constexpr (Normal::kStiffening) {  // the rolling law sees this contact's normal stiffness
             M = rolling_moment(Normal::linearised(p, row.b, k), tab, r, row, F_n, dt, hist);

@@ -106,6 +106,29 @@ constexpr bool breaks() {
     return false;
 }
 
+// A kernel variant of a rolling law for parameter tables in which every pair and every wall has rolling
+// resistance (ContactParams::rolling, the default) declares `kEveryRow = true`: the kernel then applies it
+// without testing p.rolling on each contact (LawSelection::rolling_every_row).
+template <class L>
+constexpr bool rolls_every_row() {
+  if constexpr (requires { L::kEveryRow; })
+    return L::kEveryRow;
+  else
+    return false;
+}
+
+// A rolling law whose dissipation is zero on most contacts (no dashpot, plastic work only where the cap is
+// reached) declares `kSparseLoss = true`: the kernel then books RollingCouple::plastic and ::dashpot only where
+// one is not zero. The sums start at +0 and every term is >= 0, so skipping a +0 term leaves their bits as
+// they were.
+template <class L>
+constexpr bool sparse_loss() {
+  if constexpr (requires { L::kSparseLoss; })
+    return L::kSparseLoss;
+  else
+    return false;
+}
+
 // The rolling couple columns of a law's rows (ContactTable::couples()): 0, 1 or 2.
 template <class L>
 constexpr int couple_columns() {

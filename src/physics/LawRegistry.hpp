@@ -25,6 +25,9 @@ struct LawSelection {
   std::string tangential = "coulomb";
   std::string rolling = "none";
   bool rolling_dashpot = true;
+  // Whether every pair and every wall has rolling resistance (ContactParams::rolling): the lean wang kernel
+  // then skips the per-contact test. The default (false) is right for any parameters.
+  bool rolling_every_row = false;
 };
 // True when a pair or a wall of the table sets a rolling dashpot (c_r > 0).
 inline bool any_rolling_dashpot(const ContactParamTable& t) {
@@ -33,8 +36,15 @@ inline bool any_rolling_dashpot(const ContactParamTable& t) {
       if (p.c_r > 0.0) return true;
   return false;
 }
+// True when every pair and every wall of the table has rolling resistance (ContactParams::rolling).
+inline bool every_row_rolls(const ContactParamTable& t) {
+  for (const std::vector<ContactParams>* rows : {&t.pairs(), &t.walls()})
+    for (const ContactParams& p : *rows)
+      if (!p.rolling) return false;
+  return true;
+}
 inline LawSelection law_selection(const Config& c) {
-  return {c.normal_law, c.tangential_law, c.rolling_law, any_rolling_dashpot(c.params)};
+  return {c.normal_law, c.tangential_law, c.rolling_law, any_rolling_dashpot(c.params), every_row_rolls(c.params)};
 }
 
 // The kernel and the stored-energy pass instantiated for the selected laws, chosen once at set-up (no

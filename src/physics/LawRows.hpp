@@ -82,13 +82,16 @@ void with_laws(const LawSelection& laws, F&& f) {
 }
 
 // As with_laws, with the normal law first: f.template operator()<N, T, R>(), R the kernel's variant of the
-// rolling law: wang without its dashpot terms when no pair or wall has one (LawSelection::rolling_dashpot).
+// rolling law: wang without its dashpot terms when no pair or wall has one (LawSelection::rolling_dashpot), and
+// then also without the test of p.rolling when every pair and wall has rolling resistance (rolling_every_row).
 template <class F>
 void with_kernel_laws(const LawSelection& laws, F&& f) {
   if (!law_catalog().normal.find(laws.normal)) unknown(law_catalog().normal, laws.normal);
   NormalLaws::with(laws.normal, [&]<class N>() {
     with_laws(laws, [&]<class T, class R>() {
       if constexpr (std::is_same_v<R, RollingWang>) {
+        if (!laws.rolling_dashpot && laws.rolling_every_row)
+          return f.template operator()<N, T, RollingWangUndampedEveryRow>();
         if (!laws.rolling_dashpot) return f.template operator()<N, T, RollingWangUndamped>();
       }
       f.template operator()<N, T, R>();

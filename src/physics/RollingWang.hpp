@@ -8,6 +8,8 @@
 // RollingWangT<false> is the same law without the dashpot's terms, for runs in which no pair or wall sets c_r
 // (the default): with c_r = 0 it performs the same operations, so it gives the same bits, and saves the tests
 // of c_r on every contact (LawSelection::rolling_dashpot; docs/benchmarks.md, "The cost of the rolling law").
+// RollingWangT<false, true> is that law for tables in which every pair and wall has rolling resistance: the kernel
+// skips its per-contact test of p.rolling (LawSelection::rolling_every_row).
 #include <array>
 #include <cmath>
 
@@ -27,9 +29,11 @@ inline constexpr ParamSpec kWangParams[] = {
 inline constexpr LawBlock kWangBlock{"wang", "Wang et al. 2015 rolling spring-slider (wang, alonso_marroquin)",
                                      kWangParams};
 
-template <bool kDashpot>
+template <bool kDashpot, bool kAllRoll = false>
 struct RollingWangT {
   static constexpr const char* name = "wang";
+  static constexpr bool kEveryRow = kAllRoll;
+  static constexpr bool kSparseLoss = !kDashpot;  // without a dashpot, only a capped contact dissipates
   static constexpr const LawBlock* block = &kWangBlock;
   // The couple stiffness k_r R*^2 and dashpot c_r R*^2 (M = R* T_r with T_r on x_r = R* theta_r).
   static RollingSpring spring(const ContactParams& p, const ContactBodies&, const ContactKinematics& k) {
@@ -50,7 +54,8 @@ struct RollingWangT {
     if constexpr (kDashpot)
       if (p.c_r > 0.0) T -= p.c_r * V_r;
     RollingCouple c;
-    if (std::fabs(T) > cap) {  // the capping rule (cap_spring_slider): T at the cap, the spring reset to it
+    if (std::fabs(T) > cap)
+        [[unlikely]] {  // the capping rule (cap_spring_slider): T at the cap, the spring reset to it
       T = cap * sign(T);
       const double before = x_r;
       x_r = -T / k_r;
@@ -71,8 +76,11 @@ struct RollingWangT {
   static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) { return k.R_star * p.mu_r * F_n; }
 };
 // The law of the registry (contact.rolling = wang); the kernel selection swaps in RollingWangT<false> when no
-// pair or wall has a rolling dashpot (LawRows.hpp, with_kernel_laws).
+// pair or wall has a rolling dashpot, RollingWangT<false, true> when moreover every one has rolling resistance
+// (LawRows.hpp, with_kernel_laws).
 using RollingWang = RollingWangT<true>;
 using RollingWangUndamped = RollingWangT<false>;
+// RollingWangUndamped where every pair and wall has rolling resistance (LawSelection::rolling_every_row).
+using RollingWangUndampedEveryRow = RollingWangT<false, true>;
 
 }  // namespace rondel

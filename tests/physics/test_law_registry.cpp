@@ -195,9 +195,11 @@ TEST(LawRegistry, InitialForcesCommitNoHistory) {
 }
 
 // Without a rolling dashpot anywhere (c_r = 0, the default) the kernel of rolling = wang is the one compiled
-// without the dashpot's terms (RollingWangUndamped). With c_r = 0 it performs the same operations as the full
-// law, so every step's state and ledger terms carry the same bits: through loading, the cap, the reversal and
-// the cap the other way, for two discs of equal and unequal radii and for a disc on a wall.
+// without the dashpot's terms (RollingWangUndamped), and where moreover every pair and wall has rolling
+// resistance (ContactParams::rolling, the default), the one that skips the per-contact test of p.rolling
+// (RollingWangUndampedEveryRow). With c_r = 0 both perform the same operations as the full law, so every step's
+// state and ledger terms carry the same bits: through loading, the cap, the reversal and the cap the other way,
+// for two discs of equal and unequal radii and for a disc on a wall.
 TEST(LawRegistry, WangWithoutADashpotGivesTheFullLawsBits) {
   ContactParams p;
   p.k_n = 1e5;
@@ -205,45 +207,86 @@ TEST(LawRegistry, WangWithoutADashpotGivesTheFullLawsBits) {
   p.mu = 0.5;
   p.k_r = 1e4;
   p.mu_r = 0.02;
-  const LawSelection full{"linear", "coulomb", "wang", true}, lean{"linear", "coulomb", "wang", false};
+  const LawSelection full{"linear", "coulomb", "wang", true}, lean{"linear", "coulomb", "wang", false},
+      every{"linear", "coulomb", "wang", false, true};
   EXPECT_NE(select_kernel(full).run, select_kernel(lean).run) << "the variant without a dashpot is selected";
   EXPECT_NE(select_kernel(full).initial, select_kernel(lean).initial);
+  EXPECT_NE(select_kernel(lean).run, select_kernel(every).run) << "the variant without the p.rolling test";
+  EXPECT_NE(select_kernel(full).run, select_kernel(every).run);
   const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
   const double R = 0.01, u0 = 1e-4, dt = 1e-6;
-  for (const double R2 : {R, 0.6 * R, static_cast<double>(INFINITY)}) {
-    SCOPED_TRACE("R2 = " + std::to_string(R2));
-    testing_rig::OneContactRig a(full, p, R, R2, u0, p.k_n * u0), b(lean, p, R, R2, u0, p.k_n * u0);
-    for (testing_rig::OneContactRig* rig : {&a, &b}) {
-      rig->discs().omega[0] = 50.0;
-      rig->start(dt);
-    }
-    int capped = 0, loaded = 0;
-    for (int s = 0; s < 400; ++s) {
-      if (s == 200)  // reverse the spin: the spring unloads and meets the cap the other way
-        for (testing_rig::OneContactRig* rig : {&a, &b}) rig->discs().omega[0] = -50.0;
-      LedgerStep la, lb;
-      a.step(&la);
-      b.step(&lb);
-      const ContactTable &ta = a.row_table(), &tb = b.row_table();
-      ASSERT_EQ(bits(ta.M1[0]), bits(tb.M1[0])) << "step " << s;
-      ASSERT_EQ(bits(ta.slot[1][0]), bits(tb.slot[1][0])) << "x_r, step " << s;
-      ASSERT_EQ(bits(ta.slot[0][0]), bits(tb.slot[0][0])) << "xi, step " << s;
-      ASSERT_EQ(bits(ta.F_t[0]), bits(tb.F_t[0])) << "step " << s;
-      for (std::size_t i = 0; i < a.discs().size(); ++i) {
-        ASSERT_EQ(bits(a.discs().omega[i]), bits(b.discs().omega[i])) << "disc " << i << ", step " << s;
-        ASSERT_EQ(bits(a.discs().velocity[i].x), bits(b.discs().velocity[i].x)) << "disc " << i << ", step " << s;
-        ASSERT_EQ(bits(a.discs().velocity[i].y), bits(b.discs().velocity[i].y)) << "disc " << i << ", step " << s;
+  for (const LawSelection& variant : {lean, every}) {
+    SCOPED_TRACE(variant.rolling_every_row ? "every row rolls" : "lean");
+    for (const double R2 : {R, 0.6 * R, static_cast<double>(INFINITY)}) {
+      SCOPED_TRACE("R2 = " + std::to_string(R2));
+      testing_rig::OneContactRig a(full, p, R, R2, u0, p.k_n * u0), b(variant, p, R, R2, u0, p.k_n * u0);
+      for (testing_rig::OneContactRig* rig : {&a, &b}) {
+        rig->discs().omega[0] = 50.0;
+        rig->start(dt);
       }
-      ASSERT_EQ(bits(la.W_r), bits(lb.W_r)) << "step " << s;
-      ASSERT_EQ(bits(la.D_r_plastic), bits(lb.D_r_plastic)) << "step " << s;
-      ASSERT_EQ(bits(la.D_r_dashpot), bits(lb.D_r_dashpot)) << "step " << s;
-      ASSERT_EQ(bits(la.D_slip), bits(lb.D_slip)) << "step " << s;
-      if (la.D_r_plastic > 0.0) ++capped;
-      if (ta.M1[0] != 0.0 && la.D_r_plastic == 0.0) ++loaded;
+      int capped = 0, loaded = 0;
+      for (int s = 0; s < 400; ++s) {
+        if (s == 200)  // reverse the spin: the spring unloads and meets the cap the other way
+          for (testing_rig::OneContactRig* rig : {&a, &b}) rig->discs().omega[0] = -50.0;
+        LedgerStep la, lb;
+        a.step(&la);
+        b.step(&lb);
+        const ContactTable &ta = a.row_table(), &tb = b.row_table();
+        ASSERT_EQ(bits(ta.M1[0]), bits(tb.M1[0])) << "step " << s;
+        ASSERT_EQ(bits(ta.slot[1][0]), bits(tb.slot[1][0])) << "x_r, step " << s;
+        ASSERT_EQ(bits(ta.slot[0][0]), bits(tb.slot[0][0])) << "xi, step " << s;
+        ASSERT_EQ(bits(ta.F_t[0]), bits(tb.F_t[0])) << "step " << s;
+        for (std::size_t i = 0; i < a.discs().size(); ++i) {
+          ASSERT_EQ(bits(a.discs().omega[i]), bits(b.discs().omega[i])) << "disc " << i << ", step " << s;
+          ASSERT_EQ(bits(a.discs().velocity[i].x), bits(b.discs().velocity[i].x)) << "disc " << i << ", step " << s;
+          ASSERT_EQ(bits(a.discs().velocity[i].y), bits(b.discs().velocity[i].y)) << "disc " << i << ", step " << s;
+        }
+        ASSERT_EQ(bits(la.W_r), bits(lb.W_r)) << "step " << s;
+        ASSERT_EQ(bits(la.D_r_plastic), bits(lb.D_r_plastic)) << "step " << s;
+        ASSERT_EQ(bits(la.D_r_dashpot), bits(lb.D_r_dashpot)) << "step " << s;
+        ASSERT_EQ(bits(la.D_slip), bits(lb.D_slip)) << "step " << s;
+        if (la.D_r_plastic > 0.0) ++capped;
+        if (ta.M1[0] != 0.0 && la.D_r_plastic == 0.0) ++loaded;
+      }
+      EXPECT_GT(capped, 20) << "the rolling cap is reached";
+      EXPECT_GT(loaded, 20) << "and the spring is loaded below it";
     }
-    EXPECT_GT(capped, 20) << "the rolling cap is reached";
-    EXPECT_GT(loaded, 20) << "and the spring is loaded below it";
   }
+}
+
+// The kernel without the p.rolling test is selected only where every pair and every wall has rolling
+// resistance: one pair or one wall without (wall_contact.rolling = false, or a material pair's rolling = false)
+// keeps the test. A pair without rolling resistance gets no couple from the lean kernel.
+TEST(LawRegistry, TheKernelWithoutTheRollingTestOnlyWhereEveryRowRolls) {
+  ContactParamTable t(2);
+  EXPECT_TRUE(every_row_rolls(t));
+  t.wall(1).rolling = false;
+  EXPECT_FALSE(every_row_rolls(t)) << "a wall";
+  t.wall(1).rolling = true;
+  t.pair(0, 1).rolling = false;
+  EXPECT_FALSE(every_row_rolls(t)) << "a pair of two materials";
+  const std::vector<std::string> wang{"--contact.rolling=wang", "--wang.k_r=1e4", "--wang.mu_r=0.1",
+                                      "--coulomb.k_s=1e4", "--coulomb.mu=0.5"};
+  EXPECT_TRUE(law_selection(parse_config_text(kBase, wang)).rolling_every_row);
+  std::vector<std::string> no_wall_rolling = wang;
+  no_wall_rolling.push_back("--wall_contact.rolling=false");
+  EXPECT_FALSE(law_selection(parse_config_text(kBase, no_wall_rolling)).rolling_every_row);
+
+  // A pair without rolling resistance under the lean kernel that keeps the test: spun, it gets no couple.
+  ContactParams p;
+  p.k_n = 1e5;
+  p.k_s = 1e4;
+  p.mu = 0.5;
+  p.k_r = 1e4;
+  p.mu_r = 0.02;
+  p.rolling = false;
+  const LawSelection lean{"linear", "coulomb", "wang", false, false};
+  testing_rig::OneContactRig rig(lean, p, 0.01, 0.01, 1e-4, p.k_n * 1e-4);
+  rig.discs().omega[0] = 50.0;
+  rig.start(1e-6);
+  for (int s = 0; s < 50; ++s) rig.step();
+  EXPECT_EQ(rig.row_table().M1[0], 0.0) << "no rolling couple where p.rolling is false";
+  EXPECT_EQ(rig.row_table().slot[1][0], 0.0) << "no rolling spring where p.rolling is false";
 }
 
 // The selection keeps the full law as soon as one pair or one wall of the table sets c_r > 0, and a
