@@ -54,8 +54,8 @@ struct RollingWangT {
     if constexpr (kDashpot)
       if (p.c_r > 0.0) T -= p.c_r * V_r;
     RollingCouple c;
-    if (std::fabs(T) > cap)
-        [[unlikely]] {  // the capping rule (cap_spring_slider): T at the cap, the spring reset to it
+    // The capping rule (cap_spring_slider): T at the cap, the spring reset to it.
+    if (std::fabs(T) > cap) [[unlikely]] {
       T = cap * sign(T);
       const double before = x_r;
       x_r = -T / k_r;
