@@ -29,19 +29,21 @@ struct LawSelection {
   // then skips the per-contact test. The default (false) is right for any parameters.
   bool rolling_every_row = false;
 };
-// True when a pair or a wall of the table sets a rolling dashpot (c_r > 0).
-inline bool any_rolling_dashpot(const ContactParamTable& t) {
+// True when `pred` holds for a pair or a wall of the table.
+template <class Pred>
+bool any_params(const ContactParamTable& t, Pred pred) {
   for (const std::vector<ContactParams>* rows : {&t.pairs(), &t.walls()})
     for (const ContactParams& p : *rows)
-      if (p.c_r > 0.0) return true;
+      if (pred(p)) return true;
   return false;
+}
+// True when a pair or a wall of the table sets a rolling dashpot (c_r > 0).
+inline bool any_rolling_dashpot(const ContactParamTable& t) {
+  return any_params(t, [](const ContactParams& p) { return p.c_r > 0.0; });
 }
 // True when every pair and every wall of the table has rolling resistance (ContactParams::rolling).
 inline bool every_row_rolls(const ContactParamTable& t) {
-  for (const std::vector<ContactParams>* rows : {&t.pairs(), &t.walls()})
-    for (const ContactParams& p : *rows)
-      if (!p.rolling) return false;
-  return true;
+  return !any_params(t, [](const ContactParams& p) { return !p.rolling; });
 }
 inline LawSelection law_selection(const Config& c) {
   return {c.normal_law, c.tangential_law, c.rolling_law, any_rolling_dashpot(c.params), every_row_rolls(c.params)};

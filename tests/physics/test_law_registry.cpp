@@ -194,6 +194,20 @@ TEST(LawRegistry, InitialForcesCommitNoHistory) {
   EXPECT_EQ(row.slot[1][0], 0.0) << "x_r not committed";
 }
 
+// A linear contact with Coulomb friction and wang's spring-slider, for the one-contact rigs below.
+ContactParams wang_contact() {
+  ContactParams p;
+  p.k_n = 1e5;
+  p.k_s = 1e4;
+  p.mu = 0.5;
+  p.k_r = 1e4;
+  p.mu_r = 0.02;
+  return p;
+}
+// The overrides that select wang (no dashpot) on kBase.
+const std::vector<std::string> kWangOverrides{"--contact.rolling=wang", "--wang.k_r=1e4", "--wang.mu_r=0.1",
+                                              "--coulomb.k_s=1e4", "--coulomb.mu=0.5"};
+
 // Without a rolling dashpot anywhere (c_r = 0, the default) the kernel of rolling = wang is the one compiled
 // without the dashpot's terms (RollingWangUndamped), and where moreover every pair and wall has rolling
 // resistance (ContactParams::rolling, the default), the one that skips the per-contact test of p.rolling
@@ -201,12 +215,7 @@ TEST(LawRegistry, InitialForcesCommitNoHistory) {
 // state and ledger terms carry the same bits: through loading, the cap, the reversal and the cap the other way,
 // for two discs of equal and unequal radii and for a disc on a wall.
 TEST(LawRegistry, WangWithoutADashpotGivesTheFullLawsBits) {
-  ContactParams p;
-  p.k_n = 1e5;
-  p.k_s = 1e4;
-  p.mu = 0.5;
-  p.k_r = 1e4;
-  p.mu_r = 0.02;
+  const ContactParams p = wang_contact();
   const LawSelection full{"linear", "coulomb", "wang", true}, lean{"linear", "coulomb", "wang", false},
       every{"linear", "coulomb", "wang", false, true};
   EXPECT_NE(select_kernel(full).run, select_kernel(lean).run) << "the variant without a dashpot is selected";
@@ -265,20 +274,13 @@ TEST(LawRegistry, TheKernelWithoutTheRollingTestOnlyWhereEveryRowRolls) {
   t.wall(1).rolling = true;
   t.pair(0, 1).rolling = false;
   EXPECT_FALSE(every_row_rolls(t)) << "a pair of two materials";
-  const std::vector<std::string> wang{"--contact.rolling=wang", "--wang.k_r=1e4", "--wang.mu_r=0.1",
-                                      "--coulomb.k_s=1e4", "--coulomb.mu=0.5"};
-  EXPECT_TRUE(law_selection(parse_config_text(kBase, wang)).rolling_every_row);
-  std::vector<std::string> no_wall_rolling = wang;
+  EXPECT_TRUE(law_selection(parse_config_text(kBase, kWangOverrides)).rolling_every_row);
+  std::vector<std::string> no_wall_rolling = kWangOverrides;
   no_wall_rolling.push_back("--wall_contact.rolling=false");
   EXPECT_FALSE(law_selection(parse_config_text(kBase, no_wall_rolling)).rolling_every_row);
 
   // A pair without rolling resistance under the lean kernel that keeps the test: spun, it gets no couple.
-  ContactParams p;
-  p.k_n = 1e5;
-  p.k_s = 1e4;
-  p.mu = 0.5;
-  p.k_r = 1e4;
-  p.mu_r = 0.02;
+  ContactParams p = wang_contact();
   p.rolling = false;
   const LawSelection lean{"linear", "coulomb", "wang", false, false};
   testing_rig::OneContactRig rig(lean, p, 0.01, 0.01, 1e-4, p.k_n * 1e-4);
@@ -299,10 +301,8 @@ TEST(LawRegistry, ARollingDashpotInAnyPairOrWallKeepsTheFullWangLaw) {
   t.wall(1).c_r = 0.0;
   t.pair(0, 1).c_r = 0.5;
   EXPECT_TRUE(any_rolling_dashpot(t)) << "a pair of two materials";
-  const std::vector<std::string> wang{"--contact.rolling=wang", "--wang.k_r=1e4", "--wang.mu_r=0.1",
-                                      "--coulomb.k_s=1e4", "--coulomb.mu=0.5"};
-  EXPECT_FALSE(law_selection(parse_config_text(kBase, wang)).rolling_dashpot);
-  std::vector<std::string> damped = wang;
+  EXPECT_FALSE(law_selection(parse_config_text(kBase, kWangOverrides)).rolling_dashpot);
+  std::vector<std::string> damped = kWangOverrides;
   damped.push_back("--wang.c_r=2");
   EXPECT_TRUE(law_selection(parse_config_text(kBase, damped)).rolling_dashpot);
 }
