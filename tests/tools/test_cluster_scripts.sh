@@ -40,7 +40,7 @@ case $FAKE_MODE in
   stop-mpirun) stop 1 ;;  # the ranks exit 10, mpirun says 1
   complete) summary complete; exit 0 ;;
   fail) exit 1 ;;
-  signal) trap 'stop 10' USR1; for _ in $(seq 200); do sleep 0.05; done; exit 7 ;;
+  signal) trap 'stop 10' USR1; touch "$out/trap-set"; for _ in $(seq 200); do sleep 0.05; done; exit 7 ;;
 esac
 FAKE
 chmod +x "$work/bin/"*
@@ -102,8 +102,9 @@ mkdir -p "$case_dir"
    FAKE_MODE=signal FAKE_LOG="$case_dir/rondel.log" FAKE_OUT="$case_dir/out" SLURM_SUBMIT_DIR="$case_dir" \
    bash "$job" in.ini out > "$case_dir/job.out" 2>&1) &
 shell=$!  # the batch shell itself (exec)
-for _ in $(seq 100); do [ -f "$case_dir/rondel.log" ] && break; sleep 0.05; done
-sleep 0.2
+# Signal only once the fake rank has set its trap (before that, SIGUSR1 would kill it: exit 138). Polling a
+# marker rather than sleeping a fixed time: on a loaded machine the rank can take longer than any guess.
+for _ in $(seq 400); do [ -f "$case_dir/out/trap-set" ] && break; sleep 0.05; done
 kill -USR1 "$shell"
 wait "$shell"
 rc=$?
