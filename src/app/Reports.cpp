@@ -8,11 +8,11 @@
 #include <cstring>
 #include <sstream>
 
-#include "app/Format.hpp"
 #include "app/RowGeometry.hpp"
 #include "app/Simulation.hpp"
 #include "core/Errors.hpp"
 #include "core/ExactSum.hpp"
+#include "core/Format.hpp"
 #include "parallel/ByteBuffer.hpp"
 #include "parallel/CanonicalOrder.hpp"
 #include "parallel/OrderedText.hpp"
@@ -178,7 +178,7 @@ std::string Reports::state_text() const {
   }
   std::sort(records.begin(), records.end(), [](const auto& a, const auto& b) { return a.gid < b.gid; });
   std::string out = kFinalHeader;
-  const bool decimal = sim_.config().final_format == "decimal";
+  const bool decimal = sim_.config().final_format == FinalFormat::decimal;
   for (const FinalRecord& d : records) append_final_line(d, decimal, out);
   return out;
 }
@@ -196,7 +196,7 @@ void Reports::write_final(const std::string& path) const {
         std::memcpy(out, &r, sizeof r);
       },
       comm_);
-  const bool decimal = sim_.config().final_format == "decimal";
+  const bool decimal = sim_.config().final_format == FinalFormat::decimal;
   write_ordered_text(
       path, kFinalHeader, order,
       [&](std::size_t k, std::string& out) {

@@ -63,12 +63,12 @@ const char* kind_name(Wall::Kind k) {
 }
 }  // namespace
 
-std::vector<SceneDisc> Restart::scene_from_file(const Config& config, WallSet& walls_out) {
+std::vector<SceneDisc> Restart::scene_from_file(const std::string& file, const Config& config, WallSet& walls_out) {
   // Every rank reads every disc (the scene is then distributed like any other). A directory means its
   // newest complete checkpoint. Box walls take their positions from the file (a prepared sample keeps its
   // box); contact history starts afresh, and step, time and strains start at zero: a new test stage.
   const Communicator self = Communicator::self();
-  std::string path = config.scene.file;
+  std::string path = file;
   if (fs::is_directory(path)) path = Checkpointing::newest_checkpoint(path, self);
   check_material_table(path, read_state_header(path, self), config);
   DiscStore d;

@@ -6,6 +6,7 @@
 #include "core/ContactTable.hpp"
 #include "core/DiscStore.hpp"
 #include "core/SceneBuilder.hpp"
+#include "core/SceneTypes.hpp"
 #include "core/Wall.hpp"
 #include "parallel/Communicator.hpp"
 #include "parallel/StateFile.hpp"
@@ -36,9 +37,9 @@ class Restart {
   // The ledger continues: every rank carries the scale, rank 0 the integrals.
   void read_ledger(EnergyLedger& ledger) const;
 
-  // scene.type = file: every disc of scene.file (a directory: its newest complete checkpoint), read on each
-  // rank; box walls take their positions from the file. History, step, time and strains start afresh.
-  static std::vector<SceneDisc> scene_from_file(const Config& config, WallSet& walls);
+  // scene.type = file: every disc of `path` (a directory: its newest complete checkpoint), read on each rank;
+  // box walls take their positions from the file. History, step, time and strains start afresh.
+  static std::vector<SceneDisc> scene_from_file(const std::string& path, const Config& config, WallSet& walls);
 
  private:
   void check_laws_match() const;
@@ -49,6 +50,19 @@ class Restart {
   const LawSelection& laws_;
   const Communicator& comm_;
   StateHeader header_;
+};
+
+// The reader of scene.type = file (core/SceneTypes.hpp): Restart::scene_from_file into these walls.
+class FileScene final : public SceneFileReader {
+ public:
+  FileScene(const Config& config, WallSet& walls) : config_(config), walls_(walls) {}
+  std::vector<SceneDisc> discs(const std::string& path) const override {
+    return Restart::scene_from_file(path, config_, walls_);
+  }
+
+ private:
+  const Config& config_;
+  WallSet& walls_;
 };
 
 }  // namespace rondel

@@ -4,11 +4,11 @@
 #include <cstdio>
 #include <sstream>
 
-#include "app/Format.hpp"
 #include "app/Reports.hpp"
 #include "app/RunFiles.hpp"
 #include "app/Simulation.hpp"
 #include "core/Errors.hpp"
+#include "core/Format.hpp"
 #include "core/StopSignal.hpp"
 #include "parallel/Agreement.hpp"
 #include "rondel/Version.hpp"

@@ -6,13 +6,13 @@
 #include <iostream>
 #include <sstream>
 
-#include "app/Format.hpp"
 #include "app/Reports.hpp"
 #include "app/Restart.hpp"
 #include "app/RowGeometry.hpp"
 #include "app/StartChecks.hpp"
 #include "core/Errors.hpp"
 #include "core/ExactSum.hpp"
+#include "core/Format.hpp"
 #include "core/SceneBuilder.hpp"
 #include "parallel/Agreement.hpp"
 #include "physics/NormalHertz.hpp"
@@ -106,14 +106,13 @@ void Simulation::build_discs() {
 
 void Simulation::add_scene_discs() {
   const std::string dir = config_.source_file.empty() ? "" : fs::path(config_.source_file).parent_path().string();
-  const bool from_file = config_.scene.type == "file";
-  const auto scene =
-      from_file ? Restart::scene_from_file(config_, walls_) : build_scene(config_.scene, config_.domain, dir);
-  if (from_file) box0_ = Boundaries::box(walls_, config_.domain);
+  const FileScene files(config_, walls_);
+  const auto scene = build_scene(SceneInputs{config_.scene, config_.domain, dir, &files});
+  box0_ = Boundaries::box(walls_, config_.domain);  // a file scene may have moved the box walls
   if (scene.empty())
-    throw InputError(config_.scene.type == "csv"
+    throw InputError(config_.scene.type->source != SceneType::Source::keys
                          ? "scene.file '" + config_.scene.file + "' holds no discs: the scene is empty"
-                         : "the scene has no discs (scene.type = " + config_.scene.type + ")");
+                         : std::string("the scene has no discs (scene.type = ") + config_.scene.type->name + ")");
   discs_.reserve(scene.size());
   for (const auto& d : scene) {
     Vec2 x = d.x;
@@ -203,10 +202,8 @@ void Simulation::distribute_discs() {
 }
 
 void Simulation::make_decomposition(bool replicated) {
-  const auto partitioner = config_.partitioner == "grid"    ? Decomposition::Partitioner::grid
-                           : config_.partitioner == "metis" ? Decomposition::Partitioner::metis
-                                                            : Decomposition::Partitioner::sfc;
-  decomposition_ = std::make_unique<Decomposition>(config_.domain, neighbours_.range(R_max_), partitioner, comm_);
+  decomposition_ =
+      std::make_unique<Decomposition>(config_.domain, neighbours_.range(R_max_), config_.partitioner, comm_);
   decomposition_->initial_partition(discs_, replicated);
   if (decomposition_->empty_ranks() > 0 && comm_.root())
     std::cerr << "rondel: warning: " << decomposition_->empty_ranks() << " of " << comm_.size()

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "app/Format.hpp"
 #include "app/Simulation.hpp"
 #include "core/Errors.hpp"
+#include "core/Format.hpp"
 #include "core/Integrator.hpp"
 #include "parallel/Agreement.hpp"
 #include "parallel/FusedReduction.hpp"

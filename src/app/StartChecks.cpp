@@ -5,9 +5,11 @@
 #include <cmath>
 #include <sstream>
 
-#include "app/Format.hpp"
 #include "core/Errors.hpp"
+#include "core/Format.hpp"
 #include "core/MemoryLimit.hpp"
+#include "core/Partitioners.hpp"
+#include "core/SceneTypes.hpp"
 #include "physics/LawRegistry.hpp"
 
 namespace rondel::start_checks {
@@ -19,24 +21,15 @@ constexpr double kLightSpeed = 299792458.0;
 bool normal_positive(double v) { return std::isfinite(v) && v >= DBL_MIN; }
 
 std::string material_prefix(const Config& c, const Material& m) {
-  return c.materials.size() > 1 || m.name != "default" ? "material." + m.name : std::string("material");
+  return c.materials.size() > 1 || m.name != kDefaultMaterial ? "material." + m.name : std::string("material");
 }
 
-std::string radius_keys(const Config& c) {
-  const SceneConfig& s = c.scene;
-  if (s.type == "lattice_square" || s.type == "lattice_hex") return "scene.radius = " + fmt(s.radius);
-  if (s.type == "random" && s.distribution == "list") return "scene.sizes";
-  if (s.type == "random" && !s.material_radius_min.empty())
-    return "scene.material_radius_min, scene.material_radius_max";
-  if (s.type == "random")
-    return "scene.radius_min = " + fmt(s.radius_min) + ", scene.radius_max = " + fmt(s.radius_max);
-  return "the radii of scene.file '" + s.file + "'";
-}
+std::string radius_keys(const Config& c) { return c.scene.type->radius_keys(c.scene); }
 
 std::string velocity_keys(const Config& c) {
   std::string keys = "scene.vx = " + fmt(c.scene.velocity.x) + ", scene.vy = " + fmt(c.scene.velocity.y) +
                      ", scene.omega = " + fmt(c.scene.omega);
-  if (c.scene.type == "csv" || c.scene.type == "file")
+  if (c.scene.type->source != SceneType::Source::keys)
     keys += " and the velocities of scene.file '" + c.scene.file + "'";
   return keys;
 }
@@ -44,16 +37,7 @@ std::string velocity_keys(const Config& c) {
 }  // namespace
 
 std::string scene_keys(const Config& c) {
-  const SceneConfig& s = c.scene;
-  std::string keys;
-  if (s.type == "lattice_square" || s.type == "lattice_hex")
-    keys = "scene.nx, scene.ny, scene.radius, scene.spacing, scene.x0, scene.y0";
-  else if (s.type == "random")
-    keys = "scene.count, scene.region (or walls.box_region), " + radius_keys(c);
-  else
-    keys = "the discs of scene.file '" + s.file + "'" +
-           (s.type == "csv" ? ", scene.replicate_x, scene.replicate_y" : std::string());
-  return keys + "; domain.xlo, domain.xhi, domain.ylo, domain.yhi" +
+  return c.scene.type->placement_keys(c.scene) + "; domain.xlo, domain.xhi, domain.ylo, domain.yhi" +
          (c.walls.empty() ? "" : "; walls.box, walls.box_region, walls.lines, walls.segments");
 }
 
@@ -85,14 +69,15 @@ std::string critical_keys(const Config& c) {
         }
     }
   }
+  const LawInfo& normal = *laws.normal.find(c.normal_law);
   for (const Material& m : c.materials) {
     const std::string prefix = material_prefix(c, m);
     s << prefix << ".density = " << fmt(m.density) << ", " << prefix << ".thickness = " << fmt(m.thickness) << ", ";
-    if (c.normal_law == "hertz")
+    if (normal.elastic)
       s << prefix << ".youngs_modulus = " << fmt(m.youngs_modulus) << ", " << prefix
         << ".poisson_ratio = " << fmt(m.poisson_ratio) << ", ";
   }
-  if (c.normal_law == "hertz") s << "run.max_overlap = " << fmt(c.max_overlap) << ", ";
+  if (normal.stiffening) s << "run.max_overlap = " << fmt(c.max_overlap) << ", ";
   s << radius_keys(c);
   return s.str();
 }
@@ -143,7 +128,7 @@ void check_cells(const Config& c, double range) {
   // As CellGrid: floor(length / range) cells per side, at least 1, at most 1e5.
   auto per_side = [range](double length) { return std::clamp(std::floor(length / range), 1.0, 1.0e5); };
   const double cells = per_side(c.domain.length_x()) * per_side(c.domain.length_y());
-  const double per_cell = c.partitioner == "metis" ? kBytesPerMetisCell : kBytesPerCell;
+  const double per_cell = Partitioners::bytes_per_cell(c.partitioner);
   check_memory(
       0.0, cells, per_cell,
       "the domain (domain.xlo, domain.xhi, domain.ylo, domain.yhi) in cells of side >= the interaction range " +

@@ -49,7 +49,7 @@ std::string resolved_text(const LawCatalog& laws, const po::options_description&
     const auto dot = name.rfind('.');  // [material.glass] density = ..., [linear.glass.steel] k_n = ...
     const std::string sec = name.substr(0, dot);
     if (config::unselected_law_block(laws, c, sec.substr(0, sec.find('.')))) continue;
-    if (sec == "material" && c.materials.front().name != "default") continue;  // [material.NAME] instead
+    if (sec == "material" && c.materials.front().name != kDefaultMaterial) continue;  // [material.NAME] instead
     if (sec != section) {
       out << (section.empty() ? "" : "\n") << "[" << sec << "]\n";
       section = sec;
@@ -59,112 +59,48 @@ std::string resolved_text(const LawCatalog& laws, const po::options_description&
   return out.str();
 }
 
-void read_run(const Reader& r, Config& c) {
-  c.steps = r.get<std::int64_t>("run.steps");
-  check(c.steps >= 0, "run.steps", "must be >= 0", std::to_string(c.steps));
-  c.dt = r.get<double>("run.dt");
-  non_negative(c.dt, "run.dt");
-  c.safety = r.get<double>("run.safety");
-  check(c.safety > 0.0 && c.safety <= 1.0, "run.safety", "must be in (0, 1]", num(c.safety));
-  c.force_dt = r.get<bool>("run.force_dt");
-  c.output = r.get<std::string>("run.output");
+}  // namespace
+
+namespace config {
+
+void read_run(const Reader&, Config& c) {
   check(!c.output.empty(), "run.output", "a directory name", "''");
-  c.overwrite = r.get<bool>("run.overwrite");
-  c.progress = r.get<bool>("run.progress");
-  c.max_overlap = r.get<double>("run.max_overlap");
-  check(c.max_overlap > 0.0, "run.max_overlap", "must be > 0", num(c.max_overlap));
-  c.max_residual = r.get<double>("run.max_residual");
-  check(c.max_residual > 0.0, "run.max_residual", "must be > 0", num(c.max_residual));
-  c.max_energy_gain = r.get<double>("run.max_energy_gain");
-  check(c.max_energy_gain > 0.0 && std::isfinite(c.max_energy_gain), "run.max_energy_gain", "must be > 0 and finite",
-        num(c.max_energy_gain));
-  c.local_damping = r.get<double>("run.local_damping");
-  check(c.local_damping >= 0.0 && c.local_damping < 1.0, "run.local_damping",
-        "must be in [0, 1): the fraction alpha of each force component taken against the motion (0 = off)",
-        num(c.local_damping));
-  c.reset_history = r.get<bool>("run.reset_history");
-  c.accept_materials = r.get<bool>("run.accept_materials");
+  if (std::find(c.snapshot_fields.begin(), c.snapshot_fields.end(), "position") == c.snapshot_fields.end())
+    c.snapshot_fields.emplace_back("position");  // the XDMF geometry
+  const Domain& d = c.domain;
+  check(d.xhi > d.xlo, "domain.xhi", "must be > domain.xlo", num(d.xhi));
+  check(d.yhi > d.ylo, "domain.yhi", "must be > domain.ylo", num(d.yhi));
+  check(std::isfinite(d.length_x()), "domain.xhi", "domain.xhi - domain.xlo must be a finite length",
+        num(d.xhi) + " - " + num(d.xlo));
+  check(std::isfinite(d.length_y()), "domain.yhi", "domain.yhi - domain.ylo must be a finite length",
+        num(d.yhi) + " - " + num(d.ylo));
 }
 
-void read_output(const Reader& r, Config& c) {
-  c.snapshot_every = r.get<std::int64_t>("output.snapshot_every");
-  check(c.snapshot_every >= 0, "output.snapshot_every", "must be >= 0", std::to_string(c.snapshot_every));
-  {
-    std::istringstream in(r.get<std::string>("output.snapshot_fields"));
-    const std::string allowed =
-        " gid material radius mass inertia position velocity theta omega force torque flags rank ";
-    for (std::string f; in >> f;) {
-      check(allowed.find(" " + f + " ") != std::string::npos, "output.snapshot_fields", allowed, f);
-      c.snapshot_fields.push_back(f);
-    }
-    if (std::find(c.snapshot_fields.begin(), c.snapshot_fields.end(), "position") == c.snapshot_fields.end())
-      c.snapshot_fields.push_back("position");  // the XDMF geometry
-  }
-  c.checkpoint_every = r.get<std::int64_t>("output.checkpoint_every");
-  check(c.checkpoint_every >= 0, "output.checkpoint_every", "must be >= 0", std::to_string(c.checkpoint_every));
-  c.checkpoint_minutes = r.get<double>("output.checkpoint_minutes");
-  non_negative(c.checkpoint_minutes, "output.checkpoint_minutes");
-  c.checkpoint_keep = r.get<int>("output.checkpoint_keep");
-  check(c.checkpoint_keep >= 1, "output.checkpoint_keep", "must be >= 1", std::to_string(c.checkpoint_keep));
-  c.checkpoint_at_end = r.get<bool>("output.checkpoint_at_end");
-  c.verify_checkpoints = r.get<bool>("output.verify_checkpoints");
-  c.thermo_every = r.get<std::int64_t>("output.thermo_every");
-  check(c.thermo_every >= 0, "output.thermo_every", "must be >= 0", std::to_string(c.thermo_every));
-  c.final_format = r.get<std::string>("output.final_format");
-  check(c.final_format == "hex" || c.final_format == "decimal", "output.final_format", "hex or decimal",
-        c.final_format);
-  if (r.vm.count("resume")) c.resume_dir = r.vm["resume"].as<std::string>();
-  c.diag_every = r.get<std::int64_t>("diagnostics.every");
-  check(c.diag_every > 0, "diagnostics.every", "must be > 0", std::to_string(c.diag_every));
-}
+}  // namespace config
 
-// [domain], [gravity], [material], [neighbour], [parallel].
-void read_domain(const Reader& r, Config& c) {
-  const char* box_keys[4] = {"domain.xlo", "domain.xhi", "domain.ylo", "domain.yhi"};
-  for (const char* k : box_keys) r.required(k, " (the simulation box)");
-  c.domain.xlo = r.get<double>("domain.xlo");
-  c.domain.xhi = r.get<double>("domain.xhi");
-  c.domain.ylo = r.get<double>("domain.ylo");
-  c.domain.yhi = r.get<double>("domain.yhi");
-  check(c.domain.xhi > c.domain.xlo, "domain.xhi", "must be > domain.xlo", num(c.domain.xhi));
-  check(c.domain.yhi > c.domain.ylo, "domain.yhi", "must be > domain.ylo", num(c.domain.yhi));
-  check(std::isfinite(c.domain.length_x()), "domain.xhi", "domain.xhi - domain.xlo must be a finite length",
-        num(c.domain.xhi) + " - " + num(c.domain.xlo));
-  check(std::isfinite(c.domain.length_y()), "domain.yhi", "domain.yhi - domain.ylo must be a finite length",
-        num(c.domain.yhi) + " - " + num(c.domain.ylo));
-  c.domain.periodic_x = r.get<bool>("domain.periodic_x");
-  c.domain.periodic_y = r.get<bool>("domain.periodic_y");
-  c.gravity = {r.get<double>("gravity.x"), r.get<double>("gravity.y")};
-  c.skin = r.get<double>("neighbour.skin");
-  non_negative(c.skin, "neighbour.skin");
-  c.partitioner = r.get<std::string>("parallel.partitioner");
-  check(c.partitioner == "sfc" || c.partitioner == "metis" || c.partitioner == "grid", "parallel.partitioner",
-        "sfc | grid | metis", c.partitioner);
-  c.balance_every = r.get<std::int64_t>("parallel.balance_every");
-  check(c.balance_every >= 0, "parallel.balance_every", "must be >= 0", std::to_string(c.balance_every));
-  c.balance_threshold = r.get<double>("parallel.balance_threshold");
-  check(c.balance_threshold > 1.0, "parallel.balance_threshold", "must be > 1", num(c.balance_threshold));
-  c.force_balance = r.get<bool>("parallel.force_balance");
-  c.check_every = r.get<std::int64_t>("parallel.check_every");
-  check(c.check_every >= 1 && c.check_every <= 1000, "parallel.check_every", "1 to 1000",
-        std::to_string(c.check_every));
-}
+namespace {
 
 Config build(const LawCatalog& laws, const DynamicSections& dynamic, const po::variables_map& vm) {
-  const po::options_description schema = config_schema(laws, dynamic);
+  po::options_description schema = config_schema(laws, dynamic);
+  std::vector<KeyReader<Config>> readers;
+  {
+    po::options_description declared;
+    std::vector<KeySpec> keys;
+    config::declare_fixed_keys(laws, declared, keys, &readers);
+  }
   const Reader r{vm};
   // The one validation pass: every value given is finite and in the range declared with its key.
   validate_values(config_keys(laws, dynamic), vm);
   Config c;
+  for (const auto& read : readers) read(vm, c);
+  if (vm.count("resume")) c.resume_dir = vm["resume"].as<std::string>();
   read_run(r, c);
-  read_output(r, c);
-  read_domain(r, c);
   read_materials(r, dynamic, c);
   read_contact(laws, r, c);
-  read_walls(r, c);
+  read_walls(c);
   read_pairs(laws, r, dynamic, c);
-  read_scene(r, c);
-  read_scene_materials(r, c);
+  read_scene(c);
+  read_scene_materials(c);
   c.resolved_text = resolved_text(laws, schema, vm, c);
   return c;
 }

@@ -1,4 +1,7 @@
 #pragma once
+// The run's configuration, as the key table fills it (core/ConfigSchema.cpp declares every key once, with the
+// field it fills, its default, range, unit and help; docs/design.md section 8). The defaults live in the rows,
+// not here: a Config is made by parse_config only.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -11,21 +14,29 @@
 
 namespace rondel {
 
+struct SceneType;  // core/SceneTypes.hpp: the scene builders' registry
+
+enum class FinalFormat { hex, decimal };                         // output.final_format
+enum class Distribution { uniform_radius, uniform_area, list };  // scene.distribution
+enum class Numbering { placement, rows };                        // scene.numbering (docs/benchmarks.md)
+enum class MaterialBy { number, area };                          // scene.material_by
+
 struct SceneConfig {
-  std::string type;  // lattice_square, lattice_hex, random, csv
+  const SceneType* type = nullptr;  // scene.type (its row of the registry)
   // lattice
   int nx = 0, ny = 0;
   double radius = 0.0, spacing = 0.0, x0 = 0.0, y0 = 0.0;
   // random
   std::int64_t count = 0;
-  double region[4] = {0, 0, 0, 0};  // xlo xhi ylo yhi
-  std::string distribution;         // uniform_radius, uniform_area, list
+  std::vector<double> region_given;  // scene.region as given (empty: walls.box_region, else the domain)
+  double region[4] = {0, 0, 0, 0};   // xlo xhi ylo yhi
+  Distribution distribution = Distribution::uniform_radius;
   double radius_min = 0.0, radius_max = 0.0;
   std::vector<double> sizes, fractions;
-  std::uint64_t seed = 1;
+  std::int64_t seed = 0;  // >= 0
   std::int64_t max_attempts = 0;
-  std::string numbering = "placement";  // placement (largest first) | rows (docs/benchmarks.md)
-  // csv
+  Numbering numbering = Numbering::placement;
+  // csv, file
   std::string file;
   int replicate_x = 1, replicate_y = 1;
   // every scene
@@ -33,27 +44,37 @@ struct SceneConfig {
   double omega = 0.0;
   double max_initial_overlap = 0.0;  // fraction of the smaller radius
   // materials (docs/physics.md section 7): the material of each disc, by index into Config::materials
-  std::vector<int> materials;                                    // scene.materials (empty: every disc has material 0)
+  std::vector<std::string> material_words;                       // scene.materials as given
+  std::vector<int> materials;                                    // their indices (empty: every disc has material 0)
   std::vector<double> material_fractions;                        // lattice, random: number fractions (sum 1)
-  std::string material_by = "number";                            // number | area: what the fractions count
+  MaterialBy material_by = MaterialBy::number;                   // what the fractions count
   std::vector<double> material_radius_min, material_radius_max;  // random: a radius range per material
-  std::vector<int> size_materials;   // random, list: the material of each size (scene.size_materials)
+  std::vector<std::string> size_material_words;                  // scene.size_materials as given
+  std::vector<int> size_materials;                               // random, list: the material of each size
   std::vector<int> rough_materials;  // per box side (bottom left right top): the material of glued discs; -1 keep
   std::vector<std::string> material_names;  // of Config::materials (a csv scene names them in a column)
+};
+
+// The [walls] keys as given; ConfigWalls.cpp turns them into Config::walls.
+struct WallKeys {
+  std::vector<std::string> box, control, rough, materials, rough_materials;
+  std::string material;
+  std::vector<double> box_region;
+  std::vector<std::vector<double>> lines, segments, circles;
 };
 
 struct Config {
   // [run]
   std::int64_t steps = 0;
-  double dt = 0.0;  // 0: automatic
-  double safety = 0.2;
+  double dt = 0.0;  // 0: safety x the critical step
+  double safety = 0.0;
   bool force_dt = false;
   std::string output;
   bool overwrite = false;
-  bool progress = true;
-  double max_overlap = 0.1;
-  double max_residual = 0.5;
-  double max_energy_gain = 0.1;  // run.max_energy_gain: largest -D_other / energy scale
+  bool progress = false;
+  double max_overlap = 0.0;
+  double max_residual = 0.0;
+  double max_energy_gain = 0.0;  // largest -D_other / energy scale
   double local_damping = 0.0;    // alpha of the integrator's local damping, [0, 1); 0 = off
   bool reset_history = false;
   bool accept_materials = false;  // a restart or file scene may have a material table other than the file's
@@ -62,34 +83,35 @@ struct Config {
   std::vector<std::string> snapshot_fields;
   std::int64_t checkpoint_every = 0;
   double checkpoint_minutes = 0.0;
-  int checkpoint_keep = 2;
-  bool checkpoint_at_end = true;
-  bool verify_checkpoints = true;    // each checkpoint read back before it replaces older ones
-  std::int64_t thermo_every = 5000;  // thermo line interval in steps (at diagnostics steps); 0 = off
-  std::string final_format = "hex";  // final.csv floats: hex or decimal
-  std::string resume_dir;            // --resume DIR (command line only)
+  int checkpoint_keep = 0;
+  bool checkpoint_at_end = false;
+  bool verify_checkpoints = false;  // each checkpoint read back before it replaces older ones
+  std::int64_t thermo_every = 0;    // thermo line interval in steps (at diagnostics steps); 0 = off
+  FinalFormat final_format = FinalFormat::hex;
+  std::string resume_dir;  // --resume DIR (command line only)
   // [diagnostics]
-  std::int64_t diag_every = 100;
+  std::int64_t diag_every = 0;
   // [domain], [gravity], [material] or [material.NAME]
   Domain domain;
   Vec2 gravity;
-  double density = 0.0, thickness = 1.0;  // of material 0; the thickness is every material's
-  std::vector<Material> materials;        // one ([material]) or several ([material.NAME], ordered by name)
-  // [contact] and law blocks
+  double thickness = 1.0;           // every material's (the thickness stresses are per)
+  std::vector<Material> materials;  // one ([material]) or several ([material.NAME], ordered by name)
+  // [contact] and law blocks: the selected laws' keywords (physics/LawRegistry) and their parameters
   std::string normal_law, tangential_law, rolling_law;
   ContactParamTable params;
   // [neighbour]
-  double skin = 0.0;  // 0: automatic
+  double skin = 0.0;  // 0: a quarter of the mean radius
   // [parallel]
-  std::string partitioner = "sfc";
-  std::int64_t balance_every = 1000;
-  double balance_threshold = 1.05;
+  std::string partitioner;  // a name of core/Partitioners.hpp
+  std::int64_t balance_every = 0;
+  double balance_threshold = 0.0;
   bool force_balance = false;
-  std::int64_t check_every = 10;
+  std::int64_t check_every = 0;
   // [walls]
+  WallKeys wall_keys;
   WallSet walls;
   std::vector<std::string> box_walls;
-  double servo_gain = 0.2, servo_max_speed = 0.1;
+  double servo_gain = 0.0, servo_max_speed = 0.0;
   double rough_depth = 0.0;  // [m] glue discs whose centre is closer than this to a rough wall; 0 = 2 R_max
   SceneConfig scene;
 

@@ -1,6 +1,8 @@
-// [contact], the law blocks and [wall_contact]. Which laws exist, their keywords, blocks and parameters
-// come from the law catalog (physics/LawRegistry); only the linear law's "at most one of zeta, c_n, e"
-// rule and the [wall_contact] block are written out here.
+// [contact], the law blocks and [wall_contact]. Which laws exist, their keywords, blocks and parameters come from
+// the law catalog (physics/LawRegistry); the rows of ConfigSchema.cpp read the selected keywords. What is written
+// here applies to any law: a block of an unselected law is refused, a block's parameters fill ContactParams through
+// their ParamSpec, at most one key of a block's one_of group is given, and [wall_contact] takes only keys that the
+// selected laws' blocks have.
 #include <string>
 
 #include "core/ConfigRead.hpp"
@@ -9,14 +11,17 @@ namespace rondel::config {
 
 namespace {
 
-// The Config field that holds the keyword selected for `kind`.
-std::string Config::*keyword_field(const LawKind& kind) {
-  const std::string name = kind.kind;
-  return name == "normal" ? &Config::normal_law : name == "tangential" ? &Config::tangential_law : &Config::rolling_law;
+// The Config fields of the selected keywords, in the catalog's order of kinds (normal, tangential, rolling).
+std::string Config::*const kSelected[] = {&Config::normal_law, &Config::tangential_law, &Config::rolling_law};
+
+const std::string& selected_keyword(const LawCatalog& laws, const Config& c, const LawKind& kind) {
+  const auto kinds = laws.kinds();
+  for (std::size_t k = 0; k < kinds.size(); ++k)
+    if (kinds[k] == &kind) return c.*kSelected[k];
+  throw ConfigError(std::string("internal: a law kind not in the catalog: ") + kind.kind);
 }
-const std::string& selected_keyword(const Config& c, const LawKind& kind) { return c.*keyword_field(kind); }
-const LawBlock* selected_block(const Config& c, const LawKind& kind) {
-  const LawInfo* law = kind.find(selected_keyword(c, kind));
+const LawBlock* selected_block(const LawCatalog& laws, const Config& c, const LawKind& kind) {
+  const LawInfo* law = kind.find(selected_keyword(laws, c, kind));
   return law ? law->block : nullptr;
 }
 
@@ -34,15 +39,16 @@ void refuse_unselected_blocks(const LawCatalog& laws, const Reader& r, const Con
     const std::string section = key.substr(0, key.find('.'));
     const LawKind* kind = block_kind(laws, section);
     if (!kind || value.defaulted()) continue;
-    const LawBlock* block = selected_block(c, *kind);
+    const LawBlock* block = selected_block(laws, c, *kind);
     if (!block || section != block->section)
       throw ConfigError("key '" + key + "' belongs to the [" + section + "] block, but that law is not selected (" +
-                        "contact." + kind->kind + " = " + selected_keyword(c, *kind) + ")");
+                        "contact." + kind->kind + " = " + selected_keyword(laws, c, *kind) + ")");
   }
 }
 
 // Every parameter of the selected law's block, in declaration order, into p.
 void read_block(const Reader& r, const LawKind& kind, const std::string& law, const LawBlock& block, ContactParams& p) {
+  int one_of = 0;
   for (const ParamSpec& spec : block.params) {
     const std::string key = std::string(block.section) + "." + spec.key;
     if (!r.vm.count(key)) {
@@ -50,71 +56,62 @@ void read_block(const Reader& r, const LawKind& kind, const std::string& law, co
         r.required(key, " (required with contact." + std::string(kind.kind) + " = " + law + ")");
       continue;
     }
-    const double v = r.get<double>(key);
-    in_range(v, spec.range, key);
-    p.*spec.target = v;
+    if (block.in_one_of(spec.key)) ++one_of;
+    p.*spec.target = r.get<double>(key);  // in spec.range: the validation pass checked it
+  }
+  if (one_of > 1) {
+    std::string keys;
+    for (const char* k : block.one_of)
+      keys += (keys.empty() ? "'" : ", '") + std::string(block.section) + "." + k + "'";
+    throw ConfigError("keys " + keys + ": give at most one");
   }
 }
 
-void read_linear_rule(const Reader& r) {
-  int damping_keys = 0;
-  for (const char* k : {"linear.zeta", "linear.c_n", "linear.e"}) damping_keys += r.vm.count(k) ? 1 : 0;
-  if (damping_keys > 1) throw ConfigError("keys 'linear.zeta', 'linear.c_n', 'linear.e': give at most one");
-}
-
-// [wall_contact]: the disc-disc parameters p with the keys given here replacing theirs.
-ContactParams read_wall_contact(const Reader& r, const Config& c, const ContactParams& p) {
+// [wall_contact]: the disc-disc parameters p with the keys given here replacing theirs. A key needs a selected
+// law whose block has the parameter of that name.
+ContactParams read_wall_contact(const LawCatalog& laws, const Reader& r, const Config& c, const ContactParams& p) {
   ContactParams w = p;
   w.rolling = r.get<bool>("wall_contact.rolling");
-  if (r.vm.count("wall_contact.k_n")) positive(r, "wall_contact.k_n"), w.k_n = r.get<double>("wall_contact.k_n");
+  const LawBlock* normal = selected_block(laws, c, laws.normal);
+  const LawBlock* tangential = selected_block(laws, c, laws.tangential);
   if (r.vm.count("wall_contact.zeta") && r.vm.count("wall_contact.e"))
     throw ConfigError("keys 'wall_contact.zeta' and 'wall_contact.e': give at most one");
-  if (r.vm.count("wall_contact.zeta"))
-    non_negative(w.zeta_n = r.get<double>("wall_contact.zeta"), "wall_contact.zeta"), w.c_n_fixed = -1.0, w.e_n = -1.0;
-  if (r.vm.count("wall_contact.e")) {
-    const double e = r.get<double>("wall_contact.e");
-    in_range(e, kRestitution, "wall_contact.e");
-    w.e_n = e;
-    w.c_n_fixed = -1.0;
+  for (const char* name : {"k_n", "zeta", "e", "k_s", "mu"}) {
+    const std::string key = std::string("wall_contact.") + name;
+    if (!r.vm.count(key)) continue;
+    const bool is_normal = normal && normal->find(name);
+    const LawBlock* block = is_normal ? normal : tangential;
+    const ParamSpec* spec = block ? block->find(name) : nullptr;
+    if (!spec)
+      throw ConfigError("key '" + key + "' needs a selected law with the parameter " + name +
+                        " (contact.normal = " + c.normal_law + ", contact.tangential = " + c.tangential_law +
+                        "; hertz and mindlin take theirs from the materials' E and nu, and [hertz.A.wall.W] e)");
+    w.*spec->target = r.get<double>(key);
+    // The damping given replaces the disc-disc one: the other damping keys return to "not given".
+    if (block->in_one_of(name))
+      for (const char* other : block->one_of)
+        if (std::string(other) != name) w.*block->find(other)->target = block->find(other)->def;
   }
-  for (const char* k : {"wall_contact.k_n", "wall_contact.zeta"})
-    if (r.vm.count(k) && c.normal_law != "linear")
-      throw ConfigError(std::string("key '") + k + "' needs contact.normal = linear (hertz: the materials' E and nu, " +
-                        "[hertz.A.wall.W] e)");
-  if (r.vm.count("wall_contact.k_s") && c.tangential_law != "coulomb")
-    throw ConfigError("key 'wall_contact.k_s' needs contact.tangential = coulomb");
-  if (r.vm.count("wall_contact.mu") && c.tangential_law == "none")
-    throw ConfigError("key 'wall_contact.mu' needs contact.tangential = coulomb or mindlin");
-  if (r.vm.count("wall_contact.k_s")) positive(r, "wall_contact.k_s"), w.k_s = r.get<double>("wall_contact.k_s");
-  if (r.vm.count("wall_contact.mu")) non_negative(w.mu = r.get<double>("wall_contact.mu"), "wall_contact.mu");
   return w;
 }
 
 }  // namespace
 
 void read_contact(const LawCatalog& laws, const Reader& r, Config& c) {
-  for (const LawKind* kind : laws.kinds()) {
-    const std::string key = std::string("contact.") + kind->kind;
-    std::string& keyword = c.*keyword_field(*kind);
-    keyword = r.get<std::string>(key);
-    check(kind->find(keyword) != nullptr, key, kind->keywords(), keyword);
-  }
   refuse_unselected_blocks(laws, r, c);
   ContactParams p;
-  for (const LawKind* kind : laws.kinds()) {
-    const std::string& keyword = selected_keyword(c, *kind);
-    if (kind == &laws.normal && keyword == "linear") read_linear_rule(r);
-    if (const LawBlock* block = selected_block(c, *kind)) read_block(r, *kind, keyword, *block, p);
-  }
+  for (const LawKind* kind : laws.kinds())
+    if (const LawBlock* block = selected_block(laws, c, *kind))
+      read_block(r, *kind, selected_keyword(laws, c, *kind), *block, p);
   c.params = ContactParamTable(1);
   c.params.pair(0, 0) = p;
-  c.params.wall(0) = read_wall_contact(r, c, p);
+  c.params.wall(0) = read_wall_contact(laws, r, c, p);
 }
 
 bool unselected_law_block(const LawCatalog& laws, const Config& c, const std::string& section) {
   const LawKind* kind = block_kind(laws, section);
   if (!kind) return false;
-  const LawBlock* block = selected_block(c, *kind);
+  const LawBlock* block = selected_block(laws, c, *kind);
   return !block || section != block->section;
 }
 

@@ -32,34 +32,23 @@ const LawBlock* find_block(const LawCatalog& laws, const std::string& section) {
   return nullptr;
 }
 
-void add_material_keys(po::options_description& d, std::vector<KeySpec>& keys, const std::string& prefix, bool named) {
-  const std::string p = prefix + ".";
-  config::KeyTable table(d, keys);
-  if (named)
-    table.number(p + "density", po::value<double>(), "kg/m^3", kPositive, "density (required)");
-  else
-    table.number(p + "density", po::value<double>()->default_value(2650.0, "2650"), "kg/m^3", kPositive, "density");
-  table.number(p + "thickness", po::value<double>()->default_value(1.0, "1"), "m", kPositive,
-               "disc thickness t (forces and energies are per t; the same for every material)");
-  table.text(p + "body", po::value<std::string>()->default_value("disc"), "-",
-             "disc (m = rho pi R^2 t, I = m R^2/2) | sphere (m = 4/3 pi rho R^3, I = 2/5 m R^2)");
-  table.number(p + "youngs_modulus", po::value<double>(), "Pa", kPositive,
-               "Young's modulus E (required with contact.normal = hertz)");
-  table.number(p + "poisson_ratio", po::value<double>(), "-", Range{-1.0, 0.5, true, true},
-               "Poisson's ratio nu (required with contact.normal = hertz)");
-}
+// The words of the dynamic section names: [material.NAME], and the disc-wall pair [BLOCK.A.wall.W].
+constexpr const char* kMaterialSection = "material";
+constexpr const char* kWallPart = "wall";
+// The key of a pair block [contact.A.B] that is not a law block: rolling resistance on or off for the pair.
+constexpr const char* kContactSection = "contact";
 
 void add_pair_keys(po::options_description& d, std::vector<KeySpec>& keys, const LawCatalog& laws,
                    const std::string& section) {
   const std::string block = section.substr(0, section.find('.'));
-  config::KeyTable table(d, keys);
-  if (block == "contact") {
-    table.flag(section + ".rolling", po::value<bool>(),
-               "false: no rolling resistance at this pair (rolling = none here)");
+  config::KeyTable<Config> table(d, keys);
+  if (block == kContactSection) {
+    table.declare_flag(section + ".rolling", std::nullopt,
+                       "false: no rolling resistance at this pair (rolling = none here)");
     return;
   }
   for (const ParamSpec& p : find_block(laws, block)->params)
-    table.number(section + "." + p.key, po::value<double>(), p.unit, p.range, p.help);
+    table.declare_number<double>(section + "." + p.key, std::nullopt, p.unit, p.range, p.help);
 }
 
 }  // namespace
@@ -96,10 +85,11 @@ DynamicSections dynamic_sections(const LawCatalog& laws, const std::vector<std::
   std::set<std::string> materials, pairs;
   for (const std::string& key : full_keys) {
     const auto parts = split_dots(key);
-    if (parts.size() == 3 && parts[0] == "material") materials.insert(parts[1]);
-    const bool block = parts[0] == "contact" || find_block(laws, parts[0]);
+    if (parts.size() == 3 && parts[0] == kMaterialSection) materials.insert(parts[1]);
+    const bool block = parts[0] == kContactSection || find_block(laws, parts[0]);
     if (block && parts.size() == 4) pairs.insert(parts[0] + "." + parts[1] + "." + parts[2]);
-    if (block && parts.size() == 5 && parts[2] == "wall") pairs.insert(parts[0] + "." + parts[1] + ".wall." + parts[3]);
+    if (block && parts.size() == 5 && parts[2] == kWallPart)
+      pairs.insert(parts[0] + "." + parts[1] + ".wall." + parts[3]);
   }
   return {{materials.begin(), materials.end()}, {pairs.begin(), pairs.end()}};
 }
@@ -114,13 +104,34 @@ po::options_description config_schema(const LawCatalog& laws, const DynamicSecti
 
 namespace config {
 
+void declare_material_keys(po::options_description& d, std::vector<KeySpec>& keys, const std::string& prefix,
+                           bool named, std::vector<KeyReader<Material>>* readers) {
+  static constexpr Choice<Material::Body> kBodies[] = {
+      {"disc", Material::Body::disc, "m = rho pi R^2 t, I = m R^2/2"},
+      {"sphere", Material::Body::sphere, "m = 4/3 pi rho R^3, I = 2/5 m R^2"}};
+  const std::string p = prefix + ".";
+  KeyTable<Material> table(d, keys, readers);
+  if (named)
+    table.number_without_default(p + "density", at(&Material::density), "kg/m^3", kPositive, "density", true,
+                                 " (every material has a density)");
+  else
+    table.number(p + "density", at(&Material::density), 2650.0, "kg/m^3", kPositive, "density");
+  table.number(p + "thickness", at(&Material::thickness), 1.0, "m", kPositive,
+               "disc thickness t (forces and energies are per t; the same for every material)");
+  table.choice(p + "body", at(&Material::body), "disc", kBodies, "the body of the discs");
+  table.number_without_default(p + "youngs_modulus", at(&Material::youngs_modulus), "Pa", kPositive,
+                               "Young's modulus E (with an elastic normal law: contact.normal = hertz)", false);
+  table.number_without_default(p + "poisson_ratio", at(&Material::poisson_ratio), "-", Range{-1.0, 0.5, true, true},
+                               "Poisson's ratio nu (with an elastic normal law: contact.normal = hertz)", false);
+}
+
 void declare_dynamic_keys(const LawCatalog& laws, const DynamicSections& dynamic, bool help,
                           po::options_description& all, std::vector<KeySpec>& keys) {
   if (help) {
     po::options_description m(
         "[material.NAME] one material of several (instead of [material]; NAME: letters, "
         "digits, _; materials are numbered in name order)");
-    add_material_keys(m, keys, "material.NAME", true);
+    declare_material_keys(m, keys, "material.NAME", true);
     po::options_description p(
         "[BLOCK.A.B] disc-disc and [BLOCK.A.wall.W] disc-wall parameters of one unordered material pair: any key "
         "of the selected law's block BLOCK, replacing the default (e.g. [linear.glass.steel] k_n = 2e6); "
@@ -131,7 +142,7 @@ void declare_dynamic_keys(const LawCatalog& laws, const DynamicSections& dynamic
   }
   for (const std::string& name : dynamic.materials) {
     po::options_description m("[material." + name + "]");
-    add_material_keys(m, keys, "material." + name, true);
+    declare_material_keys(m, keys, "material." + name, true);
     all.add(m);
   }
   for (const std::string& section : dynamic.pairs) {
@@ -147,42 +158,35 @@ namespace config {
 
 namespace {
 
-Material read_material(const Reader& r, const std::string& prefix, const std::string& name) {
+Material read_material(const po::variables_map& vm, const std::string& prefix, const std::string& name, bool named) {
+  po::options_description unused;
+  std::vector<KeySpec> keys;
+  std::vector<KeyReader<Material>> readers;
+  declare_material_keys(unused, keys, prefix, named, &readers);
   Material m;
   m.name = name;
-  const std::string density = prefix + ".density";
-  r.required(density, " (every material has a density)");
-  positive(r, density);
-  positive(r, prefix + ".thickness");
-  m.density = r.get<double>(density);
-  m.thickness = r.get<double>(prefix + ".thickness");
-  const std::string body = r.get<std::string>(prefix + ".body");
-  check(body == "disc" || body == "sphere", prefix + ".body", "disc | sphere", body);
-  m.body = body == "disc" ? Material::Body::disc : Material::Body::sphere;
-  if (r.vm.count(prefix + ".youngs_modulus")) {
-    positive(r, prefix + ".youngs_modulus");
-    m.youngs_modulus = r.get<double>(prefix + ".youngs_modulus");
-  }
-  if (r.vm.count(prefix + ".poisson_ratio")) {
-    m.poisson_ratio = r.get<double>(prefix + ".poisson_ratio");
-    check(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5, prefix + ".poisson_ratio", "must be in (-1, 0.5)",
-          num(m.poisson_ratio));
-  }
+  for (const auto& read : readers) read(vm, m);
   return m;
 }
 
-// The Hertz-Mindlin laws need E and nu of every material; mindlin needs the hertz normal law (its beta).
-void check_elastic(const Reader& r, const Config& c, bool named) {
-  if (c.tangential_law == "mindlin" && c.normal_law != "hertz")
-    throw ConfigError(
-        "key 'contact.tangential' = mindlin needs contact.normal = hertz (its damping and stiffness "
-        "come from the Hertz contact)");
-  if (c.normal_law != "hertz") return;
-  for (const Material& m : c.materials) {
-    const std::string prefix = named ? "material." + m.name : std::string("material");
-    for (const char* k : {".youngs_modulus", ".poisson_ratio"})
-      if (!r.vm.count(prefix + k))
-        throw ConfigError("missing required key '" + prefix + k + "' (contact.normal = hertz)");
+// A law that needs the materials' elastic constants (hertz, mindlin: LawInfo::elastic) needs E and nu of every
+// material; a law that needs a certain normal law (mindlin: hertz's beta) has it.
+void check_law_needs(const LawCatalog& laws, const Reader& r, const Config& c, bool named) {
+  const std::string selected[] = {c.normal_law, c.tangential_law, c.rolling_law};
+  const auto kinds = laws.kinds();
+  for (std::size_t k = 0; k < kinds.size(); ++k) {
+    const LawInfo* law = kinds[k]->find(selected[k]);
+    if (law->needs_normal && c.normal_law != law->needs_normal)
+      throw ConfigError("key 'contact." + std::string(kinds[k]->kind) + "' = " + law->keyword +
+                        " needs contact.normal = " + law->needs_normal + " (" + law->needs_why + ")");
+    if (!law->elastic) continue;
+    for (const Material& m : c.materials) {
+      const std::string prefix = named ? "material." + m.name : std::string("material");
+      for (const char* key : {".youngs_modulus", ".poisson_ratio"})
+        if (!r.vm.count(prefix + key))
+          throw ConfigError("missing required key '" + prefix + key + "' (contact." + kinds[k]->kind + " = " +
+                            law->keyword + ")");
+    }
   }
 }
 
@@ -196,19 +200,17 @@ int material_named(const Config& c, const std::string& name, const std::string& 
 }
 
 // walls.material (every wall) and walls.materials ('side:NAME ...', box walls).
-void read_wall_materials(const Reader& r, Config& c) {
-  const std::string all = r.get<std::string>("walls.material");
+void read_wall_materials(Config& c) {
+  const std::string& all = c.wall_keys.material;
   const int base = all.empty() ? 0 : material_named(c, all, "walls.material");
   for (Wall& w : c.walls) w.material = base;
-  std::istringstream in(r.get<std::string>("walls.materials"));
-  static const char* kSides[4] = {"bottom", "left", "right", "top"};
-  for (std::string spec; in >> spec;) {
+  for (const std::string& spec : c.wall_keys.materials) {
     const auto colon = spec.find(':');
     if (colon == std::string::npos) throw ConfigError("key 'walls.materials': '" + spec + "' is not 'side:NAME'");
     const std::string side = spec.substr(0, colon);
     bool found = false;
     for (Wall& w : c.walls)
-      if (w.box_side >= 0 && side == kSides[w.box_side])
+      if (w.box_side >= 0 && w.box_side == box_side_index(side))
         w.material = material_named(c, spec.substr(colon + 1), "walls.materials"), found = true;
     if (!found) throw ConfigError("key 'walls.materials': '" + side + "' is not a side listed in walls.box");
   }
@@ -217,25 +219,26 @@ void read_wall_materials(const Reader& r, Config& c) {
 // The parameters of `section` ("BLOCK.A.B" or "BLOCK.A.wall.W") given in the INI or on the command line.
 void read_pair_block(const LawCatalog& laws, const Reader& r, const std::string& section, ContactParams& p) {
   const std::string block = section.substr(0, section.find('.'));
-  if (block == "contact") {
+  if (block == kContactSection) {
     if (r.vm.count(section + ".rolling")) p.rolling = r.get<bool>(section + ".rolling");
     return;
   }
-  int damping = 0;
-  for (const ParamSpec& spec : find_block(laws, block)->params) {
+  const LawBlock& law = *find_block(laws, block);
+  int one_of = 0;
+  for (const ParamSpec& spec : law.params) {
     const std::string key = section + "." + spec.key;
     if (!r.vm.count(key)) continue;
-    const double v = r.get<double>(key);
-    in_range(v, spec.range, key);
-    p.*spec.target = v;
-    if (block == "linear" && std::string(spec.key) != "k_n") {
-      ++damping;  // one damping key replaces the default's: the others are reset
-      if (std::string(spec.key) != "zeta") p.zeta_n = 0.0;
-      if (std::string(spec.key) != "c_n") p.c_n_fixed = -1.0;
-      if (std::string(spec.key) != "e") p.e_n = -1.0;
-    }
+    p.*spec.target = r.get<double>(key);  // in spec.range: the validation pass checked it
+    if (!law.in_one_of(spec.key)) continue;
+    ++one_of;  // the key given replaces the default's: the others of its group return to "not given"
+    for (const char* other : law.one_of)
+      if (std::string(other) != spec.key) p.*law.find(other)->target = law.find(other)->def;
   }
-  if (damping > 1) throw ConfigError("section [" + section + "]: give at most one of zeta, c_n, e");
+  if (one_of > 1) {
+    std::string keys;
+    for (const char* k : law.one_of) keys += (keys.empty() ? "" : ", ") + std::string(k);
+    throw ConfigError("section [" + section + "]: give at most one of " + keys);
+  }
 }
 
 }  // namespace
@@ -249,28 +252,27 @@ void read_materials(const Reader& r, const DynamicSections& dynamic, Config& c) 
         throw ConfigError(std::string("key '") + k +
                           "': give either the single [material] section or [material.NAME] sections, not both");
     for (const std::string& name : dynamic.materials) {
-      const bool ok = !name.empty() && name != "wall" && std::all_of(name.begin(), name.end(), [](char ch) {
+      const bool ok = !name.empty() && name != kWallPart && std::all_of(name.begin(), name.end(), [](char ch) {
         return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
       });
       if (!ok)
         throw ConfigError("section [material." + name + "]: a material name is letters, digits and _ (not 'wall')");
-      c.materials.push_back(read_material(r, "material." + name, name));
+      c.materials.push_back(read_material(r.vm, "material." + name, name, true));
     }
   } else {
-    c.materials.push_back(read_material(r, "material", "default"));
+    c.materials.push_back(read_material(r.vm, "material", kDefaultMaterial, false));
   }
   for (const Material& m : c.materials)
     if (m.thickness != c.materials.front().thickness)
       throw ConfigError("key 'material." + m.name + ".thickness' = " + num(m.thickness) +
                         ": every material has the thickness of the first (material." + c.materials.front().name +
                         ".thickness = " + num(c.materials.front().thickness) + "), the thickness the stresses are per");
-  c.density = c.materials.front().density;
   c.thickness = c.materials.front().thickness;
 }
 
 void read_pairs(const LawCatalog& laws, const Reader& r, const DynamicSections& dynamic, Config& c) {
-  check_elastic(r, c, !dynamic.materials.empty());
-  read_wall_materials(r, c);
+  check_law_needs(laws, r, c, !dynamic.materials.empty());
+  read_wall_materials(c);
   const std::size_t n = c.materials.size();
   const ContactParams disc = c.params.pair(0, 0), wall = c.params.wall(0);
   c.params = ContactParamTable(n);

@@ -1,5 +1,6 @@
 #include "core/ConfigRead.hpp"
 
+#include <algorithm>
 #include <boost/any.hpp>
 #include <cmath>
 #include <cstdint>
@@ -29,39 +30,6 @@ void non_negative(double v, const std::string& key) {
 
 void in_range(double v, const Range& range, const std::string& key) {
   check(range.contains(v), key, "must be " + range.text(), num(v));
-}
-
-std::vector<double> numbers(const std::string& text, const std::string& key) {
-  std::istringstream in(text);
-  std::vector<double> out;
-  std::string tok;
-  while (in >> tok) {
-    double v = 0.0;
-    try {
-      std::size_t used = 0;
-      v = std::stod(tok, &used);
-      if (used != tok.size()) throw std::invalid_argument(tok);
-    } catch (const std::out_of_range&) {
-      throw ConfigError("key '" + key + "': '" + tok + "' is out of the range of a double (about 1e-308 to 1e308)");
-    } catch (const std::exception&) {
-      throw ConfigError("key '" + key + "': '" + tok + "' is not a number");
-    }
-    if (!std::isfinite(v))
-      throw ConfigError("key '" + key + "': '" + tok + "' is not allowed: every number must be finite");
-    out.push_back(v);
-  }
-  return out;
-}
-
-std::vector<std::vector<double>> records(const std::string& text, const std::string& key) {
-  std::vector<std::vector<double>> out;
-  std::istringstream in(text);
-  std::string rec;
-  while (std::getline(in, rec, ';')) {
-    auto v = numbers(rec, key);
-    if (!v.empty()) out.push_back(std::move(v));
-  }
-  return out;
 }
 
 namespace {
@@ -97,6 +65,11 @@ std::string trimmed(const std::string& s) {
 }  // namespace
 
 void validate_values(const std::vector<KeySpec>& keys, const boost::program_options::variables_map& vm) {
+  auto list = [](const std::vector<std::string>& words) {
+    std::string s;
+    for (const std::string& w : words) s += (s.empty() ? "" : " | ") + w;
+    return s;
+  };
   for (const KeySpec& k : keys) {
     if (!vm.count(k.key) || vm[k.key].defaulted()) continue;
     const boost::any& value = vm[k.key].value();
@@ -106,6 +79,13 @@ void validate_values(const std::vector<KeySpec>& keys, const boost::program_opti
       const std::string text = boost::any_cast<std::string>(value);
       for (const auto& record : records(text, k.key))
         for (double v : record) check(k.range.contains(v), k.key, "every number must be " + k.range.text(), num(v));
+    } else if (k.type == KeyType::choice) {
+      const std::string word = boost::any_cast<std::string>(value);
+      check(std::find(k.allowed.begin(), k.allowed.end(), word) != k.allowed.end(), k.key, list(k.allowed), word);
+    } else if (k.type == KeyType::words && !k.allowed.empty()) {
+      for (const std::string& word : split_words(boost::any_cast<std::string>(value)))
+        check(std::find(k.allowed.begin(), k.allowed.end(), word) != k.allowed.end(), k.key,
+              "each word one of " + list(k.allowed), word);
     }
   }
 }

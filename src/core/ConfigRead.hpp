@@ -10,6 +10,7 @@
 #include "core/Config.hpp"
 #include "core/ConfigSchema.hpp"
 #include "core/Errors.hpp"
+#include "core/KeyTable.hpp"
 #include "core/LawSpec.hpp"
 
 namespace rondel::config {
@@ -33,9 +34,6 @@ std::string num(double v);  // 10 significant digits, for messages
 void positive(const Reader& r, const std::string& key);
 void non_negative(double v, const std::string& key);
 void in_range(double v, const Range& range, const std::string& key);  // "must be " + range.text()
-// Whitespace-separated numbers; ';'-separated records of them. Errors name `key`.
-std::vector<double> numbers(const std::string& text, const std::string& key);
-std::vector<std::vector<double>> records(const std::string& text, const std::string& key);
 
 // Any finite number; a speed (of a disc, a wall) below the speed of light; |gravity| up to 1e12 m/s^2 (about a
 // neutron star's surface: anything larger is taken for a mistake).
@@ -44,37 +42,14 @@ inline constexpr double kLightSpeed = 299792458.0;
 inline constexpr Range kSpeed{-kLightSpeed, kLightSpeed, false, false};
 inline constexpr Range kGravity{-1e12, 1e12, false, false};
 
-// Declares keys once, to Boost (the parse and --help) and to the key list (type and range, for the validation
-// pass): the help line is "[unit] help, RANGE" (no range for any finite number).
-class KeyTable {
- public:
-  KeyTable(boost::program_options::options_description& options, std::vector<KeySpec>& keys)
-      : options_(options), keys_(keys) {}
-  // A number (double or an integer type); `value` carries the default, if any.
-  template <class T>
-  KeyTable& number(const std::string& key, boost::program_options::typed_value<T>* value, const char* unit,
-                   const Range& range, const std::string& help) {
-    keys_.push_back({key, std::is_floating_point_v<T> ? KeyType::real : KeyType::integer, range});
-    return add(key, value, unit, help, range, "");
-  }
-  KeyTable& flag(const std::string& key, boost::program_options::typed_value<bool>* value, const std::string& help);
-  KeyTable& text(const std::string& key, boost::program_options::typed_value<std::string>* value, const char* unit,
-                 const std::string& help);
-  // Whitespace-separated numbers (`records`: ';'-separated records of them), each in `each`; default "".
-  KeyTable& list(const std::string& key, const char* unit, const Range& each, const std::string& help,
-                 bool records = false);
-
- private:
-  KeyTable& add(const std::string& key, const boost::program_options::value_semantic* value, const char* unit,
-                const std::string& help, const Range& range, const char* each);
-  boost::program_options::options_description& options_;
-  std::vector<KeySpec>& keys_;
-};
-
 // The keys of every section whose name is fixed (ConfigSchema.cpp), and of the dynamic sections
 // (ConfigMaterials.cpp; with `help`, once with the placeholders).
+// `readers` (when given) receives the reader of every row that fills a field of Config.
 void declare_fixed_keys(const LawCatalog& laws, boost::program_options::options_description& all,
-                        std::vector<KeySpec>& keys);
+                        std::vector<KeySpec>& keys, std::vector<KeyReader<Config>>* readers = nullptr);
+// The keys of [material] (`named` false) or [material.NAME] (prefix "material.NAME"), filling a Material.
+void declare_material_keys(boost::program_options::options_description& d, std::vector<KeySpec>& keys,
+                           const std::string& prefix, bool named, std::vector<KeyReader<Material>>* readers = nullptr);
 void declare_dynamic_keys(const LawCatalog& laws, const DynamicSections& dynamic, bool help,
                           boost::program_options::options_description& all, std::vector<KeySpec>& keys);
 
@@ -85,15 +60,20 @@ void validate_values(const std::vector<KeySpec>& keys, const boost::program_opti
 void refuse_empty_flags(const std::vector<KeySpec>& keys, const std::vector<std::string>& args,
                         const std::string& ini_text);
 
-void read_contact(const LawCatalog& laws, const Reader& r, Config& c);
-void read_walls(const Reader& r, Config& c);
+// The rules across keys, after the rows have filled their fields (Config.cpp calls them in this order).
+// [run], [output]: what the ranges cannot say (a name for run.output, the snapshot's positions).
+void read_run(const Reader& r, Config& c);
 // [material] or [material.NAME] (before the contact laws); then the wall materials and the pair blocks (after
 // the laws and walls: the default parameters are copied to every pair, then the pair blocks override them).
 void read_materials(const Reader& r, const DynamicSections& dynamic, Config& c);
+void read_contact(const LawCatalog& laws, const Reader& r, Config& c);
+// Config::walls from Config::wall_keys.
+void read_walls(Config& c);
 void read_pairs(const LawCatalog& laws, const Reader& r, const DynamicSections& dynamic, Config& c);
-// scene.materials and its fractions, scene.size_materials, walls.rough_materials (after read_scene).
-void read_scene_materials(const Reader& r, Config& c);
-void read_scene(const Reader& r, Config& c);
+// scene.region's default and the scene type's own rules; then scene.materials and its fractions,
+// scene.size_materials, walls.rough_materials.
+void read_scene(Config& c);
+void read_scene_materials(Config& c);
 // Whether [section] is the block of a law that is not selected (left out of the resolved text).
 bool unselected_law_block(const LawCatalog& laws, const Config& c, const std::string& section);
 

@@ -27,13 +27,15 @@ std::vector<std::string> argument_keys(const std::vector<std::string>& args);
 boost::program_options::options_description config_schema(const LawCatalog& laws, const DynamicSections& dynamic,
                                                           bool help = false);
 
-// What a key holds, declared with the key itself (the same lines as the schema): the validation pass checks
-// every value given against it before anything is read (docs/design.md section 8), and the tests walk it.
-enum class KeyType { real, integer, flag, text, numbers, records };
+// What a key holds, declared with the key itself (core/KeyTable.hpp: the same row as the schema): the validation
+// pass checks every value given against it before anything is read (docs/design.md section 8), and the tests walk
+// it.
+enum class KeyType { real, integer, flag, text, choice, words, numbers, records };
 struct KeySpec {
   std::string key;
   KeyType type;
-  Range range;  // real, integer: the value's; numbers, records: every number's; flag, text: unused
+  Range range;                       // real, integer: the value's; numbers, records: every number's
+  std::vector<std::string> allowed;  // choice: the words allowed; words: each word's (any when empty)
 };
 // Every key of config_schema(laws, dynamic) with its type and range.
 std::vector<KeySpec> config_keys(const LawCatalog& laws, const DynamicSections& dynamic = {});

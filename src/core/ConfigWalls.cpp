@@ -10,7 +10,7 @@ namespace rondel::config {
 
 namespace {
 
-const char* const kSides[4] = {"bottom", "left", "right", "top"};
+using config::Choice;
 
 // Every number of a wall record must be finite.
 void finite_record(const std::vector<double>& rec, const char* key) {
@@ -29,9 +29,9 @@ void read_motion(const std::vector<double>& rec, std::size_t at, const char* key
 
 double distance(Vec2 a, Vec2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
-void read_wall_records(const Reader& r, Config& c) {
+void read_wall_records(Config& c) {
   const Domain& d = c.domain;
-  for (const auto& rec : records(r.get<std::string>("walls.lines"), "walls.lines")) {
+  for (const auto& rec : c.wall_keys.lines) {
     check(rec.size() == 4 || rec.size() == 6 || rec.size() == 7, "walls.lines",
           "'px py nx ny', 'px py nx ny vx vy' or 'px py nx ny omega cx cy' per wall",
           "a record of " + std::to_string(rec.size()) + " numbers");
@@ -49,7 +49,7 @@ void read_wall_records(const Reader& r, Config& c) {
     }
     c.walls.push_back(w);
   }
-  for (const auto& rec : records(r.get<std::string>("walls.segments"), "walls.segments")) {
+  for (const auto& rec : c.wall_keys.segments) {
     check(rec.size() == 4 || rec.size() == 6 || rec.size() == 7, "walls.segments",
           "'x1 y1 x2 y2', 'x1 y1 x2 y2 vx vy' or 'x1 y1 x2 y2 omega cx cy' per wall",
           "a record of " + std::to_string(rec.size()) + " numbers");
@@ -63,7 +63,7 @@ void read_wall_records(const Reader& r, Config& c) {
     if (w.rotates()) w.lever = std::max(distance(w.p0, w.centre), distance(w.p1, w.centre));
     c.walls.push_back(w);
   }
-  for (const auto& rec : records(r.get<std::string>("walls.circles"), "walls.circles")) {
+  for (const auto& rec : c.wall_keys.circles) {
     check(rec.size() == 3 || rec.size() == 4, "walls.circles", "'cx cy R_c' or 'cx cy R_c omega' per wall",
           "a record of " + std::to_string(rec.size()) + " numbers");
     finite_record(rec, "walls.circles");
@@ -77,30 +77,24 @@ void read_wall_records(const Reader& r, Config& c) {
   }
 }
 
-void read_box_walls(const Reader& r, Config& c) {
-  std::istringstream box(r.get<std::string>("walls.box"));
-  std::string side;
+void read_box_walls(Config& c) {
   const Domain& d = c.domain;
-  const auto region = numbers(r.get<std::string>("walls.box_region"), "walls.box_region");
+  const auto& region = c.wall_keys.box_region;
   double b[4] = {d.xlo, d.xhi, d.ylo, d.yhi};
   if (region.size() == 4 && region[0] < region[1] && region[2] < region[3])
     std::copy(region.begin(), region.end(), b);
   else if (!region.empty())
     throw ConfigError("key 'walls.box_region' must be 'xlo xhi ylo yhi' with xlo < xhi and ylo < yhi");
-  while (box >> side) {
+  // Each side's wall: a point, its normal (into the box), and whether it lies across the x direction.
+  const struct {
+    Vec2 p0, normal;
+  } kSide[4] = {{{b[0], b[2]}, {0, 1}}, {{b[0], b[2]}, {1, 0}}, {{b[1], b[2]}, {-1, 0}}, {{b[0], b[3]}, {0, -1}}};
+  for (const std::string& side : c.wall_keys.box) {
+    const int k = box_side_index(side);  // a side (the validation pass checked the words)
     Wall w;
     w.kind = Wall::Kind::line;
-    if (side == "bottom")
-      w.p0 = {b[0], b[2]}, w.normal = {0, 1}, w.box_side = 0;
-    else if (side == "left")
-      w.p0 = {b[0], b[2]}, w.normal = {1, 0}, w.box_side = 1;
-    else if (side == "right")
-      w.p0 = {b[1], b[2]}, w.normal = {-1, 0}, w.box_side = 2;
-    else if (side == "top")
-      w.p0 = {b[0], b[3]}, w.normal = {0, -1}, w.box_side = 3;
-    else
-      throw ConfigError("key 'walls.box': '" + side + "' is not a side; allowed: bottom left right top");
-    const bool periodic = (side == "left" || side == "right") ? d.periodic_x : d.periodic_y;
+    w.p0 = kSide[k].p0, w.normal = kSide[k].normal, w.box_side = k;
+    const bool periodic = kSide[k].normal.x != 0.0 ? d.periodic_x : d.periodic_y;
     check(!periodic, "walls.box", "no wall across a periodic direction", side);
     c.walls.push_back(w);
     c.box_walls.push_back(side);
@@ -110,14 +104,18 @@ void read_box_walls(const Reader& r, Config& c) {
 // The box wall named `name` (listed in walls.box); errors name `key` and the `spec` it came from.
 Wall& box_wall(Config& c, const std::string& name, const char* key, const std::string& spec) {
   for (Wall& w : c.walls)
-    if (w.box_side >= 0 && name == kSides[w.box_side]) return w;
+    if (w.box_side >= 0 && w.box_side == box_side_index(name)) return w;
   throw ConfigError("key '" + std::string(key) + "': '" + name + "' in '" + spec +
                     "' is not a side listed in walls.box");
 }
 
-void read_wall_controls(const Reader& r, Config& c) {
-  std::istringstream control(r.get<std::string>("walls.control"));
-  for (std::string spec; control >> spec;) {
+// The motions of walls.control: 'side:MODE:NUMBER'.
+enum class Motion { servo, strain_rate, shear };
+constexpr Choice<Motion> kMotions[] = {
+    {"servo", Motion::servo}, {"strain_rate", Motion::strain_rate}, {"shear", Motion::shear}};
+
+void read_wall_controls(Config& c) {
+  for (const std::string& spec : c.wall_keys.control) {
     const auto a = spec.find(':'), z = spec.rfind(':');
     if (a == std::string::npos || a == z)
       throw ConfigError("key 'walls.control': '" + spec +
@@ -127,38 +125,34 @@ void read_wall_controls(const Reader& r, Config& c) {
     if (parsed.size() != 1) throw ConfigError("key 'walls.control': '" + spec + "' needs one number after the mode");
     const double value = parsed[0];
     Wall& wall = box_wall(c, name, "walls.control", spec);
-    if ((mode == "servo" || mode == "strain_rate") && wall.control != Wall::Control::velocity)
+    const Choice<Motion>* motion = nullptr;
+    for (const Choice<Motion>& m : kMotions)
+      if (mode == m.word) motion = &m;
+    if (!motion)
+      throw ConfigError("key 'walls.control': mode '" + mode + "' in '" + spec + "' is not " +
+                        config::choice_words<Motion>(kMotions, false));
+    if (motion->value != Motion::shear && wall.control != Wall::Control::velocity)
       throw ConfigError("key 'walls.control': '" + spec + "': wall '" + name +
                         "' already has a servo or strain rate (one per wall)");
-    if (mode == "servo") {
+    if (motion->value == Motion::servo) {
       check(value > 0.0, "walls.control", "a servo stress > 0 [Pa]", spec);
       wall.control = Wall::Control::servo, wall.target_stress = value;
-    } else if (mode == "strain_rate") {
+    } else if (motion->value == Motion::strain_rate) {
       wall.control = Wall::Control::strain_rate, wall.strain_rate = value;
-    } else if (mode == "shear") {
+    } else {
       check(std::fabs(value) <= kLightSpeed, "walls.control", "a shear velocity below the speed of light [m/s]", spec);
       wall.shear_velocity = value;
-    } else {
-      throw ConfigError("key 'walls.control': mode '" + mode + "' in '" + spec +
-                        "' is not servo, strain_rate or shear");
     }
   }
 }
 
 }  // namespace
 
-void read_walls(const Reader& r, Config& c) {
-  read_wall_records(r, c);
-  read_box_walls(r, c);
-  read_wall_controls(r, c);
-  std::istringstream rough(r.get<std::string>("walls.rough"));
-  for (std::string name; rough >> name;) box_wall(c, name, "walls.rough", name).rough = true;
-  c.rough_depth = r.get<double>("walls.rough_depth");
-  non_negative(c.rough_depth, "walls.rough_depth");
-  c.servo_gain = r.get<double>("walls.servo_gain");
-  check(c.servo_gain > 0.0 && c.servo_gain < 1.0, "walls.servo_gain", "must be in (0, 1)", num(c.servo_gain));
-  c.servo_max_speed = r.get<double>("walls.servo_max_speed");
-  check(c.servo_max_speed > 0.0, "walls.servo_max_speed", "must be > 0", num(c.servo_max_speed));
+void read_walls(Config& c) {
+  read_wall_records(c);
+  read_box_walls(c);
+  read_wall_controls(c);
+  for (const std::string& name : c.wall_keys.rough) box_wall(c, name, "walls.rough", name).rough = true;
 }
 
 }  // namespace rondel::config

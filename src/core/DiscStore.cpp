@@ -86,4 +86,10 @@ std::size_t DiscStore::memory_bytes() const {
   return bytes;
 }
 
+std::vector<std::string> disc_field_names() {
+  std::vector<std::string> out;
+  DiscStore().for_each_field([&out](const char* name, unsigned, auto&) { out.emplace_back(name); });
+  return out;
+}
+
 }  // namespace rondel

@@ -1,6 +1,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/Material.hpp"
@@ -89,5 +90,9 @@ class DiscStore {
  private:
   std::size_t n_owned_ = 0;
 };
+
+// The names of the fields (for_each_field), in its order; a snapshot may hold any of them and "rank"
+// (output.snapshot_fields).
+std::vector<std::string> disc_field_names();
 
 }  // namespace rondel

@@ -18,6 +18,16 @@ std::string Range::text() const {
   return s.str();
 }
 
+const ParamSpec* LawBlock::find(const std::string& key) const {
+  for (const ParamSpec& p : params)
+    if (key == p.key) return &p;
+  return nullptr;
+}
+
+bool LawBlock::in_one_of(const std::string& key) const {
+  return std::find_if(one_of.begin(), one_of.end(), [&key](const char* k) { return key == k; }) != one_of.end();
+}
+
 std::string LawKind::keywords() const {
   std::string s;
   for (const LawInfo& law : laws) s += (s.empty() ? "" : " | ") + std::string(law.keyword);

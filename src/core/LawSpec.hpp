@@ -34,7 +34,8 @@ struct ParamSpec {
   const char* key;   // within the block, e.g. "k_r"
   const char* unit;  // e.g. "N/m", "-"
   Presence presence;
-  double def;  // used when presence == defaulted
+  // defaulted: the default; optional: the value that means "not given" (the field's value when the key is absent)
+  double def;
   Range range;
   const char* help;  // one line, without unit, requirement or range (those are added)
   double ContactParams::*target;
@@ -45,12 +46,23 @@ struct LawBlock {
   const char* section;
   const char* title;  // the --help heading after "[section] "
   std::span<const ParamSpec> params;
+  // Keys of which at most one may be given (the linear law's damping: zeta, c_n or e). In a pair block, the one
+  // given replaces the default's: the others return to their "not given" value.
+  std::span<const char* const> one_of = {};
+  const ParamSpec* find(const std::string& key) const;
+  bool in_one_of(const std::string& key) const;
 };
 
-// One law of a kind: its keyword and its block (nullptr: no parameters).
+// One law of a kind: its keyword, its block (nullptr: no parameters) and what it needs of the rest of the
+// configuration, as the law declares it (physics/LawConcepts.hpp).
 struct LawInfo {
   const char* keyword;
   const LawBlock* block;
+  bool elastic = false;                // it needs every material's youngs_modulus and poisson_ratio
+  bool stiffening = false;             // a normal law whose stiffness grows with the overlap (the critical step takes
+                                       // it at run.max_overlap)
+  const char* needs_normal = nullptr;  // it works only with this normal law (nullptr: any)
+  const char* needs_why = "";          // why, for the message
 };
 
 // The laws of one kind, selected by the key contact.<kind>; the first law is the default.

@@ -9,9 +9,12 @@
 
 namespace rondel {
 
+// The name of the one material of a run given by [material] (not [material.NAME]).
+inline constexpr const char* kDefaultMaterial = "default";
+
 struct Material {
   enum class Body { disc, sphere };
-  std::string name = "default";
+  std::string name = kDefaultMaterial;
   double density = 2650.0;
   double thickness = 1.0;
   Body body = Body::disc;

@@ -1,5 +1,8 @@
 #pragma once
+// The discs of a new scene, and what the scene builders share (core/SceneTypes.hpp lists the builders).
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "core/Config.hpp"
@@ -16,10 +19,13 @@ struct SceneDisc {
   int material = 0;  // index into Config::materials
 };
 
-// Builds the initial discs of a scene. Every rank builds the same list from the configuration alone (the
-// random packing draws from its own seeded generator), so the scene does not depend on the rank count.
-// Throws InputError naming the key or file when the scene cannot be built.
-std::vector<SceneDisc> build_scene(const SceneConfig& scene, const Domain& domain, const std::string& config_dir);
+struct SceneInputs;
+
+// The discs of the scene of `in.scene.type`, in ascending gid. Every rank builds the same list from the
+// configuration alone (the random packing draws from its own seeded generator), so the scene does not depend on
+// the rank count. Throws InputError naming the key or file when the scene cannot be built, or when two discs
+// have one id.
+std::vector<SceneDisc> build_scene(const SceneInputs& in);
 
 // A small, portable generator (splitmix64): the same numbers on every platform and compiler.
 class SceneRandom {
@@ -31,5 +37,21 @@ class SceneRandom {
  private:
   std::uint64_t state_;
 };
+
+namespace scene {
+
+// The material slot (index into scene.materials) of each of n discs: exact counts from the fractions (largest
+// remainder, ties to the lower slot), in an order shuffled by the scene's seed.
+std::vector<std::size_t> material_slots(const SceneConfig& s, std::size_t n);
+// The material of a slot (0 without scene.materials).
+int slot_material(const SceneConfig& s, std::size_t slot);
+// Numbers the discs 0, 1, ... in rows of height 2 R_max from `ylo` up, by x within a row (docs/design.md section 5).
+void number_in_rows(std::vector<SceneDisc>& discs, double ylo);
+// scene.type may use the material scene.numbering = placement only (random: rows too).
+void check_numbering_placement(const SceneConfig& s);
+// "scene.file 'F'" resolved: as given when it exists, else next to the INI file.
+std::string resolve(const std::string& file, const std::string& config_dir);
+
+}  // namespace scene
 
 }  // namespace rondel

@@ -1,6 +1,7 @@
 #pragma once
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/Vec2.hpp"
@@ -83,5 +84,14 @@ struct Wall {
 };
 
 using WallSet = std::vector<Wall>;
+
+// The sides of the box (walls.box), by Wall::box_side.
+inline constexpr const char* kBoxSides[4] = {"bottom", "left", "right", "top"};
+// The box_side of the side named `name`; -1 when it is not one.
+inline int box_side_index(const std::string& name) {
+  for (int k = 0; k < 4; ++k)
+    if (name == kBoxSides[k]) return k;
+  return -1;
+}
 
 }  // namespace rondel

@@ -129,6 +129,38 @@ constexpr bool sparse_loss() {
     return false;
 }
 
+// A law that needs every material's elastic constants (E, nu) declares `kElastic = true` (hertz, mindlin); a law
+// that works with one normal law only declares `kNeedsNormal` (its keyword) and `kNeedsWhy` (mindlin: hertz). The
+// configuration checks both through the catalog (LawInfo), so no other file names those laws.
+template <class L>
+constexpr bool elastic_law() {
+  if constexpr (requires { L::kElastic; })
+    return L::kElastic;
+  else
+    return false;
+}
+template <class L>
+constexpr bool stiffening_law() {
+  if constexpr (requires { L::kStiffening; })
+    return L::kStiffening;
+  else
+    return false;
+}
+template <class L>
+constexpr const char* needed_normal() {
+  if constexpr (requires { L::kNeedsNormal; })
+    return L::kNeedsNormal;
+  else
+    return nullptr;
+}
+template <class L>
+constexpr const char* needed_why() {
+  if constexpr (requires { L::kNeedsWhy; })
+    return L::kNeedsWhy;
+  else
+    return "";
+}
+
 // The rolling couple columns of a law's rows (ContactTable::couples()): 0, 1 or 2.
 template <class L>
 constexpr int couple_columns() {

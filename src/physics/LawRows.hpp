@@ -53,7 +53,11 @@ struct LawList {
   static bool with(const std::string& keyword, F&& f) {
     return ((keyword == Laws::name ? (f.template operator()<Laws>(), true) : false) || ...);
   }
-  static LawKind kind(const char* name) { return {name, {LawInfo{Laws::name, Laws::block}...}}; }
+  static LawKind kind(const char* name) {
+    return {name,
+            {LawInfo{Laws::name, Laws::block, elastic_law<Laws>(), stiffening_law<Laws>(), needed_normal<Laws>(),
+                     needed_why<Laws>()}...}};
+  }
 };
 
 // The registry rows. The first law of each list is the default of its contact.<kind> key.

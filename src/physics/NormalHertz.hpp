@@ -28,6 +28,7 @@ struct NormalHertz {
   static constexpr const char* name = "hertz";
   static constexpr const LawBlock* block = &kHertzBlock;
   static constexpr bool kStiffening = true;
+  static constexpr bool kElastic = true;  // E* from the materials' E and nu
   // 2 sqrt(5/6): the Tsuji dashpot's factor.
   static constexpr double kDashpot = 1.8257418583505538;
 

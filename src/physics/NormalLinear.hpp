@@ -11,15 +11,16 @@
 
 namespace rondel {
 
-// [linear]: at most one of zeta, c_n, e may be given (a rule across keys, checked by the config layer).
+// [linear]: at most one of zeta, c_n, e may be given (the block's one_of).
 inline constexpr ParamSpec kLinearParams[] = {
     {"k_n", "N/m", Presence::required, 0.0, kPositive, "normal stiffness", &ContactParams::k_n},
     {"zeta", "-", Presence::optional, 0.0, kNonNegative, "normal damping ratio (default 0; give one of zeta, c_n, e)",
      &ContactParams::zeta_n},
-    {"c_n", "N s/m", Presence::optional, 0.0, kNonNegative, "normal dashpot coefficient", &ContactParams::c_n_fixed},
-    {"e", "-", Presence::optional, 0.0, kRestitution, "restitution coefficient", &ContactParams::e_n},
+    {"c_n", "N s/m", Presence::optional, -1.0, kNonNegative, "normal dashpot coefficient", &ContactParams::c_n_fixed},
+    {"e", "-", Presence::optional, -1.0, kRestitution, "restitution coefficient", &ContactParams::e_n},
 };
-inline constexpr LawBlock kLinearBlock{"linear", "normal spring-dashpot, no tension", kLinearParams};
+inline constexpr const char* kLinearDamping[] = {"zeta", "c_n", "e"};
+inline constexpr LawBlock kLinearBlock{"linear", "normal spring-dashpot, no tension", kLinearParams, kLinearDamping};
 
 struct NormalLinear {
   static constexpr const char* name = "linear";

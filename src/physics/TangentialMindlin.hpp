@@ -27,6 +27,9 @@ inline constexpr LawBlock kMindlinBlock{
 struct TangentialMindlin {
   static constexpr const char* name = "mindlin";
   static constexpr const LawBlock* block = &kMindlinBlock;
+  static constexpr bool kElastic = true;  // G* from the materials' E and nu
+  static constexpr const char* kNeedsNormal = NormalHertz::name;
+  static constexpr const char* kNeedsWhy = "its damping and stiffness come from the Hertz contact";
   // The critical step linearises the law at its largest overlap (CriticalTimeStep.cpp sets k_s = S_t and
   // zeta_t = sqrt(5/6) |beta| there), so the spring is read as the coulomb one.
   static TangentialSpring spring(const ContactParams& p) { return {p.k_s, p.zeta_t}; }

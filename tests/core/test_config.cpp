@@ -15,6 +15,7 @@
 #include "core/Config.hpp"
 #include "core/ConfigSchema.hpp"
 #include "core/Errors.hpp"
+#include "core/SceneTypes.hpp"
 #include "physics/LawRegistry.hpp"
 
 namespace rondel {
@@ -100,10 +101,10 @@ TEST(Config, ValidInputParses) {
   EXPECT_EQ(c.params.wall(0).k_n, 1e5) << "walls default to the disc-disc parameters";
   EXPECT_EQ(c.walls.size(), 3u);
   EXPECT_EQ(c.box_walls, (std::vector<std::string>{"bottom", "left", "right"}));
-  EXPECT_EQ(c.scene.type, "lattice_square");
+  EXPECT_STREQ(c.scene.type->name, "lattice_square");
   EXPECT_EQ(c.scene.nx, 4);
   EXPECT_EQ(c.scene.spacing, 0.01) << "spacing 0 means 2 x radius";
-  EXPECT_EQ(c.density, 2650.0) << "default density";
+  EXPECT_EQ(c.materials.front().density, 2650.0) << "default density";
   EXPECT_NE(c.resolved_text.find("k_n = 100000"), std::string::npos) << c.resolved_text;
 }
 

@@ -72,7 +72,6 @@ TEST(ConfigMaterials, NamedMaterialsInNameOrderWithTheirBodies) {
   EXPECT_EQ(c.materials[1].name, "steel");
   EXPECT_EQ(c.materials[1].body, Material::Body::sphere);
   EXPECT_EQ(c.materials[0].density, 2500.0);
-  EXPECT_EQ(c.density, 2500.0) << "Config::density is the first material's";
   EXPECT_EQ(c.walls.at(0).material, 1);
   EXPECT_EQ(c.scene.materials, (std::vector<int>{0, 1}));
 }

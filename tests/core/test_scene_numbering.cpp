@@ -16,6 +16,7 @@
 #include "core/Config.hpp"
 #include "core/Errors.hpp"
 #include "core/SceneBuilder.hpp"
+#include "core/SceneTypes.hpp"
 #include "physics/LawRegistry.hpp"
 
 namespace rondel {
@@ -70,9 +71,9 @@ std::vector<std::tuple<double, double, double>> places(const std::vector<SceneDi
 TEST(SceneNumbering, RandomInRowsMovesNoDisc) {
   const Config placed = parse_config_text(kRandom);
   const Config rows = parse_config_text(kRandom, {"--scene.numbering=rows"});
-  EXPECT_EQ(placed.scene.numbering, "placement");
-  const auto a = build_scene(placed.scene, placed.domain, "");
-  const auto b = build_scene(rows.scene, rows.domain, "");
+  EXPECT_EQ(placed.scene.numbering, Numbering::placement);
+  const auto a = build_scene(SceneInputs{placed.scene, placed.domain, ""});
+  const auto b = build_scene(SceneInputs{rows.scene, rows.domain, ""});
   ASSERT_EQ(a.size(), 600u);
   EXPECT_EQ(places(a), places(b));
   EXPECT_TRUE(numbered_in_rows(b, rows.scene.region[2]));
@@ -95,7 +96,7 @@ TEST(SceneNumbering, ReplicatedCopiesAreNumberedInRowsAcrossTheBox) {
       "[scene]\ntype = csv\nfile = " +
       file + "\nreplicate_x = 3\nreplicate_y = 2\n";
   const Config c = parse_config_text(ini);
-  const auto discs = build_scene(c.scene, c.domain, "");
+  const auto discs = build_scene(SceneInputs{c.scene, c.domain, ""});
   ASSERT_EQ(discs.size(), 24u);
   EXPECT_TRUE(numbered_in_rows(discs, 0.0));
   // Row 0 (y = 0.25) holds x = 0.25, 0.75, 1.25, ... 2.75: the copies side by side, not one after the other.
@@ -111,7 +112,7 @@ TEST(SceneNumbering, ReplicatedCopiesAreNumberedInRowsAcrossTheBox) {
   for (const std::string copies : {"3", "1"}) {
     try {
       const Config d = parse_config_text(ini, {"--scene.replicate_x=" + copies});
-      build_scene(d.scene, d.domain, "");
+      build_scene(SceneInputs{d.scene, d.domain, ""});
       ADD_FAILURE() << "a repeated id was accepted, replicate_x = " << copies;
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find("id 3 appears twice"), std::string::npos) << e.what();

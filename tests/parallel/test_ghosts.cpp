@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "ParallelTestUtil.hpp"
+#include "core/SceneTypes.hpp"
 
 namespace rondel {
 namespace {
@@ -202,7 +203,7 @@ void check_ghosts(const std::string& scene, const std::string& ini, const std::v
   static const Communicator world(MPI_COMM_WORLD);
   const Config cfg = parse_config_text(ini, overrides);
   // The whole scene, rebuilt independently of the run.
-  const auto all = build_scene(cfg.scene, cfg.domain, "");
+  const auto all = build_scene(SceneInputs{cfg.scene, cfg.domain, ""});
   Simulation sim(cfg, world, false);
   {
     // The ranks together own exactly the scene's discs, at the scene's (wrapped) positions.

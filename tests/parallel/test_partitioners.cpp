@@ -220,8 +220,8 @@ DiscStore discs_on_left_third(const Domain& domain) {
 TEST(Decomposition, SfcGridAndMetisMapsOnTheWorld) {
   static const Communicator world(MPI_COMM_WORLD);
   const Domain domain{0.0, 12.0, 0.0, 8.0, true, false};
-  for (const auto kind :
-       {Decomposition::Partitioner::sfc, Decomposition::Partitioner::grid, Decomposition::Partitioner::metis}) {
+  for (const auto& partitioner : Partitioners::choices()) {  // every partitioner of the registry
+    const std::string kind = partitioner.word;
     Decomposition d(domain, 1.0, kind, world);
     DiscStore discs = discs_on_left_third(domain);
     d.initial_partition(discs, true);
@@ -242,10 +242,10 @@ TEST(Decomposition, SfcCutsBalanceTheWorkAndAgreeWithTheReplicatedCut) {
   // one cell's weight of the mean.
   static const Communicator world(MPI_COMM_WORLD);
   const Domain domain{0.0, 40.0, 0.0, 30.0, false, false};
-  Decomposition replicated(domain, 1.0, Decomposition::Partitioner::sfc, world);
+  Decomposition replicated(domain, 1.0, "sfc", world);
   DiscStore all = discs_on_left_third(domain);
   replicated.initial_partition(all, true);
-  Decomposition spread(domain, 1.0, Decomposition::Partitioner::sfc, world);
+  Decomposition spread(domain, 1.0, "sfc", world);
   spread.initial_partition(all, false);  // equal-cell cut
   DiscStore mine = all;
   std::vector<bool> elsewhere(mine.n_owned());
@@ -270,7 +270,7 @@ TEST(Decomposition, SfcRepartitionKeepsMostCellsInPlace) {
   // A shift of the work by a few cells moves the cuts a little: most cells keep their rank.
   static const Communicator world(MPI_COMM_WORLD);
   const Domain domain{0.0, 40.0, 0.0, 30.0, false, false};
-  Decomposition d(domain, 1.0, Decomposition::Partitioner::sfc, world);
+  Decomposition d(domain, 1.0, "sfc", world);
   DiscStore all = discs_on_left_third(domain);
   d.initial_partition(all, true);
   std::vector<int> before(d.grid().size());

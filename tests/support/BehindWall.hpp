@@ -53,7 +53,7 @@ inline std::filesystem::path write_behind_wall_checkpoint(const std::filesystem:
   DiscStore discs;
   for (int i = 0; i < kBehindWallDiscs; ++i) {
     const double y = i + 1 == kBehindWallDiscs ? 0.1 : 0.6;
-    discs.add(i, 0, 0.02, config.density, config.thickness, Vec2{0.05 + 0.07 * i, y});
+    discs.add(i, 0, 0.02, config.materials.front().density, config.thickness, Vec2{0.05 + 0.07 * i, y});
   }
   StateHeader h;
   h.kind = "checkpoint";

@@ -1,0 +1,51 @@
+#pragma once
+// The scene builders' registry (docs/developing.md, "How to add a scene type"): one row per scene.type, each
+// defined in its builder's own file (SceneLattice.cpp, ScenePacking.cpp, SceneCsv.cpp, SceneFile.cpp) and listed
+// once in SceneTypes.cpp. The configuration reads scene.type against it (--help lists it), checks the keys the
+// type needs with its row, and the set-up builds the discs with it; nothing else names a scene type.
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/Config.hpp"
+#include "core/SceneBuilder.hpp"
+
+namespace rondel {
+
+// Reads the discs of a Rondel file (a checkpoint or snapshot; a directory: its newest complete checkpoint) for
+// scene.type = file. The composition root implements it (it needs HDF5); core only calls it.
+struct SceneFileReader {
+  virtual ~SceneFileReader() = default;
+  virtual std::vector<SceneDisc> discs(const std::string& path) const = 0;
+};
+
+struct SceneInputs {
+  const SceneConfig& scene;
+  const Domain& domain;
+  std::string config_dir;              // a relative scene.file not found is looked up there (the INI's directory)
+  const SceneFileReader* files = nullptr;  // scene.type = file
+};
+
+struct SceneType {
+  const char* name;  // its word for scene.type
+  const char* help;  // for --help
+  // The keys it needs and their rules, when the configuration is read (throws ConfigError naming the key).
+  void (*check)(SceneConfig& scene);
+  // The keys that place its discs, and those that set their radii, for the messages of the set-up checks.
+  std::string (*placement_keys)(const SceneConfig& scene);
+  std::string (*radius_keys)(const SceneConfig& scene);
+  // Where the discs and their materials come from: the scene keys (scene.materials assigns them), a CSV file
+  // (its material column; scene.materials is refused), or a Rondel file (its materials; scene.materials is left
+  // unused, so that a stage may keep the keys of the stage before). From a file, the discs' velocities are the
+  // file's plus scene.vx, scene.vy, scene.omega.
+  enum class Source { keys, csv_file, state_file } source;
+  // Its radii are drawn (scene.distribution): scene.material_radius_min/_max and scene.size_materials apply.
+  bool draws_radii;
+  std::vector<SceneDisc> (*build)(const SceneInputs& in);
+};
+
+std::span<const SceneType* const> scene_types();
+// The row named `name`; nullptr when none.
+const SceneType* find_scene_type(const std::string& name);
+
+}  // namespace rondel

@@ -1,0 +1,64 @@
+#pragma once
+// A cell-to-rank map and the way to make it from the work: one implementation per partitioner of the registry
+// (core/Partitioners.hpp), each in its own file (PartitionSfc.cpp, PartitionGrid.cpp, PartitionMetis.cpp) with its
+// make_partition overload declared here. make_partition(name, ...) instantiates the overload of every tag of the
+// registry, so a tag without one does not compile. Decomposition holds one and asks it for owners and cells.
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "core/CellGrid.hpp"
+#include "core/ContactTable.hpp"
+#include "core/DiscStore.hpp"
+#include "core/Partitioners.hpp"
+#include "parallel/Communicator.hpp"
+#include "parallel/Hilbert.hpp"
+
+namespace rondel {
+
+// What a partition needs: the cells, their Hilbert keys and the ranks.
+struct PartitionContext {
+  const CellGrid& grid;
+  const HilbertGrid& curve;
+  const Communicator& comm;
+};
+
+class Partition {
+ public:
+  virtual ~Partition() = default;
+  // The same map, to compare the next one with (the partners of a migration after a change of map).
+  virtual std::unique_ptr<Partition> copy() const = 0;
+  // The owner of cell c (any cell), and f(c) for every cell of `rank`.
+  virtual int owner(std::size_t c) const = 0;
+  virtual void for_each_cell(int rank, const std::function<void(std::size_t)>& f) const = 0;
+  // The first map. `replicated`: every rank holds every disc (a new scene), so the weighted map is computed on
+  // every rank alike without communication; otherwise (discs spread by file block) a map that the caller
+  // migrates the discs with before repartition() weighs them.
+  virtual void initial(const DiscStore& discs, bool replicated) = 0;
+  // A new map from the present work (collective); false when it did not change or this partitioner keeps its map.
+  virtual bool repartition(const DiscStore& discs, const ContactTable& pairs) = 0;
+  // The number of ranks that own no cell.
+  virtual int empty_ranks() const = 0;
+  virtual std::size_t memory_bytes() const = 0;
+};
+
+// The work measure of the load balance, one definition: each owned disc and each row it books (the row of its
+// lower-gid disc) is one unit; f(i) once per unit with the disc i it is counted at.
+template <class F>
+void for_each_work_unit(const DiscStore& discs, const ContactTable& pairs, F f) {
+  const std::size_t n = discs.n_owned();
+  for (std::size_t i = 0; i < n; ++i) f(i);
+  for (std::size_t r = 0; r < pairs.size(); ++r)
+    if (static_cast<std::size_t>(pairs.i1[r]) < n) f(static_cast<std::size_t>(pairs.i1[r]));
+}
+
+// One overload per partitioner of the registry.
+std::unique_ptr<Partition> make_partition(SfcPartitioner, const PartitionContext& context);
+std::unique_ptr<Partition> make_partition(GridPartitioner, const PartitionContext& context);
+std::unique_ptr<Partition> make_partition(MetisPartitioner, const PartitionContext& context);
+
+// The partition of the partitioner named `name` (a word of parallel.partitioner).
+std::unique_ptr<Partition> make_partition(const std::string& name, const PartitionContext& context);
+
+}  // namespace rondel

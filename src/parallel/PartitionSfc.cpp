@@ -1,0 +1,175 @@
+// parallel.partitioner = sfc (the default; docs/design.md section 6): the cells in Hilbert-curve order
+// (Hilbert.hpp) cut into P contiguous key ranges of equal work. The map is the P + 1 cut keys, the same on every
+// rank; the owner of a cell is a binary search. The cuts are found from distributed prefix sums (one scan and two
+// reductions), and a repartition moves the cuts, so most work stays in place.
+#include <mpi.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "parallel/Decomposition.hpp"
+#include "parallel/Partition.hpp"
+
+namespace rondel {
+
+namespace {
+
+using Cells = std::vector<std::pair<std::uint64_t, std::uint64_t>>;  // (cell key, extra weight), ascending key
+
+class SfcPartition final : public Partition {
+ public:
+  explicit SfcPartition(const PartitionContext& c) : grid_(c.grid), curve_(c.curve), comm_(c.comm) {}
+  std::unique_ptr<Partition> copy() const override { return std::make_unique<SfcPartition>(*this); }
+  int owner(std::size_t c) const override {
+    const std::uint64_t key = curve_.key(column(c), row(c));
+    return static_cast<int>(std::upper_bound(cuts_.begin(), cuts_.end(), key) - cuts_.begin()) - 1;
+  }
+  void for_each_cell(int rank, const std::function<void(std::size_t)>& f) const override {
+    curve_.for_each_in(cuts_[rank], cuts_[rank + 1], [&](int cx, int cy) { f(grid_.index(cx, cy)); });
+  }
+  void initial(const DiscStore& discs, bool replicated) override;
+  bool repartition(const DiscStore& discs, const ContactTable& pairs) override;
+  int empty_ranks() const override {
+    int n = 0;
+    for (int r = 0; r < comm_.size(); ++r)
+      if (curve_.count_below(cuts_[r + 1]) == curve_.count_below(cuts_[r])) ++n;
+    return n;
+  }
+  std::size_t memory_bytes() const override { return cuts_.capacity() * sizeof(std::uint64_t); }
+
+ private:
+  int column(std::size_t c) const { return static_cast<int>(c % static_cast<std::size_t>(grid_.nx())); }
+  int row(std::size_t c) const { return static_cast<int>(c / static_cast<std::size_t>(grid_.nx())); }
+  // This rank's work units as weighted cells.
+  Cells weighted_cells(const DiscStore& discs, const ContactTable& pairs) const;
+  void clamp_into(Cells& cells, std::uint64_t lo, std::uint64_t hi) const;
+  std::vector<std::uint64_t> weighted_cuts(const Cells& cells, std::uint64_t lo, std::uint64_t hi,
+                                           std::uint64_t offset, std::uint64_t total) const;
+
+  const CellGrid& grid_;
+  const HilbertGrid& curve_;
+  const Communicator& comm_;
+  std::vector<std::uint64_t> cuts_;  // rank r owns keys [cuts_[r], cuts_[r + 1])
+};
+
+Cells SfcPartition::weighted_cells(const DiscStore& discs, const ContactTable& pairs) const {
+  std::vector<std::uint64_t> keys;
+  for_each_work_unit(discs, pairs, [&](std::size_t i) {
+    const Vec2 x = discs.position[i];
+    keys.push_back(curve_.key(grid_.column_of(x.x), grid_.row_of(x.y)));
+  });
+  std::sort(keys.begin(), keys.end());
+  Cells out;
+  for (std::uint64_t k : keys) {
+    if (out.empty() || out.back().first != k) out.emplace_back(k, 0);
+    out.back().second += Decomposition::kCurveScale;
+  }
+  return out;
+}
+
+void SfcPartition::clamp_into(Cells& cells, std::uint64_t lo, std::uint64_t hi) const {
+  // A disc that has drifted into a neighbour's cell since the last migration is counted in this range's
+  // first or last cell, so the walk of weighted_cuts() stays inside the range.
+  const std::uint64_t below_lo = curve_.count_below(lo), below_hi = curve_.count_below(hi);
+  if (cells.empty()) return;
+  // A rank without cells holds no discs after the migration that follows every change of map.
+  if (below_hi == below_lo) throw std::logic_error("Decomposition: discs on a rank whose key range holds no cell");
+  const std::uint64_t first = curve_.key_of_cell_number(below_lo), last = curve_.key_of_cell_number(below_hi - 1);
+  Cells out;
+  for (auto [key, extra] : cells) {
+    key = std::clamp(key, first, last);
+    if (!out.empty() && out.back().first == key)
+      out.back().second += extra;
+    else
+      out.emplace_back(key, extra);
+  }
+  std::sort(out.begin(), out.end());
+  // Clamping keeps the order except for merged ends; merge equal keys once more after the sort.
+  cells.clear();
+  for (const auto& c : out) {
+    if (!cells.empty() && cells.back().first == c.first)
+      cells.back().second += c.second;
+    else
+      cells.push_back(c);
+  }
+}
+
+std::vector<std::uint64_t> SfcPartition::weighted_cuts(const Cells& cells, std::uint64_t lo, std::uint64_t hi,
+                                                       std::uint64_t offset, std::uint64_t total) const {
+  // Cut j opens rank j at the cell that holds the point t_j = j total / P of the work along the curve (cell
+  // c holds [before(c), before(c) + weight(c)), before(c) being the work of the cells of lower key). This
+  // range holds [offset, offset + its work); each cell weighs one plus its extra, and runs of cells without
+  // extra are crossed by counting cells along the curve. Each t_j lies in exactly one cell, so exactly one
+  // rank finds each cut.
+  const auto P = static_cast<std::uint64_t>(comm_.size());
+  std::vector<std::uint64_t> cuts(P + 1, 0);
+  auto target = [&](std::uint64_t j) {
+    return static_cast<std::uint64_t>((static_cast<unsigned __int128>(j) * total) / P);
+  };
+  std::uint64_t j = 1;
+  while (j < P && target(j) < offset) ++j;
+  std::uint64_t acc = offset, pos = lo;
+  auto cross_gap = [&](std::uint64_t end) {
+    const std::uint64_t before = curve_.count_below(pos), gap = curve_.count_below(end) - before;
+    for (; j < P && target(j) < acc + gap; ++j) cuts[j] = curve_.key_of_cell_number(before + (target(j) - acc));
+    acc += gap;
+    pos = end;
+  };
+  for (const auto& [key, extra] : cells) {
+    cross_gap(key);
+    for (; j < P && target(j) < acc + 1 + extra; ++j) cuts[j] = key;
+    acc += 1 + extra;
+    pos = key + 1;
+  }
+  cross_gap(hi);
+  return cuts;
+}
+
+void SfcPartition::initial(const DiscStore& discs, bool replicated) {
+  const int P = comm_.size();
+  if (replicated) {
+    const auto cells = weighted_cells(discs, ContactTable{});
+    std::uint64_t total = curve_.cells();
+    for (const auto& c : cells) total += c.second;
+    cuts_ = weighted_cuts(cells, 0, curve_.key_end(), 0, total);
+  } else {
+    cuts_.assign(static_cast<std::size_t>(P) + 1, 0);
+    for (int j = 1; j < P; ++j) cuts_[j] = curve_.key_of_cell_number(curve_.cells() * static_cast<std::uint64_t>(j) / P);
+  }
+  cuts_[0] = 0;
+  cuts_[P] = curve_.key_end();
+}
+
+bool SfcPartition::repartition(const DiscStore& discs, const ContactTable& pairs) {
+  if (comm_.size() == 1) return false;
+  // This rank's key range, its work, the work of the lower ranges (a scan) and the whole (a reduction);
+  // each rank finds the cuts that fall in its range and one reduction gives every rank all of them.
+  const int me = comm_.rank(), P = comm_.size();
+  const std::uint64_t lo = cuts_[me], hi = cuts_[me + 1];
+  auto cells = weighted_cells(discs, pairs);
+  clamp_into(cells, lo, hi);
+  std::uint64_t mine = curve_.count_below(hi) - curve_.count_below(lo), offset = 0;
+  for (const auto& c : cells) mine += c.second;
+  comm_.count_collective();
+  MPI_Exscan(&mine, &offset, 1, MPI_UINT64_T, MPI_SUM, comm_.comm());
+  if (me == 0) offset = 0;
+  const auto total = static_cast<std::uint64_t>(comm_.sum(static_cast<std::int64_t>(mine)));
+  std::vector<std::uint64_t> cuts = weighted_cuts(cells, lo, hi, offset, total);
+  comm_.count_collective();
+  MPI_Allreduce(MPI_IN_PLACE, cuts.data(), P + 1, MPI_UINT64_T, MPI_MAX, comm_.comm());
+  cuts[0] = 0;
+  cuts[P] = curve_.key_end();
+  if (cuts == cuts_) return false;
+  cuts_ = std::move(cuts);
+  return true;
+}
+
+}  // namespace
+
+std::unique_ptr<Partition> make_partition(SfcPartitioner, const PartitionContext& context) {
+  return std::make_unique<SfcPartition>(context);
+}
+
+}  // namespace rondel
