@@ -7,7 +7,7 @@
                         [--set LAW.KEY=VALUE ...] [--rondel-arg=--SECTION.KEY=VALUE ...]
 
 Input (RUN_DIR): the snapshots snapshot_*.h5 (/discs/position, /discs/radius; the drum from /walls: the
-circle wall, kind 2, centre /walls/p0, radius /walls/radius, angular velocity /walls/omega). Snapshots at
+circle wall (kind circle), centre /walls/p0, radius /walls/radius, angular velocity /walls/omega). Snapshots at
 t >= --from (default 0.4 x the time of the last snapshot: the bed has reached its steady flow by then in
 inputs/drum.ini) are measured; each gives two angles, both positive when the bed leans the way the drum
 turns:
@@ -66,11 +66,10 @@ def drum_of(f):
     """(centre (2,), R_c, Omega) of the file's circle wall (the first one)."""
     w = f.walls
     if "kind" not in w or "radius" not in w:
-        raise RondelFileError(f.path, "has no circle wall (/walls/kind 2 with /walls/radius): not a drum run")
-    kind = np.asarray(w["kind"]).reshape(-1)
-    hits = np.flatnonzero(kind == 2)
+        raise RondelFileError(f.path, "has no circle wall (/walls/kind circle with /walls/radius): not a drum run")
+    hits = [i for i, name in enumerate(f.wall_kinds()) if name == "circle"]
     if not len(hits):
-        raise RondelFileError(f.path, "has no circle wall (/walls/kind 2): not a drum run")
+        raise RondelFileError(f.path, "has no circle wall (/walls/kind circle): not a drum run")
     k = int(hits[0])
     omega = float(np.asarray(w["omega"]).reshape(-1)[k]) if "omega" in w else 0.0
     return np.asarray(w["p0"]).reshape(-1, 2)[k].astype(float), float(np.asarray(w["radius"]).reshape(-1)[k]), omega

@@ -53,12 +53,14 @@ def print_group(group):
             print(describe(name, v))
 
 
-def print_walls(w):
-    nw = w["kind"].shape[0] if "kind" in w else 0
+def print_walls(f):
+    w = f.walls
+    kinds = f.wall_kinds()
+    nw = len(kinds)
     extra = ", ".join(f"{k} {v!r}" for k, v in w.attrs.items())
     print(f"  walls: {nw}" + (f" ({extra})" if extra else ""))
     for i in range(nw):
-        kind = {0: "line", 1: "segment", 2: "circle"}.get(int(w["kind"][i]), f"kind {int(w['kind'][i])}")
+        kind = kinds[i]
         p0, p1, nrm, v = (w[k][i] for k in ("p0", "p1", "normal", "velocity"))
         if kind == "line":
             where = f"through ({p0[0]:.6g}, {p0[1]:.6g}), normal ({nrm[0]:.3g}, {nrm[1]:.3g})"
@@ -106,7 +108,7 @@ def report(args):
         print(f"  {name}: {rows} rows, {hist} with non-zero history, {loaded} loaded (F_n > 0)")
         print_group(g)
     if "kind" in f.walls:
-        print_walls(f.walls)
+        print_walls(f)
     if f.ledger:
         print("  ledger [J]: " + ", ".join(f"{k} {v!r}" for k, v in f.ledger.items()))
     if f.run_metadata:

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/Errors.hpp"
+#include "core/WallKinds.hpp"
 #include "parallel/Agreement.hpp"
 
 namespace rondel {
@@ -147,19 +148,6 @@ std::string Checkpointing::write_snapshot(const StateHeader& header, DiscStore& 
 namespace {
 
 // The part [lo, hi] of the line p + t d inside the domain box; empty (lo > hi) when it misses the box.
-void clip_to_box(Vec2 p, Vec2 d, const Domain& box, double& lo, double& hi) {
-  const double p_[2] = {p.x, p.y}, d_[2] = {d.x, d.y}, a[2] = {box.xlo, box.ylo}, b[2] = {box.xhi, box.yhi};
-  for (int k = 0; k < 2; ++k) {
-    if (d_[k] == 0.0) {
-      if (p_[k] < a[k] || p_[k] > b[k]) lo = 1.0, hi = 0.0;
-      continue;
-    }
-    const double t1 = (a[k] - p_[k]) / d_[k], t2 = (b[k] - p_[k]) / d_[k];
-    lo = std::max(lo, std::min(t1, t2));
-    hi = std::min(hi, std::max(t1, t2));
-  }
-}
-
 // The XDMF description of one data item of a snapshot file.
 std::string hdf_item(const std::string& file, const std::string& set, const std::string& dims, const char* type,
                      int precision) {
@@ -220,37 +208,7 @@ void xdmf_walls(std::ostream& x, const std::string& file, const std::vector<Vec2
 
 std::vector<Vec2> Checkpointing::wall_outline(const WallSet& walls, const Domain& domain) {
   std::vector<Vec2> out;
-  const double inf = std::numeric_limits<double>::infinity();
-  for (const Wall& w : walls) {
-    if (w.kind == Wall::Kind::segment) {
-      out.push_back(w.p0), out.push_back(w.p1);
-      continue;
-    }
-    if (w.kind == Wall::Kind::circle) {  // one cell per wall: a circle is drawn as its radius at `angle`
-      out.push_back(w.centre), out.push_back(w.centre + w.radius * Vec2{std::cos(w.angle), std::sin(w.angle)});
-      continue;
-    }
-    const Vec2 d{-w.normal.y, w.normal.x};
-    double lo = -inf, hi = inf;
-    clip_to_box(w.p0, d, domain, lo, hi);
-    if (lo > hi) {  // outside the domain: a piece as long as the box's diagonal, nearest its centre
-      const double half = 0.5 * std::hypot(domain.length_x(), domain.length_y());
-      const Vec2 c{0.5 * (domain.xlo + domain.xhi), 0.5 * (domain.ylo + domain.yhi)};
-      lo = dot(c - w.p0, d) - half, hi = lo + 2.0 * half;
-    }
-    // The discs' side of every other line: (p0 + t d - q) . m >= 0.
-    double a = lo, b = hi;
-    for (const Wall& o : walls) {
-      const double slope = dot(d, o.normal), offset = dot(w.p0 - o.p0, o.normal);
-      if (&o == &w || o.kind != Wall::Kind::line || std::abs(slope) < 1e-12) continue;
-      if (slope > 0.0)
-        a = std::max(a, -offset / slope);
-      else
-        b = std::min(b, -offset / slope);
-    }
-    if (a < b) lo = a, hi = b;  // else the other lines leave nothing: the box's piece is drawn
-    out.push_back(w.p0 + lo * d), out.push_back(w.p0 + hi * d);
-  }
+  for (const Wall& w : walls) WallKinds::with(w.kind, [&]<class K>() { K::outline(w, walls, domain, out); });
   return out;
 }
 

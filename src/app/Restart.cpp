@@ -7,6 +7,7 @@
 #include "app/Checkpointing.hpp"
 #include "app/Simulation.hpp"
 #include "core/Errors.hpp"
+#include "core/WallKinds.hpp"
 
 namespace rondel {
 
@@ -56,12 +57,6 @@ StateHeader Restart::header(const Simulation& sim, const char* kind) {
   h.ledger = sim.global_ledger();
   return h;
 }
-
-namespace {
-const char* kind_name(Wall::Kind k) {
-  return k == Wall::Kind::line ? "line" : k == Wall::Kind::segment ? "segment" : "circle";
-}
-}  // namespace
 
 std::vector<SceneDisc> Restart::scene_from_file(const std::string& file, const Config& config, WallSet& walls_out) {
   // Every rank reads every disc (the scene is then distributed like any other). A directory means its
@@ -135,8 +130,8 @@ void Restart::read_walls(WallSet& into) const {
                      std::to_string(into.size()));
   for (std::size_t w = 0; w < walls.size(); ++w) {  // positions and loads from the file, controls from the config
     if (walls[w].kind != into[w].kind)
-      throw InputError("'" + path_ + "': wall " + std::to_string(w) + " is a " + kind_name(walls[w].kind) +
-                       " in the file but a " + kind_name(into[w].kind) + " in the configuration");
+      throw InputError("'" + path_ + "': wall " + std::to_string(w) + " is a " + WallKinds::name(walls[w].kind) +
+                       " in the file but a " + WallKinds::name(into[w].kind) + " in the configuration");
     into[w].p0 = walls[w].p0;
     into[w].p1 = walls[w].p1;
     if (into[w].rotates()) into[w].normal = walls[w].normal;  // a rotating line has turned its normal

@@ -14,6 +14,7 @@
 #include "core/ExactSum.hpp"
 #include "core/Format.hpp"
 #include "core/SceneBuilder.hpp"
+#include "core/WallKinds.hpp"
 #include "parallel/Agreement.hpp"
 #include "physics/NormalHertz.hpp"
 #include "physics/NormalLinear.hpp"
@@ -167,15 +168,14 @@ void Simulation::setup_neighbours() {
     start_checks::check_cells(config_, neighbours_.range(R_max_));
     check_periodic_lengths();
     for (std::size_t w = 0; w < walls_.size(); ++w)
-      for (std::size_t i = 0; i < discs_.n_owned(); ++i)
-        if (walls_[w].kind != Wall::Kind::segment && walls_[w].proximity(discs_.position[i]).dist < 0.0)
-          throw InputError(
-              "disc " + std::to_string(discs_.gid[i]) + " lies behind wall " + std::to_string(w) +
-              (walls_[w].kind == Wall::Kind::line
-                   ? " (its centre is on the far side of the line; the wall is from " +
-                         std::string(walls_[w].box_side >= 0 ? "walls.box and walls.box_region" : "walls.lines") + ")"
-                   : " (its centre is outside the circle: a circle wall holds discs inside it; "
-                     "walls.circles)"));
+      for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
+        std::string why;
+        WallKinds::with(walls_[w].kind,
+                        [&]<class K>() { why = K::behind(walls_[w], walls_[w].proximity(discs_.position[i]).dist); });
+        if (!why.empty())
+          throw InputError("disc " + std::to_string(discs_.gid[i]) + " lies behind wall " + std::to_string(w) + " (" +
+                           why + ")");
+      }
   });
 }
 

@@ -60,7 +60,8 @@ struct WallKeys {
   std::vector<std::string> box, control, rough, materials, rough_materials;
   std::string material;
   std::vector<double> box_region;
-  std::vector<std::vector<double>> lines, segments, circles;
+  // The records of each wall kind's key (walls.lines, walls.segments, walls.circles), by Wall::Kind value.
+  std::vector<std::vector<std::vector<double>>> records;
 };
 
 struct Config {

@@ -11,6 +11,7 @@
 #include "core/Partitioners.hpp"
 #include "core/SceneTypes.hpp"
 #include "core/Wall.hpp"
+#include "core/WallKinds.hpp"
 
 namespace rondel {
 
@@ -211,13 +212,17 @@ void add_wall_sections(po::options_description& all, std::vector<KeySpec>& keys,
       .words("walls.rough_materials", wall(&WallKeys::rough_materials), "", "-", "'side:NAME ...': the discs glued to that rough wall take material NAME")
       .number("walls.rough_depth", at(&Config::rough_depth), 0.0, "m", kNonNegative, "glue depth of walls.rough; 0 = the largest disc diameter")
       .number("walls.servo_gain", at(&Config::servo_gain), 0.2, "-", kOpenUnit, "servo gain: fraction of the force error closed per step")
-      .number("walls.servo_max_speed", at(&Config::servo_max_speed), 0.1, "m/s", Range{0.0, config::kLightSpeed, true, false}, "largest servo wall speed")
-      .records("walls.lines", wall(&WallKeys::lines), "m, m/s, rad/s", kFinite, "infinite lines 'px py nx ny [vx vy | omega cx cy]; ...' (n points to "
-                                                                              "the discs; 'vx vy' translates the line, 'omega cx cy' rotates it about (cx, cy))")
-      .records("walls.segments", wall(&WallKeys::segments), "m, m/s, rad/s", kFinite, "segments 'x1 y1 x2 y2 [vx vy | omega cx cy]; ...' (a translation "
-                                                                                    "or a rotation about the fixed centre (cx, cy), counter-clockwise positive)")
-      .records("walls.circles", wall(&WallKeys::circles), "m, rad/s", kFinite, "circles 'cx cy R_c [omega]; ...' whose inside holds the discs (drums), "
-                                                                          "rotating about their centre at omega (default 0); walls after walls.segments");
+      .number("walls.servo_max_speed", at(&Config::servo_max_speed), 0.1, "m/s", Range{0.0, config::kLightSpeed, true, false}, "largest servo wall speed");
+  // The records of every wall kind (core/WallKinds.hpp), by Wall::Kind value.
+  WallKinds::each([&]<class K>() {
+    const auto code = static_cast<std::size_t>(K::kind);
+    const config::Field<Config, std::vector<std::vector<double>>> records{
+        [code](Config& c) -> std::vector<std::vector<double>>& {
+          c.wall_keys.records.resize(WallKinds::size);
+          return c.wall_keys.records[code];
+        }};
+    Keys(walls, keys, readers).records(K::key, records, K::unit, kFinite, K::help);
+  });
   // clang-format on
   all.add(neigh).add(par).add(walls);
 }

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/ConfigRead.hpp"
+#include "core/WallKinds.hpp"
 
 namespace rondel::config {
 
@@ -12,69 +13,13 @@ namespace {
 
 using config::Choice;
 
-// Every number of a wall record must be finite.
-void finite_record(const std::vector<double>& rec, const char* key) {
-  for (double v : rec) check(std::isfinite(v), key, "finite numbers", num(v));
-}
-
-// The optional motion at the end of a line or segment record (numbers from `at` on): none, 'vx vy' (a
-// translation) or 'omega cx cy' (a rotation about the fixed centre (cx, cy)).
-void read_motion(const std::vector<double>& rec, std::size_t at, const char* key, Wall& w) {
-  if (rec.size() == at + 2) w.velocity = {rec[at], rec[at + 1]};
-  if (rec.size() != at + 3) return;
-  check(rec[at] != 0.0, key, "a rotating wall's omega != 0 (leave 'omega cx cy' out for a fixed wall)", num(rec[at]));
-  w.omega = rec[at];
-  w.centre = {rec[at + 1], rec[at + 2]};
-}
-
-double distance(Vec2 a, Vec2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
-
+// The walls of every kind's records (walls.lines, walls.segments, walls.circles), in the order of the kinds.
 void read_wall_records(Config& c) {
-  const Domain& d = c.domain;
-  for (const auto& rec : c.wall_keys.lines) {
-    check(rec.size() == 4 || rec.size() == 6 || rec.size() == 7, "walls.lines",
-          "'px py nx ny', 'px py nx ny vx vy' or 'px py nx ny omega cx cy' per wall",
-          "a record of " + std::to_string(rec.size()) + " numbers");
-    finite_record(rec, "walls.lines");
-    Wall w;
-    w.kind = Wall::Kind::line;
-    w.p0 = {rec[0], rec[1]};
-    const double len = std::hypot(rec[2], rec[3]);
-    check(len > 0.0, "walls.lines", "a non-zero normal", "normal (0, 0)");
-    w.normal = {rec[2] / len, rec[3] / len};
-    read_motion(rec, 4, "walls.lines", w);
-    if (w.rotates()) {  // the points of the line that discs can meet lie in the domain
-      for (Vec2 corner : {Vec2{d.xlo, d.ylo}, Vec2{d.xhi, d.ylo}, Vec2{d.xlo, d.yhi}, Vec2{d.xhi, d.yhi}})
-        w.lever = std::max(w.lever, distance(corner, w.centre));
-    }
-    c.walls.push_back(w);
-  }
-  for (const auto& rec : c.wall_keys.segments) {
-    check(rec.size() == 4 || rec.size() == 6 || rec.size() == 7, "walls.segments",
-          "'x1 y1 x2 y2', 'x1 y1 x2 y2 vx vy' or 'x1 y1 x2 y2 omega cx cy' per wall",
-          "a record of " + std::to_string(rec.size()) + " numbers");
-    finite_record(rec, "walls.segments");
-    Wall w;
-    w.kind = Wall::Kind::segment;
-    w.p0 = {rec[0], rec[1]};
-    w.p1 = {rec[2], rec[3]};
-    check(rec[0] != rec[2] || rec[1] != rec[3], "walls.segments", "two distinct ends", "a zero-length segment");
-    read_motion(rec, 4, "walls.segments", w);
-    if (w.rotates()) w.lever = std::max(distance(w.p0, w.centre), distance(w.p1, w.centre));
-    c.walls.push_back(w);
-  }
-  for (const auto& rec : c.wall_keys.circles) {
-    check(rec.size() == 3 || rec.size() == 4, "walls.circles", "'cx cy R_c' or 'cx cy R_c omega' per wall",
-          "a record of " + std::to_string(rec.size()) + " numbers");
-    finite_record(rec, "walls.circles");
-    check(rec[2] > 0.0, "walls.circles", "a radius R_c > 0", num(rec[2]));
-    Wall w;
-    w.kind = Wall::Kind::circle;
-    w.centre = w.p0 = {rec[0], rec[1]};
-    w.radius = rec[2];
-    if (rec.size() == 4) w.omega = rec[3];
-    c.walls.push_back(w);
-  }
+  c.wall_keys.records.resize(WallKinds::size);
+  WallKinds::each([&c]<class K>() {
+    for (const auto& record : c.wall_keys.records[static_cast<std::size_t>(K::kind)])
+      c.walls.push_back(K::read(record, c.domain));
+  });
 }
 
 void read_box_walls(Config& c) {
@@ -92,7 +37,7 @@ void read_box_walls(Config& c) {
   for (const std::string& side : c.wall_keys.box) {
     const int k = box_side_index(side);  // a side (the validation pass checked the words)
     Wall w;
-    w.kind = Wall::Kind::line;
+    w.kind = WallLine::kind;
     w.p0 = kSide[k].p0, w.normal = kSide[k].normal, w.box_side = k;
     const bool periodic = kSide[k].normal.x != 0.0 ? d.periodic_x : d.periodic_y;
     check(!periodic, "walls.box", "no wall across a periodic direction", side);

@@ -61,9 +61,8 @@ KeyTable<T>& KeyTable<T>::words(const std::string& key, Field<T, std::vector<std
   declare(key, po::value<std::string>()->default_value(def), unit, help + (any.empty() ? "" : ": any of" + any),
           kAnyNumber);
   if (readers_)
-    readers_->push_back([key, field](const po::variables_map& vm, T& t) {
-      field.of(t) = split_words(vm[key].as<std::string>());
-    });
+    readers_->push_back(
+        [key, field](const po::variables_map& vm, T& t) { field.of(t) = split_words(vm[key].as<std::string>()); });
   return *this;
 }
 

@@ -114,12 +114,14 @@ class KeyTable {
     keys_.push_back({key, KeyType::choice, kAnyNumber, words});
     auto* value = boost::program_options::value<std::string>();
     if (!def.empty()) value->default_value(def);
-    declare(key, value, "-", help + (def.empty() ? " (required)" : "") + ": " + choice_words<V>(choices, true), kAnyNumber);
+    declare(key, value, "-", help + (def.empty() ? " (required)" : "") + ": " + choice_words<V>(choices, true),
+            kAnyNumber);
     if (readers_)
       readers_->push_back([key, field, list = std::vector<Choice<V>>(choices.begin(), choices.end())](
                               const boost::program_options::variables_map& vm, T& t) {
         const std::span<const Choice<V>> all(list);
-        if (!vm.count(key)) throw ConfigError("missing required key '" + key + "' (" + choice_words<V>(all, false) + ")");
+        if (!vm.count(key))
+          throw ConfigError("missing required key '" + key + "' (" + choice_words<V>(all, false) + ")");
         const std::string word = vm[key].as<std::string>();
         for (const Choice<V>& c : list)
           if (word == c.word) return void(field.of(t) = c.value);

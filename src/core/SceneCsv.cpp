@@ -132,7 +132,7 @@ std::vector<SceneDisc> csv(const SceneInputs& in) {
 
 }  // namespace
 
-extern const SceneType kCsvScene{"csv", "the discs of scene.file, a CSV file", check_csv, csv_keys, file_radius,
-                                 SceneType::Source::csv_file, false, csv};
+extern const SceneType kCsvScene{"csv",       "the discs of scene.file, a CSV file", check_csv, csv_keys,
+                                 file_radius, SceneType::Source::csv_file,           false,     csv};
 
 }  // namespace rondel

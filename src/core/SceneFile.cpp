@@ -26,7 +26,9 @@ std::vector<SceneDisc> from_file(const SceneInputs& in) {
 
 }  // namespace
 
-extern const SceneType kFileScene{"file", "the discs of a Rondel checkpoint or snapshot (scene.file)", check_file,
-                                  file_keys, file_radius, SceneType::Source::state_file, false, from_file};
+extern const SceneType kFileScene{"file",      "the discs of a Rondel checkpoint or snapshot (scene.file)",
+                                  check_file,  file_keys,
+                                  file_radius, SceneType::Source::state_file,
+                                  false,       from_file};
 
 }  // namespace rondel

@@ -22,7 +22,9 @@ void check_lattice(SceneConfig& s) {
   scene::check_numbering_placement(s);
 }
 
-std::string lattice_keys(const SceneConfig&) { return "scene.nx, scene.ny, scene.radius, scene.spacing, scene.x0, scene.y0"; }
+std::string lattice_keys(const SceneConfig&) {
+  return "scene.nx, scene.ny, scene.radius, scene.spacing, scene.x0, scene.y0";
+}
 std::string lattice_radius(const SceneConfig& s) { return "scene.radius = " + fmt(s.radius); }
 
 std::vector<SceneDisc> lattice(const SceneInputs& in, bool hex) {
@@ -63,9 +65,17 @@ std::vector<SceneDisc> hexagonal(const SceneInputs& in) { return lattice(in, tru
 
 }  // namespace
 
-extern const SceneType kLatticeSquareScene{"lattice_square", "scene.nx x scene.ny discs on a square lattice",
-                                           check_lattice, lattice_keys, lattice_radius, SceneType::Source::keys, false, square};
-extern const SceneType kLatticeHexScene{"lattice_hex", "scene.nx x scene.ny discs on a hexagonal lattice",
-                                        check_lattice, lattice_keys, lattice_radius, SceneType::Source::keys, false, hexagonal};
+extern const SceneType kLatticeSquareScene{"lattice_square",
+                                           "scene.nx x scene.ny discs on a square lattice",
+                                           check_lattice,
+                                           lattice_keys,
+                                           lattice_radius,
+                                           SceneType::Source::keys,
+                                           false,
+                                           square};
+extern const SceneType kLatticeHexScene{"lattice_hex",  "scene.nx x scene.ny discs on a hexagonal lattice",
+                                        check_lattice,  lattice_keys,
+                                        lattice_radius, SceneType::Source::keys,
+                                        false,          hexagonal};
 
 }  // namespace rondel

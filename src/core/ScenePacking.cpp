@@ -115,7 +115,8 @@ class PlacementGrid {
 
  private:
   std::pair<int, int> cell_of(Vec2 x) const {
-    return {std::min(nx_ - 1, static_cast<int>((x.x - x0_) / cx_)), std::min(ny_ - 1, static_cast<int>((x.y - y0_) / cy_))};
+    return {std::min(nx_ - 1, static_cast<int>((x.x - x0_) / cx_)),
+            std::min(ny_ - 1, static_cast<int>((x.y - y0_) / cy_))};
   }
   double x0_, y0_, cx_ = 0.0, cy_ = 0.0;
   int nx_ = 1, ny_ = 1;
@@ -161,7 +162,9 @@ std::vector<SceneDisc> random_packing(const SceneInputs& in) {
 
 }  // namespace
 
-extern const SceneType kRandomScene{"random", "scene.count discs placed at random without overlap", check_random,
-                                    placement_keys, radius_keys, SceneType::Source::keys, true, random_packing};
+extern const SceneType kRandomScene{"random",     "scene.count discs placed at random without overlap",
+                                    check_random, placement_keys,
+                                    radius_keys,  SceneType::Source::keys,
+                                    true,         random_packing};
 
 }  // namespace rondel

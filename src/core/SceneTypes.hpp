@@ -22,7 +22,7 @@ struct SceneFileReader {
 struct SceneInputs {
   const SceneConfig& scene;
   const Domain& domain;
-  std::string config_dir;              // a relative scene.file not found is looked up there (the INI's directory)
+  std::string config_dir;                  // a relative scene.file not found is looked up there (the INI's directory)
   const SceneFileReader* files = nullptr;  // scene.type = file
 };
 

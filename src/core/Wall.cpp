@@ -1,25 +1,19 @@
 #include "core/Wall.hpp"
 
-#include <cmath>
+#include "core/ConfigRead.hpp"
+#include "core/WallKinds.hpp"
 
 namespace rondel {
 
-Wall::Proximity Wall::proximity(Vec2 x) const {
-  if (kind == Kind::line) return {dot(x - p0, normal), -normal};
-  if (kind == Kind::circle) {  // a disc inside: n from the disc to the rim, dist = R_c - |x - c| (< 0 outside)
-    const Vec2 r = x - centre;
-    const double d = std::sqrt(dot(r, r));
-    if (d == 0.0) return {radius, {1.0, 0.0}};
-    return {radius - d, (1.0 / d) * r};
-  }
-  const Vec2 e = p1 - p0;
-  double s = dot(x - p0, e) / dot(e, e);
-  if (s < 0.0) s = 0.0;
-  if (s > 1.0) s = 1.0;
-  const Vec2 d = (p0 + s * e) - x;
-  const double dist = std::sqrt(dot(d, d));
-  if (dist == 0.0) return {0.0, -perp(e) * (1.0 / std::sqrt(dot(e, e)))};
-  return {dist, (1.0 / dist) * d};
+Wall::Proximity Wall::proximity(Vec2 x) const { return WallKinds::proximity(*this, x); }
+
+void read_wall_motion(const std::vector<double>& rec, std::size_t at, const char* key, Wall& w) {
+  if (rec.size() == at + 2) w.velocity = {rec[at], rec[at + 1]};
+  if (rec.size() != at + 3) return;
+  config::check(rec[at] != 0.0, key, "a rotating wall's omega != 0 (leave 'omega cx cy' out for a fixed wall)",
+                config::num(rec[at]));
+  w.omega = rec[at];
+  w.centre = {rec[at + 1], rec[at + 2]};
 }
 
 }  // namespace rondel

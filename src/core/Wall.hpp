@@ -9,10 +9,11 @@
 namespace rondel {
 
 // A global wall (every rank has all of them): an infinite line, a segment, or a circle whose inside holds the
-// discs (a drum). A wall translates with a prescribed velocity, or rotates about a fixed centre at a constant
-// angular velocity (docs/physics.md sections 1 and 8: a wall is disc 2 with R2 -> inf and omega2 = omega).
+// discs (a drum); the kinds are core/WallKinds.hpp's, one file each. A wall translates with a prescribed velocity, or
+// rotates about a fixed centre at a constant angular velocity (docs/physics.md sections 1 and 8: a wall is disc 2 with
+// R2 -> inf and omega2 = omega).
 struct Wall {
-  enum class Kind { line, segment, circle };
+  enum class Kind { line, segment, circle };  // the value in a Rondel file (/walls/kind); WallKinds lists them
   // How the wall moves: a prescribed velocity (0 = fixed); a servo holding a normal stress; or a constant
   // strain rate of the sample between this wall and the opposite box wall.
   enum class Control { velocity, servo, strain_rate };
@@ -84,6 +85,10 @@ struct Wall {
 };
 
 using WallSet = std::vector<Wall>;
+
+// The optional motion at the end of a line or segment record (numbers from `at` on): none, 'vx vy' (a
+// translation) or 'omega cx cy' (a rotation about the fixed centre (cx, cy)). Errors name `key`.
+void read_wall_motion(const std::vector<double>& record, std::size_t at, const char* key, Wall& w);
 
 // The sides of the box (walls.box), by Wall::box_side.
 inline constexpr const char* kBoxSides[4] = {"bottom", "left", "right", "top"};

@@ -45,8 +45,8 @@ class SfcPartition final : public Partition {
   // This rank's work units as weighted cells.
   Cells weighted_cells(const DiscStore& discs, const ContactTable& pairs) const;
   void clamp_into(Cells& cells, std::uint64_t lo, std::uint64_t hi) const;
-  std::vector<std::uint64_t> weighted_cuts(const Cells& cells, std::uint64_t lo, std::uint64_t hi,
-                                           std::uint64_t offset, std::uint64_t total) const;
+  std::vector<std::uint64_t> weighted_cuts(const Cells& cells, std::uint64_t lo, std::uint64_t hi, std::uint64_t offset,
+                                           std::uint64_t total) const;
 
   const CellGrid& grid_;
   const HilbertGrid& curve_;
@@ -136,7 +136,8 @@ void SfcPartition::initial(const DiscStore& discs, bool replicated) {
     cuts_ = weighted_cuts(cells, 0, curve_.key_end(), 0, total);
   } else {
     cuts_.assign(static_cast<std::size_t>(P) + 1, 0);
-    for (int j = 1; j < P; ++j) cuts_[j] = curve_.key_of_cell_number(curve_.cells() * static_cast<std::uint64_t>(j) / P);
+    for (int j = 1; j < P; ++j)
+      cuts_[j] = curve_.key_of_cell_number(curve_.cells() * static_cast<std::uint64_t>(j) / P);
   }
   cuts_[0] = 0;
   cuts_[P] = curve_.key_end();

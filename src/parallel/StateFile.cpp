@@ -7,6 +7,7 @@
 #include <type_traits>
 
 #include "core/Errors.hpp"
+#include "core/WallKinds.hpp"
 #include "parallel/Agreement.hpp"
 #include "parallel/CanonicalOrder.hpp"
 #include "parallel/Hdf5File.hpp"
@@ -34,13 +35,17 @@ void write_walls(Hdf5File& f, const WallSet& walls, const Communicator& comm) {
   std::vector<Vec2> p0, p1, normal, velocity, force, centre;
   if (comm.root())
     for (const Wall& w : walls) {
-      kind.push_back(w.kind == Wall::Kind::line ? 0 : w.kind == Wall::Kind::segment ? 1 : 2);
+      kind.push_back(static_cast<std::int32_t>(w.kind));  // the kind's code (core/WallKinds.hpp)
       material.push_back(w.material);
       p0.push_back(w.p0), p1.push_back(w.p1), normal.push_back(w.normal), velocity.push_back(w.velocity);
       force.push_back(w.force), normal_force.push_back(w.normal_force), contacts.push_back(w.contacts);
       centre.push_back(w.centre), radius.push_back(w.radius), omega.push_back(w.omega), angle.push_back(w.angle);
     }
   f.write("/walls/kind", kind, n, 0);
+  // The names of the codes of /walls/kind, in code order: readers decode the kinds with them (FORMAT.md).
+  std::string names;
+  for (const std::string& name : WallKinds::names_by_code()) names += (names.empty() ? "" : " ") + name;
+  f.write_attribute("/walls", "kind_names", names);
   f.write("/walls/p0", p0, n, 0);
   f.write("/walls/p1", p1, n, 0);
   f.write("/walls/normal", normal, n, 0);

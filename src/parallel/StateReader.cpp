@@ -7,6 +7,7 @@
 #include <type_traits>
 
 #include "core/Errors.hpp"
+#include "core/WallKinds.hpp"
 #include "parallel/CanonicalOrder.hpp"
 #include "parallel/Hdf5File.hpp"
 #include "parallel/RecordPacking.hpp"
@@ -151,8 +152,9 @@ void read_rows(const Hdf5File& f, ContactTable& pairs, ContactTable& wall_rows, 
   }
 }
 
-// Every rank reads the whole (small) wall table and checks its own copy.
-WallSet read_walls(const Hdf5File& f) {
+// Every rank reads the whole (small) wall table and checks its own copy. A kind code that no kind of
+// core/WallKinds.hpp has is refused, naming the file's kinds.
+WallSet read_walls(const Hdf5File& f, const std::string& path) {
   const std::uint64_t n = f.rows("/walls/kind");
   const auto kind = f.read<std::int32_t>("/walls/kind", 0, n, 1, false);
   const auto p0 = f.read<Vec2>("/walls/p0", 0, n, 1, false), p1 = f.read<Vec2>("/walls/p1", 0, n, 1, false);
@@ -173,7 +175,16 @@ WallSet read_walls(const Hdf5File& f) {
   WallSet walls(n);
   for (std::uint64_t w = 0; w < n; ++w) {
     walls[w].material = material[w];
-    walls[w].kind = kind[w] == 0 ? Wall::Kind::line : kind[w] == 1 ? Wall::Kind::segment : Wall::Kind::circle;
+    const std::optional<Wall::Kind> k = WallKinds::from_code(kind[w]);
+    if (!k) {
+      const auto names = WallKinds::names_by_code();
+      std::string known;
+      for (std::size_t code = 0; code < names.size(); ++code)
+        known += (code ? ", " : "") + std::to_string(code) + " " + names[code];
+      throw InputError("'" + path + "': wall " + std::to_string(w) + " has the kind " + std::to_string(kind[w]) +
+                       " (/walls/kind), which no wall kind has (" + known + ")");
+    }
+    walls[w].kind = *k;
     walls[w].centre = centre[w], walls[w].radius = radius[w], walls[w].omega = omega[w], walls[w].angle = angle[w];
     walls[w].p0 = p0[w], walls[w].p1 = p1[w], walls[w].normal = normal[w], walls[w].velocity = velocity[w];
     walls[w].force = force[w], walls[w].normal_force = normal_force[w], walls[w].contacts = contacts[w];
@@ -191,7 +202,7 @@ void read_state_rows(const std::string& path, ContactTable& pairs, ContactTable&
 WallSet read_state_walls(const std::string& path, const Communicator& comm) {
   Hdf5File f(path, Hdf5File::Mode::read, comm);
   WallSet walls;
-  f.run([&] { walls = read_walls(f); });
+  f.run([&] { walls = read_walls(f, path); });
   return walls;
 }
 

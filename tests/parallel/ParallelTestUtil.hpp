@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iostream>
 #include <map>
 #include <memory>
 #include <set>
@@ -39,6 +40,8 @@ inline int world_size() {
 }
 
 // True on every rank iff `ok` on every rank.
+inline void world_barrier() { MPI_Barrier(MPI_COMM_WORLD); }
+
 inline bool all_ranks(bool ok) {
   int v = ok ? 1 : 0;
   MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_INT, MPI_LAND, MPI_COMM_WORLD);
@@ -326,5 +329,37 @@ std::string config_error_everywhere(Body&& body, bool* all_threw) {
   *all_threw = every;
   return msg;
 }
+
+// A directory made by rank 0 (unique per test and rank count), known to every rank; removed at the end
+// unless the test failed (then it is kept and named, for a look at the files).
+class SharedTempDir {
+ public:
+  explicit SharedTempDir(const std::string& tag) {
+    std::string path;
+    if (world_rank() == 0) {
+      std::string tmpl = (std::filesystem::temp_directory_path() /
+                          ("rondel-" + tag + "-np" + std::to_string(world_size()) + "-XXXXXX"))
+                             .string();
+      if (mkdtemp(tmpl.data())) path = tmpl;
+    }
+    path_ = broadcast(path);
+    if (path_.empty()) throw std::runtime_error("mkdtemp failed");
+    world_barrier();
+  }
+  ~SharedTempDir() {
+    world_barrier();
+    if (world_rank() != 0) return;
+    if (::testing::Test::HasFailure()) {
+      std::cout << "[ files    ] kept in " << path_ << "\n";
+      return;
+    }
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
 
 }  // namespace rondel::partest

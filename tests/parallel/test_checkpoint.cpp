@@ -54,12 +54,12 @@ namespace fs = std::filesystem;
 constexpr int kHalf = 2500;  // N: the checkpoint step; the runs end at 2N
 
 using partest::broadcast;
+using partest::SharedTempDir;
+using partest::world_barrier;
 using partest::world_rank;
 using partest::world_size;
 using test::QuietCout;
 using test::read_file;
-
-void world_barrier() { MPI_Barrier(MPI_COMM_WORLD); }
 
 // World ranks 0 .. size-1 as a communicator (the others get none and just wait). Simulation keeps a
 // reference to the Communicator, so this object outlives the simulations built on it.
@@ -82,38 +82,6 @@ class SubComm {
  private:
   MPI_Comm raw_ = MPI_COMM_NULL;
   std::unique_ptr<Communicator> comm_;
-};
-
-// A directory made by rank 0 (unique per test and rank count), known to every rank; removed at the end
-// unless the test failed (then it is kept and named, for a look at the files).
-class SharedTempDir {
- public:
-  explicit SharedTempDir(const std::string& tag) {
-    std::string path;
-    if (world_rank() == 0) {
-      std::string tmpl =
-          (fs::temp_directory_path() / ("rondel-ckpt-" + tag + "-np" + std::to_string(world_size()) + "-XXXXXX"))
-              .string();
-      if (mkdtemp(tmpl.data())) path = tmpl;
-    }
-    path_ = broadcast(path);
-    if (path_.empty()) throw std::runtime_error("mkdtemp failed");
-    world_barrier();
-  }
-  ~SharedTempDir() {
-    world_barrier();
-    if (world_rank() != 0) return;
-    if (::testing::Test::HasFailure()) {
-      std::cout << "[ ckpt     ] files kept in " << path_ << "\n";
-      return;
-    }
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
 };
 
 // h5diff of two Rondel files without the run metadata and the ledger (FORMAT.md): "" when equal, else the
@@ -203,7 +171,7 @@ CheckpointContent inspect(const fs::path& path) {
 void restart_cases(const std::string& law, const std::vector<std::string>& extra = {}) {
   const int W = world_size();
   const bool root = world_rank() == 0;
-  SharedTempDir tmp(law + (extra.empty() ? "" : "-rebalance"));
+  SharedTempDir tmp("ckpt-" + law + (extra.empty() ? "" : "-rebalance"));
   const fs::path out = tmp.path() / "run";  // the one run.output of every writer and restart
   std::vector<std::string> overrides{"--run.output=" + out.string(), "--run.overwrite=true",
                                      "--run.steps=" + std::to_string(2 * kHalf),

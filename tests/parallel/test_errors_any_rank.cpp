@@ -19,19 +19,9 @@ namespace {
 using namespace partest;
 namespace fs = std::filesystem;
 
-// A scratch directory made by rank 0 and known to every rank.
-std::string shared_scratch() {
-  std::string path;
-  if (world_rank() == 0) {
-    std::string tmpl = (fs::temp_directory_path() / "rondel-any-rank-XXXXXX").string();
-    if (mkdtemp(tmpl.data())) path = tmpl;
-  }
-  return broadcast(path);
-}
-
 TEST(ErrorsOnAnyRank, ResumeWithADiscBehindAWallOnTheLastRankOnly) {
-  const fs::path dir = shared_scratch();
-  ASSERT_FALSE(dir.empty());
+  const SharedTempDir scratch("any-rank");
+  const fs::path& dir = scratch.path();
   const Config config = parse_config_text(test::behind_wall_ini(dir / "run"), {});
   std::string checkpoint;
   if (world_rank() == 0) checkpoint = test::write_behind_wall_checkpoint(dir / "run", config).string();
@@ -57,8 +47,6 @@ TEST(ErrorsOnAnyRank, ResumeWithADiscBehindAWallOnTheLastRankOnly) {
   int sum = 1;
   MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
   EXPECT_EQ(sum, world_size());
-  MPI_Barrier(MPI_COMM_WORLD);
-  if (world_rank() == 0) fs::remove_all(dir);
 }
 
 }  // namespace

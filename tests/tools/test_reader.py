@@ -90,6 +90,18 @@ def test_checkpoint(run, fin, diag):
     check("walls: bottom left right, three lines", list(w["kind"]) == [0, 0, 0]
           and np.allclose(w["normal"], [[0, 1], [1, 0], [-1, 0]]), (w.get("kind"), w.get("normal")))
     check("walls: attributes box_width0 0.3", abs(w.attrs.get("box_width0", 0) - 0.3) < 1e-12, w.attrs)
+    check("walls: the file's kind table (kind_names) names every code", w.attrs.get("kind_names") == "line segment circle"
+          and c.wall_kinds() == ["line", "line", "line"], (w.attrs.get("kind_names"), c.wall_kinds()))
+    table, codes = dict(w.attrs), w["kind"]
+    w.attrs["kind_names"] = "segment line circle"  # a file's own table decides: code 0 is what it names
+    check("walls: decoded with the file's table, not a copy of it", c.wall_kinds() == ["segment"] * 3, c.wall_kinds())
+    del w.attrs["kind_names"]
+    check("walls: a file without the table (before it) reads line, segment, circle", c.wall_kinds() == ["line"] * 3)
+    w["kind"] = np.array([0, 7, 0])
+    raises("walls: a code the table lacks is an error naming it", c.wall_kinds, "kind 7", c.path)
+    w["kind"] = codes
+    w.attrs.clear()
+    w.attrs.update(table)
     check("ledger: KE0, W_g", {"KE0", "W_g", "W_n", "scale"} <= set(c.ledger), c.ledger)
     check("run metadata: ranks 1", c.run_metadata.get("ranks") == 1, c.run_metadata)
     checked, bad = c.verify_checksums()

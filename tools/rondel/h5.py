@@ -12,6 +12,9 @@ FORMAT_VERSION = 4
 # circle walls (/walls/kind 2) and wall rotation (/walls/centre, radius, omega, angle); 4 the root's
 # /integrity attributes_checksum.
 READABLE_VERSIONS = (1, 2, 3, 4)
+# The names of the wall kind codes (/walls/kind) of files written before the attribute /walls/kind_names, which
+# newer files carry (the C++ registry, src/core/WallKinds.hpp): StateFile.wall_kinds() reads that attribute.
+WALL_KINDS_BEFORE_NAMES = ("line", "segment", "circle")
 FLAG_FIXED = 1
 FLAG_GLUED = 2
 M64 = (1 << 64) - 1
@@ -178,6 +181,22 @@ class StateFile:
         return out
 
     # -------------------------------------------------------------------------------------------- access
+
+    def wall_kinds(self):
+        """The name of each wall's kind ('line', 'segment', 'circle', ...), decoded with the file's own table
+        (the attribute /walls/kind_names; older files: WALL_KINDS_BEFORE_NAMES). A code the table lacks is an
+        error naming it."""
+        w = self.walls
+        if "kind" not in w:
+            return []
+        names = str(w.attrs["kind_names"]).split() if "kind_names" in w.attrs else list(WALL_KINDS_BEFORE_NAMES)
+        out = []
+        for i, code in enumerate(np.asarray(w["kind"]).reshape(-1)):
+            if not 0 <= int(code) < len(names):
+                raise RondelFileError(self.path, f"wall {i} has the kind {int(code)} (/walls/kind), which the file's "
+                                      f"table {names} lacks")
+            out.append(names[int(code)])
+        return out
 
     def __len__(self):
         """The disc count."""
