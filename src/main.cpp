@@ -12,8 +12,11 @@
 #include <vector>
 
 #include "app/Checkpointing.hpp"
+#include "app/OutputNames.hpp"
 #include "app/Simulation.hpp"
 #include "core/Errors.hpp"
+#include "core/ExitCodes.hpp"
+#include "core/FaultInjection.hpp"
 #include "parallel/Agreement.hpp"
 #include "parallel/Communicator.hpp"
 #include "parallel/StateFile.hpp"
@@ -75,6 +78,8 @@ Setup set_up(int argc, char** argv, const rondel::Communicator& comm) {
       for (const auto& k : skipped) std::cerr << "rondel: skipping " << k << '\n';
     rondel::agree(comm, [&] { header = rondel::read_state_header(s.checkpoint, comm); });
   }
+  // A fault-injection hook that injects nothing is refused before any work (core/FaultInjection.hpp).
+  rondel::agree(comm, [] { rondel::check_fault_injection(rondel::output::kTextFiles); });
   rondel::agree(comm, [&] {
     if (!resume.empty() && !has_file) {
       // No INI: the configuration stored in the checkpoint, with the command line's overrides.
@@ -98,44 +103,11 @@ int run(int argc, char** argv, const rondel::Communicator& comm) {
     if (comm.root())
       std::cout << "rondel: nothing to do: the checkpoint '" << s.checkpoint << "' is at step " << s.config.steps
                 << " = run.steps already (the run is complete); raise run.steps (--run.steps=N) to continue it\n";
-    return 0;
+    return rondel::kExitDone.code;
   }
   rondel::Simulation sim(std::move(s.config), comm, true, s.checkpoint);
   const rondel::RunSummary summary = sim.run();
-  return summary.stop_signal != 0 ? 10 : 0;
-}
-
-int exit_code(rondel::ErrorKind kind) {
-  switch (kind) {
-    case rondel::ErrorKind::none:
-    case rondel::ErrorKind::help:
-      return 0;
-    case rondel::ErrorKind::config:
-    case rondel::ErrorKind::input:
-      return 1;
-    case rondel::ErrorKind::instability:
-      return 3;
-    case rondel::ErrorKind::io:
-      return 5;
-    case rondel::ErrorKind::internal:
-      break;
-  }
-  return 4;
-}
-
-std::string label(rondel::ErrorKind kind) {
-  switch (kind) {
-    case rondel::ErrorKind::config:
-      return "configuration error: ";
-    case rondel::ErrorKind::input:
-      return "input error: ";
-    case rondel::ErrorKind::instability:
-      return "the run became unstable: ";
-    case rondel::ErrorKind::io:
-      return "I/O error: ";
-    default:
-      return "internal error: ";
-  }
+  return summary.stop_signal != 0 ? rondel::kExitStopped.code : rondel::kExitDone.code;
 }
 
 // How long the failing ranks wait for each other at the end (settle_at_exit) before one aborts the job.
@@ -147,20 +119,21 @@ constexpr double kExitAgreementSeconds = 10.0;
 int report(std::exception_ptr error, MPI_Comm exit_comm, const rondel::Communicator& comm) {
   const bool agreed = rondel::settle_at_exit(exit_comm, error, kExitAgreementSeconds);
   const rondel::ErrorKind kind = rondel::error_kind(error);
+  const rondel::ErrorExit& exit = rondel::error_exit(kind);
   const std::string message = rondel::error_message(error);
   if (agreed && kind == rondel::ErrorKind::help) {
     if (comm.root()) std::cout << message;
-    return 0;
+    return exit.exit.code;
   }
   if (agreed) {
-    if (comm.root()) std::cerr << "rondel: " << label(kind) << message << '\n';
-    return exit_code(kind);
+    if (comm.root()) std::cerr << "rondel: " << exit.label << message << '\n';
+    return exit.exit.code;
   }
-  std::cerr << "rondel: " << label(kind) << message << " (found on rank " << comm.rank()
+  std::cerr << "rondel: " << exit.label << message << " (found on rank " << comm.rank()
             << " only; stopping every rank)\n"
             << std::flush;
-  MPI_Abort(MPI_COMM_WORLD, exit_code(kind));
-  return exit_code(kind);
+  MPI_Abort(MPI_COMM_WORLD, exit.exit.code);
+  return exit.exit.code;
 }
 
 }  // namespace
@@ -168,13 +141,11 @@ int report(std::exception_ptr error, MPI_Comm exit_comm, const rondel::Communica
 int main(int argc, char** argv) {
   rondel::MpiEnvironment mpi(&argc, &argv);
   rondel::Communicator comm;
-  // Exit codes (README "Exit codes"): 0 done (also --help, --version, and a --resume with nothing to do,
-  // with a notice), 1 configuration or input error, 3 the run became unstable, 4 internal error, 5 I/O error
-  // (a file could not be read or written), 10 stopped by SIGTERM, SIGINT or SIGUSR1 after writing a
-  // checkpoint (continue with --resume). Every rank returns the same code; the message is printed once.
+  // Exit codes: core/ExitCodes.hpp (README "Exit codes"). Every rank returns the same code; the message is printed
+  // once.
   if (version_requested(argc, argv)) {
     if (comm.root()) std::cout << "rondel " << rondel::kRondelVersion << " (commit " << rondel::kRondelCommit << ")\n";
-    return 0;
+    return rondel::kExitDone.code;
   }
   // Only for the agreement at the end (report): a communicator of its own, so it cannot meet a collective
   // that another rank is still waiting in.

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "app/OutputNames.hpp"
 #include "core/Errors.hpp"
 #include "core/FaultInjection.hpp"
 #include "parallel/Agreement.hpp"
@@ -78,7 +79,9 @@ void cut_table(const fs::path& path, std::int64_t step) {
 }
 
 // Whether writing the text file `path` failed: `ok` false, or a fault injected for it (core/FaultInjection.hpp).
-bool failed(bool ok, const fs::path& path) { return !ok || injected_fault("text:" + path.filename().string(), 0); }
+bool failed(bool ok, const fs::path& path) {
+  return !ok || injected_fault(FaultSite::text, 0, path.filename().string());
+}
 
 }  // namespace
 
@@ -117,7 +120,7 @@ void RunFiles::claim_directory(const std::string& checkpoint) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   take_lock(dir);
-  if (!std::ofstream(dir / "config.ini").good())
+  if (!std::ofstream(dir / output::kConfig).good())
     throw ConfigError("run.output = '" + config_.output + "' cannot be written (permissions, or a file of that name)");
 }
 
@@ -126,7 +129,7 @@ void RunFiles::take_lock(const fs::path& dir) {
   // on this host (a run killed with SIGKILL) is taken over.
   char host[256] = {};
   gethostname(host, sizeof host - 1);
-  const fs::path path = dir / kLockName;
+  const fs::path path = dir / output::kLock;
   for (int attempt = 0; attempt < 2; ++attempt) {
     const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
     if (fd >= 0) {
@@ -158,21 +161,21 @@ void RunFiles::open_files(bool resuming, std::int64_t step) {
   if (!comm_.root()) return;
   const fs::path dir(config_.output);
   std::error_code ec;
-  for (const char* stale : {"final.csv", "summary.txt", "summary.json"}) fs::remove(dir / stale, ec);
+  for (const char* stale : {output::kFinal, output::kSummaryText, output::kSummaryJson}) fs::remove(dir / stale, ec);
   if (resuming) {
-    cut_table(dir / "diagnostics.csv", step);
-    cut_table(dir / "measures.csv", step);
+    cut_table(dir / output::kDiagnostics, step);
+    cut_table(dir / output::kMeasures, step);
   }
-  std::ofstream config(dir / "config.ini");
+  std::ofstream config(dir / output::kConfig);
   config << "# resolved configuration of this run (every key, defaults included)\n" << config_.resolved_text;
-  close_checked(config, dir / "config.ini");
-  log_.open(dir / "log.txt", resuming ? std::ios::app : std::ios::trunc);
-  check_stream(log_, dir / "log.txt");
-  diag_.open((dir / "diagnostics.csv").string(), resuming);
-  const bool measures_existed = resuming && fs::exists(dir / "measures.csv");
-  measures_.open(dir / "measures.csv", resuming ? std::ios::app : std::ios::trunc);
+  close_checked(config, dir / output::kConfig);
+  log_.open(dir / output::kLog, resuming ? std::ios::app : std::ios::trunc);
+  check_stream(log_, dir / output::kLog);
+  diag_.open((dir / output::kDiagnostics).string(), resuming);
+  const bool measures_existed = resuming && fs::exists(dir / output::kMeasures);
+  measures_.open(dir / output::kMeasures, resuming ? std::ios::app : std::ios::trunc);
   if (!measures_existed) measures_ << MeasuresRow::header() << '\n';
-  check_stream(measures_, dir / "measures.csv");
+  check_stream(measures_, dir / output::kMeasures);
 }
 
 std::string RunFiles::write_failure(const fs::path& path) {
@@ -214,20 +217,20 @@ void RunFiles::log_file_only(const std::string& line) {
   // step (check_log), not here.
   if (!comm_.root() || !log_.is_open()) return;
   log_ << line << '\n' << std::flush;
-  if (!log_.good() && log_failed_.empty()) log_failed_ = write_failure(fs::path(config_.output) / "log.txt");
+  if (!log_.good() && log_failed_.empty()) log_failed_ = write_failure(fs::path(config_.output) / output::kLog);
 }
 
 void RunFiles::write_diagnostics(const DiagnosticsRow& row) {
   if (!comm_.root()) return;
   diag_.write(row);
-  if (failed(diag_.good(), fs::path(config_.output) / "diagnostics.csv"))
-    write_failed(fs::path(config_.output) / "diagnostics.csv");
+  if (failed(diag_.good(), fs::path(config_.output) / output::kDiagnostics))
+    write_failed(fs::path(config_.output) / output::kDiagnostics);
 }
 
 void RunFiles::write_measures(const MeasuresRow& row) {
   if (!comm_.root() || !measures_.is_open()) return;
   measures_ << row.csv() << '\n';
-  check_stream(measures_, fs::path(config_.output) / "measures.csv");
+  check_stream(measures_, fs::path(config_.output) / output::kMeasures);
 }
 
 std::string RunFiles::write_checkpoint(const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
@@ -245,35 +248,35 @@ void RunFiles::flush_tables() {
   if (!comm_.root()) return;
   const fs::path dir(config_.output);
   // The rows of diagnostics.csv and measures.csv reach their files (the writers flush them once a second).
-  if (failed(diag_.flush(), dir / "diagnostics.csv")) write_failed(dir / "diagnostics.csv");
-  if (measures_.is_open()) check_stream(measures_.flush(), dir / "measures.csv");
+  if (failed(diag_.flush(), dir / output::kDiagnostics)) write_failed(dir / output::kDiagnostics);
+  if (measures_.is_open()) check_stream(measures_.flush(), dir / output::kMeasures);
 }
 
-std::string RunFiles::final_path() const { return (fs::path(config_.output) / "final.csv").string(); }
+std::string RunFiles::final_path() const { return (fs::path(config_.output) / output::kFinal).string(); }
 
 void RunFiles::write_results(const std::string& summary, const std::string& json, bool stopped) {
   if (!comm_.root()) return;
   const fs::path dir(config_.output);
-  std::ofstream summary_txt(dir / "summary.txt");
+  std::ofstream summary_txt(dir / output::kSummaryText);
   summary_txt << summary
               << (stopped ? "\nstatus: stopped by a signal; resume with --resume " + config_.output + "\n"
                           : std::string("\nstatus: complete\n"));
-  close_checked(summary_txt, dir / "summary.txt");
+  close_checked(summary_txt, dir / output::kSummaryText);
   // The directory's files once summary.json is there too (checkpoints and snapshots included).
-  std::vector<std::string> names{"summary.json"};
+  std::vector<std::string> names{output::kSummaryJson};
   for (const auto& e : fs::directory_iterator(dir))
-    if (e.is_regular_file() && e.path().filename() != "summary.json" && e.path().filename() != kLockName)
+    if (e.is_regular_file() && e.path().filename() != output::kSummaryJson && e.path().filename() != output::kLock)
       names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   std::string files;
   for (const auto& n : names) files += (files.empty() ? "\"" : ", \"") + n + "\"";
-  std::ofstream summary_json(dir / "summary.json");
+  std::ofstream summary_json(dir / output::kSummaryJson);
   summary_json << json << ",\n  \"output_files\": [" << files << "]\n}\n";
   try {
-    close_checked(summary_json, dir / "summary.json");
+    close_checked(summary_json, dir / output::kSummaryJson);
   } catch (const IoError&) {
     std::error_code ec;
-    fs::remove(dir / "summary.txt", ec);  // its status line must not stand for a run that ended in an error
+    fs::remove(dir / output::kSummaryText, ec);  // its status line must not stand for a run that ended in an error
     throw;
   }
 }

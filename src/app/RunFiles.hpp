@@ -35,8 +35,6 @@ class RunFiles {
   // them). Rank 0's row writers below throw IoError when a file cannot be written: call them inside an
   // agreement (parallel/Agreement.hpp).
   void prepare(const std::string& checkpoint, std::int64_t step);
-  // The lock file's name in run.output.
-  static constexpr const char* kLockName = "rondel.lock";
   // True once prepare() has opened an output directory.
   bool has_directory() const { return checkpoints_ != nullptr; }
   // Rank 0: to the terminal (when the run writes files) and to log.txt.

@@ -25,4 +25,7 @@ struct IoError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// What an error is, for the agreement of the ranks (parallel/Agreement.hpp) and the exit code (core/ExitCodes.hpp).
+enum class ErrorKind : int { none = 0, config = 1, input = 2, instability = 3, io = 4, help = 5, internal = 6 };
+
 }  // namespace rondel

@@ -16,28 +16,42 @@ template <class E>
 struct Agreed final : E, AgreedMark {
   explicit Agreed(const std::string& message) : E(message) {}
 };
-struct AgreedHelp final : HelpRequested, AgreedMark {
-  explicit AgreedHelp(const std::string& message) : HelpRequested{message} {}
+template <>
+struct Agreed<HelpRequested> final : HelpRequested, AgreedMark {
+  explicit Agreed(const std::string& message) : HelpRequested{message} {}
 };
 
-[[noreturn]] void throw_agreed(ErrorKind kind, const std::string& message) {
+// Throws the error of `kind` with `message`, wrapped in `As` (Agreed: with the mark; Plain: as it is).
+template <template <class> class As>
+[[noreturn]] void throw_kind(ErrorKind kind, const std::string& message) {
   switch (kind) {
     case ErrorKind::help:
-      throw AgreedHelp(message);
+      throw As<HelpRequested>(message);
     case ErrorKind::config:
-      throw Agreed<ConfigError>(message);
+      throw As<ConfigError>(message);
     case ErrorKind::input:
-      throw Agreed<InputError>(message);
+      throw As<InputError>(message);
     case ErrorKind::instability:
-      throw Agreed<InstabilityError>(message);
+      throw As<InstabilityError>(message);
     case ErrorKind::io:
-      throw Agreed<IoError>(message);
+      throw As<IoError>(message);
     case ErrorKind::none:
     case ErrorKind::internal:
       break;
   }
-  throw Agreed<std::runtime_error>(message);
+  throw As<std::runtime_error>(message);
 }
+
+template <class E>
+struct Plain final : E {
+  explicit Plain(const std::string& message) : E(message) {}
+};
+template <>
+struct Plain<HelpRequested> final : HelpRequested {
+  explicit Plain(const std::string& message) : HelpRequested{message} {}
+};
+
+[[noreturn]] void throw_agreed(ErrorKind kind, const std::string& message) { throw_kind<Agreed>(kind, message); }
 
 // Kind and message as bytes (the kind first), and back.
 std::vector<char> encode(const std::exception_ptr& error) {
@@ -100,24 +114,7 @@ bool is_agreed(const std::exception_ptr& error) {
   }
 }
 
-void throw_error(ErrorKind kind, const std::string& message) {
-  switch (kind) {
-    case ErrorKind::help:
-      throw HelpRequested{message};
-    case ErrorKind::config:
-      throw ConfigError(message);
-    case ErrorKind::input:
-      throw InputError(message);
-    case ErrorKind::instability:
-      throw InstabilityError(message);
-    case ErrorKind::io:
-      throw IoError(message);
-    case ErrorKind::none:
-    case ErrorKind::internal:
-      break;
-  }
-  throw std::runtime_error(message);
-}
+void throw_error(ErrorKind kind, const std::string& message) { throw_kind<Plain>(kind, message); }
 
 void settle(const Communicator& comm, const std::exception_ptr& error) {
   int first = error ? comm.rank() : comm.size();

@@ -4,6 +4,7 @@
 #include <exception>
 #include <string>
 
+#include "core/Errors.hpp"
 #include "parallel/Communicator.hpp"
 
 namespace rondel {
@@ -19,7 +20,6 @@ namespace rondel {
 // happens (a nested agree is fine: its agreement is the same reduction as the outer one's). The kinds kept
 // are ConfigError, InputError, InstabilityError, IoError and HelpRequested; anything else becomes an
 // "internal error" (std::runtime_error) with its what().
-enum class ErrorKind : int { none = 0, config = 1, input = 2, instability = 3, io = 4, help = 5, internal = 6 };
 
 // Carried by every error that settle() or raise_from() throws: every rank throws it together, so an agree
 // around it rethrows it as it is (no second agreement) and main knows that it need not wait for the others.

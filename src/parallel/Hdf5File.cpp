@@ -121,7 +121,7 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode, const Communicator& comm,
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become exceptions with the file's name
   if (writing_) injected_fault_new_file(comm_.rank());
   const bool reserve = writing_ && reserve_bytes > 0 && comm_.root();
-  const bool injected = reserve && injected_fault("reserve", comm_.rank());
+  const bool injected = reserve && injected_fault(FaultSite::reserve, comm_.rank());
   std::exception_ptr error;
   // Before HDF5 writes anything: a disk without the room is found here, and nothing is left behind.
   if (reserve) {
@@ -174,7 +174,7 @@ void Hdf5File::close() {
     // The metadata reaches the file here, where a failure can still be agreed; the close then has nothing
     // left to write (a close that fails leaves HDF5 with a file it can neither use nor forget).
     if (writing_ && file_ >= 0)
-      check(H5Fflush(file_, H5F_SCOPE_GLOBAL) >= 0 && !injected_fault("hdf5_close", comm_.rank()),
+      check(H5Fflush(file_, H5F_SCOPE_GLOBAL) >= 0 && !injected_fault(FaultSite::hdf5_close, comm_.rank()),
             "cannot write its metadata (disk full?)", true);
   } catch (...) {
     abandon();
@@ -388,7 +388,7 @@ void Hdf5File::write_block(const std::string& name, const T* local, std::uint64_
   if (n_local == 0) H5Sselect_none(mem.id), H5Sselect_none(space.id);
   if (total > 0)
     keep(H5Dwrite(set.id, memory_type<T>(), mem.id, space.id, xfer_, local) >= 0 &&
-             !injected_fault("hdf5_write", comm_.rank()),
+             !injected_fault(FaultSite::hdf5_write, comm_.rank()),
          "cannot write dataset " + name);
   // One reduction: the checksum and the number of ranks that failed so far.
   std::uint64_t sums[2] = {

@@ -45,7 +45,7 @@ void write_ordered_text(const std::string& path, const std::string& header, cons
   const std::string name = path.substr(path.find_last_of('/') + 1);
   std::exception_ptr error;
   if (comm.root()) {
-    const std::string why = reserve_file_space(path, total, injected_fault("text:" + name, comm.rank()));
+    const std::string why = reserve_file_space(path, total, injected_fault(FaultSite::text, comm.rank(), name));
     if (!why.empty()) error = std::make_exception_ptr(IoError("cannot write '" + path + "': " + why));
   }
   try {

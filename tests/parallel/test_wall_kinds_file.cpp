@@ -34,9 +34,9 @@ TEST(WallKindsFile, EveryKindReadsBackAsItselfWithTheNamesOfTheCodes) {
   const Domain domain{0.0, 1.0, 0.0, 1.0, false, false};
   WallSet walls;
   WallKinds::each([&]<class K>() {
-    walls.push_back(K::read(K::kind == Wall::Kind::circle ? std::vector<double>{0.5, 0.5, 0.4}
-                                                          : std::vector<double>{0.1, 0.1, 0.9, 0.2},
-                            domain));
+    walls.push_back(K::read(
+        K::kind == Wall::Kind::circle ? std::vector<double>{0.5, 0.5, 0.4} : std::vector<double>{0.1, 0.1, 0.9, 0.2},
+        domain));
   });
   const partest::SharedTempDir dir("wallkinds");
   const std::string path = file_with(walls, dir.path().string());

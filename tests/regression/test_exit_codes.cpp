@@ -6,9 +6,16 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
 #include <string>
 
+#include "app/OutputNames.hpp"
 #include "core/Config.hpp"
+#include "core/ExitCodes.hpp"
+#include "core/FaultInjection.hpp"
 #include "support/BehindWall.hpp"
 #include "support/Command.hpp"
 #include "support/TempDir.hpp"
@@ -24,8 +31,8 @@ const fs::path kSource = RONDEL_SOURCE_DIR;
 // Seconds before `timeout` stops a command: a hang fails the test instead of the CTest timeout.
 constexpr int kLimit = 120;
 
-Outcome rondel_on(const TempDir& dir, int ranks, const std::string& args) {
-  return test::mpirun_rondel(dir, ranks, args, "", kLimit);
+Outcome rondel_on(const TempDir& dir, int ranks, const std::string& args, const std::string& env = "") {
+  return test::mpirun_rondel(dir, ranks, args, env, kLimit);
 }
 
 std::size_t count(const std::string& text, const std::string& what) { return test::occurrences(text, what); }
@@ -74,6 +81,65 @@ TEST(ExitCodes, AnIoErrorOfRankZeroExitsWithFive) {
       EXPECT_FALSE(fs::exists(run / "summary.json")) << tag << ": a failed run wrote summary.json";
     }
   }
+}
+
+TEST(ExitCodes, TheReadmesTableListsExactlyTheCodesOfTheRegistry) {
+  std::ifstream in(kSource / "README.md");
+  ASSERT_TRUE(in) << "no README.md in " << kSource;
+  std::set<int> table;
+  bool inside = false;
+  const std::regex row(R"(^\| (\d+) \| .*)");
+  for (std::string line; std::getline(in, line);) {
+    if (line == "### Exit codes") inside = true;
+    if (!inside) continue;
+    if (line.rfind("###", 0) == 0 && line != "### Exit codes") break;
+    std::smatch m;
+    if (std::regex_match(line, m, row)) table.insert(std::stoi(m[1]));
+  }
+  std::set<int> codes;
+  for (const ExitCode& c : kExitCodes) codes.insert(c.code);
+  EXPECT_EQ(table, codes) << "README.md's table \"Exit codes\" and core/ExitCodes.hpp differ";
+  for (const ErrorExit& e : kErrorExits)
+    EXPECT_TRUE(codes.count(e.exit.code))
+        << "error kind " << static_cast<int>(e.kind) << " exits with an unlisted code";
+}
+
+// A misspelt fault site used to inject nothing and let the run exit with 0 (a test of an error path then passed
+// without its error). Every value that is not a fault is refused before any work, naming it and what is allowed.
+TEST(ExitCodes, AFaultHookThatInjectsNothingIsRefused) {
+  if (!test::have_program("mpirun")) GTEST_SKIP() << "mpirun is not installed";
+  const std::string scene = (kSource / "inputs/two_disc_impact.ini").string();
+  const std::string csv = (kSource / "inputs/two_disc_impact.csv").string();
+  for (const auto& [value, why] : std::vector<std::pair<std::string, std::string>>{
+           {"nosuchsite", "'nosuchsite' is not a fault site"},
+           {"text:nosuch.csv", "'nosuch.csv' is not a text file of the output directory"},
+           {"hdf5_write@x", "@RANK must be a whole number >= 0"},
+           {"hdf5_write#0", "#N must be a whole number >= 1"}}) {
+    for (const int ranks : {1, 2}) {
+      TempDir dir("rondel-exit-fault");
+      const Outcome o = rondel_on(dir, ranks,
+                                  test::quoted(scene) + " --scene.file=" + test::quoted(csv) + " --run.output=" +
+                                      test::quoted(dir / "run") + " --run.steps=20 --run.progress=false",
+                                  "RONDEL_FAULT=" + value);
+      const std::string tag = value + ", " + std::to_string(ranks) + " rank(s)";
+      EXPECT_EQ(o.exit_code, kExitInput.code) << tag << "; stderr:\n" << o.err;
+      EXPECT_EQ(count(o.err, "rondel: configuration error: the environment variable RONDEL_FAULT = '" + value + "'"),
+                1u)
+          << tag << "; stderr:\n"
+          << o.err;
+      for (const std::string& word :
+           {why, std::string("hdf5_write, hdf5_close, reserve, text:"), std::string(output::kFinal)})
+        EXPECT_NE(o.err.find(word), std::string::npos) << tag << ": '" << word << "' not in " << o.err;
+      EXPECT_FALSE(fs::exists(dir / "run")) << tag << ": the output directory was created";
+    }
+  }
+  // A valid one is taken (it fails the text file it names: exit 5).
+  TempDir dir("rondel-exit-fault-ok");
+  const Outcome o = rondel_on(dir, 1,
+                              test::quoted(scene) + " --scene.file=" + test::quoted(csv) +
+                                  " --run.output=" + test::quoted(dir / "run") + " --run.steps=20 --run.progress=false",
+                              std::string("RONDEL_FAULT=text:") + output::kFinal);
+  EXPECT_EQ(o.exit_code, kExitIo.code) << o.err;
 }
 
 }  // namespace

@@ -1,0 +1,17 @@
+#pragma once
+// The names of the files of an output directory (run.output; README "Output files"), their one home: RunFiles
+// writes them, the fault site text:NAME takes them (core/FaultInjection.hpp), Checkpointing names its own.
+namespace rondel::output {
+
+inline constexpr const char* kConfig = "config.ini";
+inline constexpr const char* kLog = "log.txt";
+inline constexpr const char* kDiagnostics = "diagnostics.csv";
+inline constexpr const char* kMeasures = "measures.csv";
+inline constexpr const char* kFinal = "final.csv";
+inline constexpr const char* kSummaryText = "summary.txt";
+inline constexpr const char* kSummaryJson = "summary.json";
+inline constexpr const char* kLock = "rondel.lock";
+// The text files, in the order a run opens them.
+inline constexpr const char* kTextFiles[] = {kConfig, kLog, kDiagnostics, kMeasures, kFinal, kSummaryText, kSummaryJson};
+
+}  // namespace rondel::output
