@@ -12,6 +12,7 @@ inline constexpr const char* kSummaryText = "summary.txt";
 inline constexpr const char* kSummaryJson = "summary.json";
 inline constexpr const char* kLock = "rondel.lock";
 // The text files, in the order a run opens them.
-inline constexpr const char* kTextFiles[] = {kConfig, kLog, kDiagnostics, kMeasures, kFinal, kSummaryText, kSummaryJson};
+inline constexpr const char* kTextFiles[] = {kConfig, kLog,         kDiagnostics, kMeasures,
+                                             kFinal,  kSummaryText, kSummaryJson};
 
 }  // namespace rondel::output

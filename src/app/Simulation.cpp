@@ -16,7 +16,6 @@
 #include "core/SceneBuilder.hpp"
 #include "core/WallKinds.hpp"
 #include "parallel/Agreement.hpp"
-#include "physics/NormalHertz.hpp"
 #include "physics/NormalLinear.hpp"
 #include "physics/PairConstants.hpp"
 
@@ -222,15 +221,14 @@ void Simulation::setup_boundaries() {
     b.m_eff = m;
     return NormalLinear::c_n(p, b);
   };
-  // A Hertz contact counts with its stiffness and dashpot at the largest overlap the run allows.
+  // A contact that stiffens with overlap counts with its stiffness and dashpot at the largest overlap allowed.
   const double u = config_.max_overlap * R_max_;
   auto linear = [&](const ContactParams& p, double m, double R_star) {
-    if (laws_.normal != "hertz") return p;
     ContactBodies b;
     b.m_eff = m;
     ContactKinematics k;
     k.R_star = R_star, k.u_n = u;
-    return NormalHertz::linearised(p, b, k);
+    return normal_law(laws_).stiffening ? linearised(laws_, ContactInput{p, b, k}) : p;
   };
   double k_n = 0.0, c_n = 0.0;
   for (const ContactParams& w : config_.params.walls()) {

@@ -24,6 +24,28 @@ const ParamSpec* LawBlock::find(const std::string& key) const {
   return nullptr;
 }
 
+ContactParams LawBlock::with_examples(ContactParams p) const {
+  for (const ParamSpec& spec : params) {
+    if (!std::isnan(spec.example))
+      p.*spec.target = spec.example;
+    else if (spec.presence != Presence::required)
+      p.*spec.target = spec.def;
+  }
+  return p;
+}
+
+std::vector<std::string> LawBlock::example_options() const {
+  std::vector<std::string> out;
+  for (const ParamSpec& spec : params) {
+    if (std::isnan(spec.example)) continue;
+    std::ostringstream s;
+    s.precision(17);
+    s << "--" << section << "." << spec.key << "=" << spec.example;
+    out.push_back(s.str());
+  }
+  return out;
+}
+
 bool LawBlock::in_one_of(const std::string& key) const {
   return std::find_if(one_of.begin(), one_of.end(), [&key](const char* k) { return key == k; }) != one_of.end();
 }

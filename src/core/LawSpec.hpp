@@ -39,6 +39,10 @@ struct ParamSpec {
   Range range;
   const char* help;  // one line, without unit, requirement or range (those are added)
   double ContactParams::*target;
+  // A value for the reference contact of docs/developing.md (two discs of 5 mm, k_n = 1e6 N/m, mu = 0.5: the
+  // validation cases' disc D5 and contact set S): the law conformance tests run every law with these (NaN: the
+  // default, or for an optional key not given).
+  double example = NAN;
 };
 
 // One [section] of law parameters. Several laws may share a block (jiang_plastic and jiang_brittle).
@@ -50,6 +54,10 @@ struct LawBlock {
   // given replaces the default's: the others return to their "not given" value.
   std::span<const char* const> one_of = {};
   const ParamSpec* find(const std::string& key) const;
+  // Every parameter at its example value (ParamSpec::example), or its default when it has no example.
+  ContactParams with_examples(ContactParams p) const;
+  // The command-line options that set the parameters of with_examples ("--wang.k_r=30000", ...).
+  std::vector<std::string> example_options() const;
   bool in_one_of(const std::string& key) const;
 };
 

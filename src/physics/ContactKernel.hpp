@@ -104,28 +104,35 @@ struct ContactKernel {
     }
   };
 
-  // The history the laws of row r write to: the table's columns (committed), or a copy of the row's
-  // values that is dropped afterwards (scratch; the laws then index row 0 of the copy).
+  // The history the laws of row r write to, as the laws' History structs: the table's columns (committed), or a
+  // copy of the row's values that is dropped afterwards (scratch; the structs then refer to the copy).
+  using THistory = typename Tangential::History;
+  using RHistory = typename Rolling::History;
   struct CommittedHistory {
-    const Slots& h;
-    std::size_t row;
-    CommittedHistory(const Slots& slots, std::size_t r) : h(slots), row(r) {}
-    double* const* t() const { return h.t.data(); }
-    double* const* r() const { return h.r.data(); }
+    THistory t;
+    RHistory r;
+    CommittedHistory(const Slots& slots, std::size_t row)
+        : t(history_row<THistory, kTSlots>(slots.t.data(), row)),
+          r(history_row<RHistory, kRSlots>(slots.r.data(), row)) {}
   };
-  struct ScratchHistory {
+  struct ScratchValues {
     std::array<double, kTSlots + 1> tv{};
     std::array<double, kRSlots + 1> rv{};
     std::array<double*, kTSlots + 1> tp{};
     std::array<double*, kRSlots + 1> rp{};
-    std::size_t row = 0;
-    ScratchHistory(const Slots& slots, std::size_t r) {
-      for (std::size_t s = 0; s < kTSlots; ++s) tv[s] = slots.t[s][r], tp[s] = &tv[s];
-      for (std::size_t s = 0; s < kRSlots; ++s) rv[s] = slots.r[s][r], rp[s] = &rv[s];
+    ScratchValues(const Slots& slots, std::size_t row) {
+      for (std::size_t s = 0; s < kTSlots; ++s) tv[s] = slots.t[s][row], tp[s] = &tv[s];
+      for (std::size_t s = 0; s < kRSlots; ++s) rv[s] = slots.r[s][row], rp[s] = &rv[s];
     }
-    ScratchHistory(const ScratchHistory&) = delete;  // tp and rp point into this object
-    double* const* t() const { return tp.data(); }
-    double* const* r() const { return rp.data(); }
+  };
+  struct ScratchHistory : ScratchValues {
+    THistory t;
+    RHistory r;
+    ScratchHistory(const Slots& slots, std::size_t row)
+        : ScratchValues(slots, row),
+          t(history_row<THistory, kTSlots>(this->tp.data(), 0)),
+          r(history_row<RHistory, kRSlots>(this->rp.data(), 0)) {}
+    ScratchHistory(const ScratchHistory&) = delete;  // t and r refer into this object
   };
   template <bool kCommit>
   using History = std::conditional_t<kCommit, CommittedHistory, ScratchHistory>;
@@ -207,6 +214,13 @@ struct ContactKernel {
     if constexpr (kWall) clear(tab.f1[r].x), clear(tab.f1[r].y);
   }
 
+  // The last step's couple on disc 1 (0 without a rolling law).
+  static double last_M1(const ContactTable& tab, std::size_t r) {
+    if constexpr (kCouples > 0)
+      return tab.M1[r];
+    else
+      return 0.0;
+  }
   // The last step's couple on disc 2: its own column, or -M1 (the same bits as the law's -M).
   static double last_M2(const ContactTable& tab, std::size_t r) {
     if constexpr (kCouples > 1)
@@ -287,22 +301,6 @@ struct ContactKernel {
     if constexpr (kWall) tab.f1[r] = f1;
   }
 
-  // The rolling law's couple; a law with an exact ledger split (ExactRollingSplit) then books its dissipation
-  // from this step's trapezoid work (the previous couple is still in the row).
-  template <class H>
-  [[gnu::always_inline]] static RollingCouple rolling_moment(const ContactParams& p, const ContactTable& tab,
-                                                             std::size_t r, const Row& row, double F_n, double dt,
-                                                             H& hist) {
-    if constexpr (ExactRollingSplit<Rolling>) {
-      const double before = hist.r()[0][hist.row];
-      RollingCouple M = Rolling::moment(p, row.b, row.k, F_n, dt, row.w1, row.w2, hist.r(), hist.row);
-      Rolling::split(p, row.b, row.k, tab.M1[r], before, hist.r()[0][hist.row], dt, M);
-      return M;
-    } else {
-      return Rolling::moment(p, row.b, row.k, F_n, dt, row.w1, row.w2, hist.r(), hist.row);
-    }
-  }
-
   template <bool kWall, bool kCommit = true>
   static void run_rows(const KernelContext& c, ContactTable& tab, ForceSums sums, LedgerStep& ledger) {
     const DiscView D(c.discs);
@@ -353,19 +351,18 @@ struct ContactKernel {
 
       note_overlap<kWall>(overlap_limit, k, tab.key[r], L);
       const ContactParams& p = params[tab.param[r]];
-      const double F_n = Normal::force(p, row.b, k);
+      const double F_n = Normal::force(ContactInput{p, row.b, k});
       History<kCommit> hist(h, r);
-      const TangentialForce T = Tangential::force(p, row.b, k, F_n, dt, hist.t(), hist.row);
+      const ContactInput in{p, row.b, k, F_n, dt, row.w1, row.w2, last_M1(tab, r)};
+      const TangentialForce T = Tangential::force(in, hist.t);
       RollingCouple M;
       if constexpr (Rolling::kActive) {
         if (rolls_every_row<Rolling>() || p.rolling) [[likely]] {
-          // The plain call for the linear normal law and a law without an exact split.
           if constexpr (Normal::kStiffening) {  // the rolling law sees this contact's normal stiffness
-            M = rolling_moment(Normal::linearised(p, row.b, k), tab, r, row, F_n, dt, hist);
-          } else if constexpr (ExactRollingSplit<Rolling>) {
-            M = rolling_moment(p, tab, r, row, F_n, dt, hist);
+            const ContactParams q = Normal::linearised(ContactInput{p, row.b, k});
+            M = Rolling::moment(ContactInput{q, row.b, k, F_n, dt, row.w1, row.w2, last_M1(tab, r)}, hist.r);
           } else {
-            M = Rolling::moment(p, row.b, k, F_n, dt, row.w1, row.w2, hist.r(), hist.row);
+            M = Rolling::moment(in, hist.r);
           }
         }
       }
@@ -402,8 +399,9 @@ struct ContactKernel {
       Row row;
       if (kinematics<kWall>(D, image, c.walls, tab, r, row) != Found::contact || row.k.u_n <= 0.0) continue;
       const ContactParams& p = params[static_cast<std::size_t>(tab.param[r])];
-      e.normal += Normal::stored(p, row.k);
-      e.tangential += Tangential::stored(p, row.k, h.t.data(), r);
+      const ContactInput geometry{p, row.b, row.k};
+      e.normal += Normal::stored(geometry);
+      e.tangential += Tangential::stored(geometry, history_row<THistory, kTSlots>(h.t.data(), r));
       const double F_n = tab.F_n[r];
       if (!(F_n > 0.0)) continue;
       ++e.contacts;
@@ -412,9 +410,10 @@ struct ContactKernel {
       if (Tangential::kFriction && std::fabs(tab.F_t[r]) >= kAtCap * p.mu * F_n) ++e.sliding;
       if constexpr (Rolling::kActive) {
         if (p.rolling) {
-          const ContactParams q = Normal::linearised(p, row.b, row.k);
-          e.rolling += Rolling::stored(q, row.b, row.k, F_n, h.r.data(), r);
-          if (std::fabs(tab.M1[r]) >= kAtCap * Rolling::cap(q, row.k, F_n)) ++e.rolling_yield;
+          const ContactParams q = Normal::linearised(geometry);
+          const ContactInput in{q, row.b, row.k, F_n};
+          e.rolling += Rolling::stored(in, history_row<RHistory, kRSlots>(h.r.data(), r));
+          if (std::fabs(tab.M1[r]) >= kAtCap * Rolling::cap(in)) ++e.rolling_yield;
         }
       }
     }

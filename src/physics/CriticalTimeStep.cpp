@@ -5,9 +5,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "physics/NormalHertz.hpp"
 #include "physics/NormalLinear.hpp"
-#include "physics/TangentialMindlin.hpp"
 
 namespace rondel {
 
@@ -29,20 +27,6 @@ struct Best {
   }
 };
 
-// A stiffening contact as the linear spring-dashpot it is at the overlap u (the largest the run allows):
-// k_n = S_n, c_n of the Tsuji dashpot; mindlin: k_s = S_t, zeta_t = sqrt(5/6)|beta| (its dashpot
-// 2 sqrt(5/6)|beta| sqrt(S_t m_eff) in the coulomb form 2 zeta_t sqrt(m_eff k_s)).
-ContactParams linearised(const LawSelection& laws, const ContactParams& p, const ContactBodies& bodies,
-                         const ContactKinematics& k) {
-  ContactParams q = p;
-  if (laws.normal == "hertz") q = NormalHertz::linearised(p, bodies, k);
-  if (laws.tangential == "mindlin") {
-    q.k_s = TangentialMindlin::stiffness(p, k);
-    q.zeta_t = -0.5 * NormalHertz::kDashpot * p.beta;
-  }
-  return q;
-}
-
 }  // namespace
 
 double contact_critical_step(const LawSelection& laws, const ContactParams& p_in, const ContactBody& a,
@@ -50,9 +34,11 @@ double contact_critical_step(const LawSelection& laws, const ContactParams& p_in
   const bool wall = std::isinf(b.m);
   const ContactBodies bodies = wall ? disc_wall_bodies(a.m, a.I) : disc_disc_bodies(a.m, b.m, a.I, b.I);
   const double m_eff = bodies.m_eff;
+  // A contact that stiffens with overlap (hertz, mindlin) as the spring-dashpot it is at the largest overlap the
+  // run allows (docs/physics.md section 6).
   ContactKinematics at_limit = contact_geometry(a.R, b.R, wall);
-  if (laws.normal == "hertz") at_limit.u_n = max_overlap * (wall ? a.R : std::min(a.R, b.R));
-  const ContactParams p = linearised(laws, p_in, bodies, at_limit);
+  if (normal_law(laws).stiffening) at_limit.u_n = max_overlap * (wall ? a.R : std::min(a.R, b.R));
+  const ContactParams p = linearised(laws, ContactInput{p_in, bodies, at_limit});
   Best best;
   const double w_n = std::sqrt(p.k_n / m_eff);
   best.consider(mode_limit(w_n, NormalLinear::c_n(p, bodies) / (2.0 * std::sqrt(m_eff * p.k_n))), "normal");
@@ -129,7 +115,7 @@ CriticalStep critical_time_step(const LawSelection& laws, const ContactParamTabl
       }
     }
   }
-  if (laws.normal == "hertz") {
+  if (normal_law(laws).elastic) {
     // The Rayleigh step of the smallest disc, which the commercial codes and LIGGGHTS users quote.
     best.rayleigh = INFINITY;
     for (const MaterialInfo& m : materials) {

@@ -7,7 +7,9 @@ namespace rondel::registry {
 
 InitialForces select_initial_forces(const LawSelection& laws) {
   InitialForces initial = nullptr;
-  with_kernel_laws(laws, [&]<class N, class T, class R>() { initial = &ContactKernel<N, T, R>::initial_forces; });
+  with_kernel_laws(laws, [&]<class N, class T, class R>() {
+    if constexpr (compatible<N, T>()) initial = &ContactKernel<N, T, R>::initial_forces;
+  });
   return initial;
 }
 

@@ -23,10 +23,13 @@ concept DeclaredLaw = requires {
   { L::block } -> std::convertible_to<const LawBlock*>;
 };
 
+// The history slots: their names (`slots`) and the law's History, a struct of references to them, one member per
+// name, made from the columns with history_row (LawTypes.hpp).
 template <class L>
-concept HistoryLaw = requires {
+concept HistoryLaw = requires(double* const* columns) {
   { L::slots.size() } -> std::convertible_to<std::size_t>;
   { L::slots.data() } -> std::convertible_to<const char* const*>;
+  { history_row<typename L::History, L::slots.size()>(columns, std::size_t{}) } -> std::same_as<typename L::History>;
 };
 
 // "This law has no a-priori spring for the critical step", with the reason.
@@ -36,11 +39,10 @@ concept DeclaresNoSpring = requires {
 };
 
 template <class L>
-concept NormalLawType = DeclaredLaw<L> &&
-    requires(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k) {
-  { L::force(p, b, k) } -> std::same_as<double>;
-  { L::stored(p, k) } -> std::same_as<double>;
-  { L::linearised(p, b, k) } -> std::same_as<ContactParams>;
+concept NormalLawType = DeclaredLaw<L> && requires(const ContactInput& in) {
+  { L::force(in) } -> std::same_as<double>;
+  { L::stored(in) } -> std::same_as<double>;
+  { L::linearised(in) } -> std::same_as<ContactParams>;
   { L::kStiffening } -> std::convertible_to<bool>;
 };
 
@@ -50,11 +52,10 @@ concept TangentialAPrioriSpring = requires(const ContactParams& p) {
 };
 
 template <class L>
-concept TangentialCalls = requires(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
-                                   double* const* h) {
+concept TangentialCalls = requires(const ContactInput& in, typename L::History h) {
   { L::kFriction } -> std::convertible_to<bool>;
-  { L::force(p, b, k, 0.0, 0.0, h, std::size_t{}) } -> std::same_as<TangentialForce>;
-  { L::stored(p, k, h, std::size_t{}) } -> std::same_as<double>;
+  { L::force(in, h) } -> std::same_as<TangentialForce>;
+  { L::stored(in, h) } -> std::same_as<double>;
 };
 
 template <class L>
@@ -62,29 +63,40 @@ concept TangentialLawType = DeclaredLaw<L> && HistoryLaw<L> && TangentialCalls<L
     (TangentialAPrioriSpring<L> || DeclaresNoSpring<L>);
 
 template <class L>
-concept RollingAPrioriSpring = requires(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k) {
-  { L::spring(p, b, k) } -> std::same_as<RollingSpring>;
+concept RollingAPrioriSpring = requires(const ContactInput& in) {
+  { L::spring(in) } -> std::same_as<RollingSpring>;
 };
 
 template <class L>
-concept RollingCalls = requires(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
-                                double* const* h) {
+concept RollingCalls = requires(const ContactInput& in, typename L::History h) {
   { L::kActive } -> std::convertible_to<bool>;
-  { L::moment(p, b, k, 0.0, 0.0, 0.0, 0.0, h, std::size_t{}) } -> std::same_as<RollingCouple>;
-  { L::stored(p, b, k, 0.0, h, std::size_t{}) } -> std::same_as<double>;
-  { L::cap(p, k, 0.0) } -> std::same_as<double>;
-};
-
-// A rolling law that makes its ledger split consistent with the kernel's trapezoid (RollingJiangPlastic::split).
-template <class L>
-concept ExactRollingSplit = requires(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k,
-                                     RollingCouple& c) {
-  L::split(p, b, k, 0.0, 0.0, 0.0, 0.0, c);
+  { L::moment(in, h) } -> std::same_as<RollingCouple>;
+  { L::stored(in, h) } -> std::same_as<double>;
+  { L::cap(in) } -> std::same_as<double>;
 };
 
 template <class L>
 concept RollingLawType = DeclaredLaw<L> && HistoryLaw<L> && RollingCalls<L> &&
     (RollingAPrioriSpring<L> || DeclaresNoSpring<L>);
+
+// A tangential law whose stiffness depends on the contact (mindlin) gives the coulomb spring-dashpot it is at the
+// kinematics of `in` (the critical step at the largest overlap); the others are that spring-dashpot already.
+template <class L>
+ContactParams linearised_tangential(const ContactInput& in) {
+  if constexpr (requires { L::linearised(in); })
+    return L::linearised(in);
+  else
+    return in.p;
+}
+
+// A rolling law with kernel variants for some parameter tables declares them (wang): `lean(p)`, true for a pair
+// or wall whose parameters let the lean variant stand for the law (no dashpot), and `Variant<lean, every_row>`, the
+// law for a table whose every pair and wall is lean, and where moreover every one has rolling resistance.
+template <class L>
+concept HasKernelVariants = requires(const ContactParams& p) {
+  { L::lean(p) } -> std::convertible_to<bool>;
+  typename L::template Variant<true, true>;
+};
 
 // A rolling law whose couple on disc 2 is not -M1 declares `kOwnCouples = true` (force_proportional: each
 // disc's couple comes from its own spin); its rows keep both couples. Every other law's rows keep M1 only.
@@ -159,6 +171,21 @@ constexpr const char* needed_why() {
     return L::kNeedsWhy;
   else
     return "";
+}
+
+// A rolling law that is not objective (its couple changes under a rigid spin superposed on the pair) declares why,
+// `not_objective` (force_proportional: each disc's own spin; constant_torque: its limiter reads the spins); the
+// conformance tests check every other law's invariance under a superposed spin.
+template <class L>
+constexpr bool objective() {
+  return !requires { L::not_objective; };
+}
+// A rolling law whose couple's work the ledger does not split into stored energy and dissipation declares why,
+// `unsplit_work` (docs/physics.md section 5: it is left in D_other); the conformance tests check every other
+// law's split against the energy of a contact.
+template <class L>
+constexpr bool splits_work() {
+  return !requires { L::unsplit_work; };
 }
 
 // The rolling couple columns of a law's rows (ContactTable::couples()): 0, 1 or 2.

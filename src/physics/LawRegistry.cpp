@@ -21,17 +21,45 @@ const LawCatalog& law_catalog() {
 }
 
 KernelOps select_kernel(const LawSelection& laws) {
-  if (laws.normal == "hertz") return registry::select_hertz_kernel(laws);
+  if (normal_law(laws).stiffening) return registry::select_stiffening_kernel(laws);
   KernelOps ops;
-  // The linear normal law's kernels only, here (LawRows.hpp, select_hertz_kernel).
+  // The kernels of the other normal laws only, here (LawRows.hpp, select_stiffening_kernel).
   registry::with_kernel_laws(laws, [&]<class N, class T, class R>() {
-    if constexpr (std::is_same_v<N, NormalLinear> && !std::is_same_v<T, TangentialMindlin>) {
+    if constexpr (!N::kStiffening && registry::compatible<N, T>()) {
       using K = ContactKernel<N, T, R>;
       ops = KernelOps{&K::run, registry::select_initial_forces(laws), &K::stored_energy};
     }
   });
-  if (!ops.run) throw ConfigError("contact.tangential = mindlin needs contact.normal = hertz");
+  if (!ops.run)
+    throw ConfigError("contact.tangential = " + laws.tangential +
+                      " needs contact.normal = " + law_catalog().tangential.find(laws.tangential)->needs_normal);
   return ops;
+}
+
+const LawInfo& normal_law(const LawSelection& laws) {
+  const LawInfo* law = law_catalog().normal.find(laws.normal);
+  if (!law) registry::unknown(law_catalog().normal, laws.normal);
+  return *law;
+}
+
+LawSelection law_selection(const Config& c) {
+  LawSelection laws{c.normal_law, c.tangential_law, c.rolling_law};
+  with_laws(laws, [&]<class T, class R>() {
+    if constexpr (HasKernelVariants<R>)
+      laws.rolling_lean = !any_params(c.params, [](const ContactParams& p) { return !R::lean(p); });
+  });
+  laws.rolling_every_row = every_row_rolls(c.params);
+  return laws;
+}
+
+ContactParams linearised(const LawSelection& laws, const ContactInput& in) {
+  ContactParams q = in.p;
+  registry::NormalLaws::with(laws.normal, [&]<class N>() { q = N::linearised(in); });
+  with_laws(laws, [&]<class T, class R>() {
+    const ContactParams t = linearised_tangential<T>(in);
+    q.k_s = t.k_s, q.zeta_t = t.zeta_t;
+  });
+  return q;
 }
 
 std::vector<std::string> history_slots(const LawSelection& laws) {
@@ -62,7 +90,7 @@ std::optional<RollingSpring> rolling_spring(const LawSelection& laws, const Cont
   std::optional<RollingSpring> out;
   if (!p.rolling) return out;
   with_laws(laws, [&]<class T, class R>() {
-    if constexpr (RollingAPrioriSpring<R>) out = R::spring(p, b, geometry);
+    if constexpr (RollingAPrioriSpring<R>) out = R::spring(ContactInput{p, b, geometry});
   });
   return out;
 }

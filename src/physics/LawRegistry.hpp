@@ -16,17 +16,17 @@
 
 namespace rondel {
 
-// The selected laws by keyword (contact.normal, contact.tangential, contact.rolling), and whether any pair or
-// wall may have a rolling dashpot: when none has (c_r = 0 everywhere), the kernel of rolling = wang is the one
-// compiled without the dashpot's terms (RollingWangUndamped), which gives the same bits for less work. The
-// default (true) is right for any parameters.
+// The selected laws by keyword (contact.normal, contact.tangential, contact.rolling), and what the parameter table
+// lets the kernel leave out of a rolling law that declares variants (HasKernelVariants, LawConcepts.hpp): where
+// every pair and wall is `lean` for it (wang: no rolling dashpot, c_r = 0), its lean Variant, and where moreover
+// every one has rolling resistance (ContactParams::rolling), the one without the per-contact test of p.rolling.
+// The variants perform the same operations for such tables, so they give the same bits for less work. The
+// defaults (false) are right for any parameters.
 struct LawSelection {
   std::string normal = "linear";
   std::string tangential = "coulomb";
   std::string rolling = "none";
-  bool rolling_dashpot = true;
-  // Whether every pair and every wall has rolling resistance (ContactParams::rolling): the lean wang kernel
-  // then skips the per-contact test. The default (false) is right for any parameters.
+  bool rolling_lean = false;
   bool rolling_every_row = false;
 };
 // True when `pred` holds for a pair or a wall of the table.
@@ -37,17 +37,20 @@ bool any_params(const ContactParamTable& t, Pred pred) {
       if (pred(p)) return true;
   return false;
 }
-// True when a pair or a wall of the table sets a rolling dashpot (c_r > 0).
-inline bool any_rolling_dashpot(const ContactParamTable& t) {
-  return any_params(t, [](const ContactParams& p) { return p.c_r > 0.0; });
-}
 // True when every pair and every wall of the table has rolling resistance (ContactParams::rolling).
 inline bool every_row_rolls(const ContactParamTable& t) {
   return !any_params(t, [](const ContactParams& p) { return !p.rolling; });
 }
-inline LawSelection law_selection(const Config& c) {
-  return {c.normal_law, c.tangential_law, c.rolling_law, any_rolling_dashpot(c.params), every_row_rolls(c.params)};
-}
+// The selection of a configuration, with the flags its parameter table allows.
+LawSelection law_selection(const Config& c);
+
+// The catalog's row of each selected law.
+const LawInfo& normal_law(const LawSelection& laws);
+
+// The parameters of a contact as the linear spring-dashpot it is at the kinematics `in.k` (the normal law's k_n
+// and c_n at this overlap, the tangential law's k_s and zeta_t): the critical step at the largest overlap, the
+// servo's stiffest wall contact. The identity for linear laws.
+ContactParams linearised(const LawSelection& laws, const ContactInput& in);
 
 // The kernel and the stored-energy pass instantiated for the selected laws, chosen once at set-up (no
 // per-contact dispatch). `run` and `initial` add every row's force and torques to the discs' sums (begun and

@@ -4,6 +4,7 @@
 // fails to compile with the law named in the failed static_assert's instantiation (Row<Law>).
 // Internal to the registry's translation units (LawRegistry.cpp, InitialForces.cpp).
 #include <string>
+#include <string_view>
 #include <type_traits>
 
 #include "core/Errors.hpp"
@@ -53,6 +54,9 @@ struct LawList {
   static bool with(const std::string& keyword, F&& f) {
     return ((keyword == Laws::name ? (f.template operator()<Laws>(), true) : false) || ...);
   }
+  // The laws as the arguments of a template (the conformance tests: ::testing::Types).
+  template <template <class...> class To>
+  using types = To<Laws...>;
   static LawKind kind(const char* name) {
     return {name,
             {LawInfo{Laws::name, Laws::block, elastic_law<Laws>(), stiffening_law<Laws>(), needed_normal<Laws>(),
@@ -85,22 +89,37 @@ void with_laws(const LawSelection& laws, F&& f) {
   });
 }
 
+// The law the kernel runs for the selected rolling law R: R's own Variant for the table when R declares variants
+// (HasKernelVariants: wang), else R.
+template <class R, class F>
+void with_kernel_variant(const LawSelection& laws, F&& f) {
+  if constexpr (HasKernelVariants<R>) {
+    if (laws.rolling_lean && laws.rolling_every_row)
+      return f.template operator()<typename R::template Variant<true, true>>();
+    if (laws.rolling_lean) return f.template operator()<typename R::template Variant<true, false>>();
+  }
+  f.template operator()<R>();
+}
+
 // As with_laws, with the normal law first: f.template operator()<N, T, R>(), R the kernel's variant of the
-// rolling law: wang without its dashpot terms when no pair or wall has one (LawSelection::rolling_dashpot), and
-// then also without the test of p.rolling when every pair and wall has rolling resistance (rolling_every_row).
+// rolling law (with_kernel_variant).
 template <class F>
 void with_kernel_laws(const LawSelection& laws, F&& f) {
   if (!law_catalog().normal.find(laws.normal)) unknown(law_catalog().normal, laws.normal);
   NormalLaws::with(laws.normal, [&]<class N>() {
     with_laws(laws, [&]<class T, class R>() {
-      if constexpr (std::is_same_v<R, RollingWang>) {
-        if (!laws.rolling_dashpot && laws.rolling_every_row)
-          return f.template operator()<N, T, RollingWangUndampedEveryRow>();
-        if (!laws.rolling_dashpot) return f.template operator()<N, T, RollingWangUndamped>();
-      }
-      f.template operator()<N, T, R>();
+      with_kernel_variant<R>(laws, [&]<class V>() { f.template operator()<N, T, V>(); });
     });
   });
+}
+
+// Whether tangential law T works with normal law N (T::kNeedsNormal names N, or T needs no particular one).
+template <class N, class T>
+constexpr bool compatible() {
+  if constexpr (needed_normal<T>() == nullptr)
+    return true;
+  else
+    return std::string_view(needed_normal<T>()) == N::name;
 }
 
 // KernelOps::initial of the selected laws, instantiated in its own translation unit (InitialForces.cpp)
@@ -108,9 +127,9 @@ void with_kernel_laws(const LawSelection& laws, F&& f) {
 using InitialForces = void (*)(const KernelContext&, ContactTable&, ContactTable&, ForceSums);
 InitialForces select_initial_forces(const LawSelection& laws);
 
-// The step kernels of normal = hertz, instantiated in their own translation unit (HertzKernels.cpp): next to
-// the linear ones they change how GCC inlines the rolling laws into the linear step kernel (wang: +15 %
-// instructions per disc-step).
-KernelOps select_hertz_kernel(const LawSelection& laws);
+// The step kernels of the normal laws whose stiffness grows with overlap (kStiffening: hertz), instantiated in
+// their own translation unit (StiffeningKernels.cpp): next to the others they change how GCC inlines the rolling
+// laws into the linear step kernel (wang: +15 % instructions per disc-step).
+KernelOps select_stiffening_kernel(const LawSelection& laws);
 
 }  // namespace rondel::registry

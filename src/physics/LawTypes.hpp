@@ -1,7 +1,13 @@
 #pragma once
-// What a contact law sees besides the kinematics: the masses and inertias of the two bodies (a wall:
-// m2 = I2 = inf), the time step, and its parameters. Laws are stateless functions on these plain structs.
+// What a contact law sees (ContactInput: its parameters, the two bodies, the kinematics, the normal force, the time
+// step and the spins) and what it returns. Laws are stateless functions of a ContactInput and of their History, a
+// struct of references to the row's history slots, one member per name of the law's `slots`, in that order.
 #include <cmath>
+#include <cstddef>
+#include <utility>
+
+#include "core/ContactParams.hpp"
+#include "physics/ContactKinematics.hpp"
 
 namespace rondel {
 
@@ -14,6 +20,28 @@ inline ContactBodies disc_disc_bodies(double m1, double m2, double I1, double I2
   return {m1, m2, I1, I2, m1 * m2 / (m1 + m2)};
 }
 inline ContactBodies disc_wall_bodies(double m1, double I1) { return {m1, INFINITY, I1, INFINITY, m1}; }
+
+// One contact as a law sees it this step. The normal law reads p, b and k; the tangential and rolling laws also the
+// normal force of this step; the rolling laws the spins and the last step's couple on disc 1 (a law that books its
+// dissipation from the kernel's trapezoid work needs it: jiang_plastic).
+struct ContactInput {
+  const ContactParams& p;
+  const ContactBodies& b;
+  const ContactKinematics& k;
+  double F_n = 0.0;      // [N]
+  double dt = 0.0;       // [s]; 0 for the forces of the initial state
+  double w1 = 0.0;       // [rad/s]
+  double w2 = 0.0;       // [rad/s]; a wall: its angular velocity Omega
+  double M1_prev = 0.0;  // [N m]
+};
+
+// The History of one row from the law's N history columns: H{columns[0][row], ..., columns[N-1][row]}. A History
+// with another number of members than the law's `slots` does not compile.
+template <class H, std::size_t N>
+H history_row(double* const* columns, std::size_t row) {
+  return [&]<std::size_t... I>(std::index_sequence<I...>) { return H{columns[I][row]...}; }
+  (std::make_index_sequence<N>{});
+}
 
 inline double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }  // sign(0) = 0
 

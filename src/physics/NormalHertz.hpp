@@ -19,7 +19,7 @@ namespace rondel {
 
 inline constexpr ParamSpec kHertzParams[] = {
     {"e", "-", Presence::required, 0.0, kRestitution,
-     "restitution coefficient of the pair (Tsuji dashpot; 1 = undamped)", &ContactParams::e_n},
+     "restitution coefficient of the pair (Tsuji dashpot; 1 = undamped)", &ContactParams::e_n, 0.8},
 };
 inline constexpr LawBlock kHertzBlock{"hertz", "Hertz normal force with the Tsuji dashpot (E, nu of the materials)",
                                       kHertzParams};
@@ -38,19 +38,20 @@ struct NormalHertz {
   static double dashpot(const ContactParams& p, const ContactBodies& b, double S_n) {
     return -kDashpot * p.beta * std::sqrt(S_n * b.m_eff);
   }
-  static double force(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k) {
-    const double S_n = stiffness(p, k.R_star, k.u_n);
-    const double f = (2.0 / 3.0) * S_n * k.u_n - dashpot(p, b, S_n) * k.v_n;
+  static double force(const ContactInput& in) {
+    const ContactKinematics& k = in.k;
+    const double S_n = stiffness(in.p, k.R_star, k.u_n);
+    const double f = (2.0 / 3.0) * S_n * k.u_n - dashpot(in.p, in.b, S_n) * k.v_n;
     return f > 0.0 ? f : 0.0;
   }
-  static double stored(const ContactParams& p, const ContactKinematics& k) {
-    return (4.0 / 15.0) * stiffness(p, k.R_star, k.u_n) * k.u_n * k.u_n;
+  static double stored(const ContactInput& in) {
+    return (4.0 / 15.0) * stiffness(in.p, in.k.R_star, in.k.u_n) * in.k.u_n * in.k.u_n;
   }
-  // The parameters with k_n and c_n of this contact now (for the rolling laws that use them).
-  static ContactParams linearised(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k) {
-    ContactParams q = p;
-    q.k_n = stiffness(p, k.R_star, k.u_n);
-    q.c_n_fixed = dashpot(p, b, q.k_n);
+  // The parameters with k_n and c_n of this contact now (for the rolling laws that use them, the critical step).
+  static ContactParams linearised(const ContactInput& in) {
+    ContactParams q = in.p;
+    q.k_n = stiffness(in.p, in.k.R_star, in.k.u_n);
+    q.c_n_fixed = dashpot(in.p, in.b, q.k_n);
     return q;
   }
 };

@@ -13,9 +13,9 @@ namespace rondel {
 
 // [linear]: at most one of zeta, c_n, e may be given (the block's one_of).
 inline constexpr ParamSpec kLinearParams[] = {
-    {"k_n", "N/m", Presence::required, 0.0, kPositive, "normal stiffness", &ContactParams::k_n},
+    {"k_n", "N/m", Presence::required, 0.0, kPositive, "normal stiffness", &ContactParams::k_n, 1e6},
     {"zeta", "-", Presence::optional, 0.0, kNonNegative, "normal damping ratio (default 0; give one of zeta, c_n, e)",
-     &ContactParams::zeta_n},
+     &ContactParams::zeta_n, 0.1},
     {"c_n", "N s/m", Presence::optional, -1.0, kNonNegative, "normal dashpot coefficient", &ContactParams::c_n_fixed},
     {"e", "-", Presence::optional, -1.0, kRestitution, "restitution coefficient", &ContactParams::e_n},
 };
@@ -30,12 +30,12 @@ struct NormalLinear {
   static double c_n(const ContactParams& p, const ContactBodies& b) {
     return p.c_n_fixed >= 0.0 ? p.c_n_fixed : 2.0 * p.zeta_n * std::sqrt(b.m_eff * p.k_n);
   }
-  static double force(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k) {
-    const double f = p.k_n * k.u_n - c_n(p, b) * k.v_n;
+  static double force(const ContactInput& in) {
+    const double f = in.p.k_n * in.k.u_n - c_n(in.p, in.b) * in.k.v_n;
     return f > 0.0 ? f : 0.0;
   }
-  static double stored(const ContactParams& p, const ContactKinematics& k) { return 0.5 * p.k_n * k.u_n * k.u_n; }
-  static ContactParams linearised(const ContactParams& p, const ContactBodies&, const ContactKinematics&) { return p; }
+  static double stored(const ContactInput& in) { return 0.5 * in.p.k_n * in.k.u_n * in.k.u_n; }
+  static ContactParams linearised(const ContactInput& in) { return in.p; }
 };
 
 }  // namespace rondel

@@ -60,35 +60,33 @@ struct RollingAlonsoMarroquin {
   static constexpr const char* name = "alonso_marroquin";
   static constexpr const LawBlock* block = &kWangBlock;
   // wang's couple stiffness k_r R*^2 and dashpot c_r R*^2: in pure rolling V_r2 = V_r = R* thetadot_r.
-  static RollingSpring spring(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k) {
-    return RollingWang::spring(p, b, k);
-  }
+  static RollingSpring spring(const ContactInput& in) { return RollingWang::spring(in); }
   static constexpr bool kActive = true;
+  static constexpr const char* unsplit_work =
+      "the spring moves with V_r2 while the couple works on w1 - w2: the difference is left in D_other";
   static constexpr std::array<const char*, 1> slots{"x_r"};
+  struct History {
+    double& x_r;  // [m]
+  };
 
-  static RollingCouple moment(const ContactParams& p, const ContactBodies&, const ContactKinematics& k, double F_n,
-                              double dt, double w1, double w2, double* const* hist, std::size_t row) {
-    double& x_r = hist[0][row];
-    const double V_r2 = alonso_marroquin_rates(k, w1, w2).V_r2;
-    x_r += V_r2 * dt;
+  static RollingCouple moment(const ContactInput& in, History h) {
+    const ContactParams& p = in.p;
+    double& x_r = h.x_r;
+    const double V_r2 = alonso_marroquin_rates(in.k, in.w1, in.w2).V_r2;
+    x_r += V_r2 * in.dt;
     const double trial = -p.k_r * x_r - p.c_r * V_r2;
     const double before = x_r;
-    const CapResult T = cap_spring_slider(trial, p.mu_r * F_n, p.k_r, x_r);
-    const double M = k.R_star * T.value;
+    const CapResult T = cap_spring_slider(trial, p.mu_r * in.F_n, p.k_r, x_r);
+    const double M = in.k.R_star * T.value;
     RollingCouple c{M, -M};
     if (T.capped)
       c.plastic = std::fabs(T.value * (before - x_r));
     else
-      c.dashpot = p.c_r * V_r2 * V_r2 * dt;
+      c.dashpot = p.c_r * V_r2 * V_r2 * in.dt;
     return c;
   }
-  static double stored(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double F_n,
-                       double* const* hist, std::size_t row) {
-    return RollingWang::stored(p, b, k, F_n, hist, row);
-  }
-  static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) {
-    return RollingWang::cap(p, k, F_n);
-  }
+  static double stored(const ContactInput& in, History h) { return RollingWang::stored(in, {h.x_r}); }
+  static double cap(const ContactInput& in) { return RollingWang::cap(in); }
 };
 
 }  // namespace rondel

@@ -18,7 +18,7 @@
 namespace rondel {
 
 inline constexpr ParamSpec kConstantTorqueParams[] = {
-    {"mu_r", "-", Presence::required, 0.0, kNonNegative, "rolling friction", &ContactParams::mu_r},
+    {"mu_r", "-", Presence::required, 0.0, kNonNegative, "rolling friction", &ContactParams::mu_r, 0.05},
     {"f_lim", "-", Presence::defaulted, 0.08, kNonNegative, "moment limiter fraction; 0 switches the limiter off",
      &ContactParams::f_lim},
 };
@@ -30,27 +30,25 @@ struct RollingConstantTorque {
   static constexpr const LawBlock* block = &kConstantTorqueBlock;
   static constexpr const char* no_spring = "a constant couple without a spring";
   static constexpr bool kActive = true;
+  static constexpr const char* not_objective = "its moment limiter reads each disc's own spin (f_lim > 0)";
+  static constexpr const char* unsplit_work = "a constant couple without a spring: its work is left unsplit";
   static constexpr std::array<const char*, 0> slots{};
+  struct History {};
 
-  static RollingCouple moment(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double F_n,
-                              double dt, double w1, double w2, double* const*, std::size_t) {
-    const double R_eq = harmonic_radius(k);
-    double M = -sign(w1 - w2) * p.mu_r * R_eq * F_n;
-    if (p.f_lim > 0.0 && dt > 0.0) {
-      double spin = b.I1 * std::fabs(w1);
-      if (!k.wall) spin = std::min(spin, b.I2 * std::fabs(w2));
-      const double limit = p.f_lim * spin / dt;
+  static RollingCouple moment(const ContactInput& in, History) {
+    const ContactParams& p = in.p;
+    const double R_eq = harmonic_radius(in.k);
+    double M = -sign(in.w1 - in.w2) * p.mu_r * R_eq * in.F_n;
+    if (p.f_lim > 0.0 && in.dt > 0.0) {
+      double spin = in.b.I1 * std::fabs(in.w1);
+      if (!in.k.wall) spin = std::min(spin, in.b.I2 * std::fabs(in.w2));
+      const double limit = p.f_lim * spin / in.dt;
       if (std::fabs(M) > limit) M = limit * sign(M);
     }
     return {M, -M};
   }
-  static double stored(const ContactParams&, const ContactBodies&, const ContactKinematics&, double, double* const*,
-                       std::size_t) {
-    return 0.0;
-  }
-  static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) {
-    return p.mu_r * harmonic_radius(k) * F_n;
-  }
+  static double stored(const ContactInput&, History) { return 0.0; }
+  static double cap(const ContactInput& in) { return in.p.mu_r * harmonic_radius(in.k) * in.F_n; }
 };
 
 }  // namespace rondel

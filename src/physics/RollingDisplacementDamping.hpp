@@ -20,7 +20,7 @@
 namespace rondel {
 
 inline constexpr ParamSpec kDisplacementDampingParams[] = {
-    {"mu_r", "-", Presence::required, 0.0, kNonNegative, "rolling friction", &ContactParams::mu_r},
+    {"mu_r", "-", Presence::required, 0.0, kNonNegative, "rolling friction", &ContactParams::mu_r, 0.05},
     {"theta_rmax", "rad", Presence::defaulted, 0.035, kPositive, "rotation at which the couple reaches its cap",
      &ContactParams::theta_rmax},
     {"nu", "-", Presence::defaulted, 0.0, kNonNegative, "viscous damping factor (0 = off)", &ContactParams::nu},
@@ -36,16 +36,20 @@ struct RollingDisplacementDamping {
   static constexpr const char* no_spring = "k_r = mu_r R_eq F_n/theta_rmax grows with F_n: not known in advance";
   static constexpr bool kActive = true;
   static constexpr std::array<const char*, 1> slots{"M_k"};
+  struct History {
+    double& M_k;  // [N m]
+  };
 
   static double R_eq(const ContactKinematics& k) { return harmonic_radius(k); }
 
-  static RollingCouple moment(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double F_n,
-                              double dt, double, double, double* const* hist, std::size_t row) {
-    double& M_k = hist[0][row];
-    const double cap = p.mu_r * R_eq(k) * F_n;
+  static RollingCouple moment(const ContactInput& in, History h) {
+    const ContactParams& p = in.p;
+    const ContactKinematics& k = in.k;
+    double& M_k = h.M_k;
+    const double cap = p.mu_r * R_eq(k) * in.F_n;
     const double k_r = cap / p.theta_rmax;
     const double rel = k.thetadot_r;
-    const double trial = M_k - k_r * rel * dt;
+    const double trial = M_k - k_r * rel * in.dt;
     const bool at_limit = std::fabs(trial) > cap;
     RollingCouple c;
     if (at_limit) {
@@ -57,23 +61,23 @@ struct RollingDisplacementDamping {
     }
     double M_d = 0.0;
     if (p.nu > 0.0) {
+      const ContactBodies& b = in.b;
       const double I_r = k.wall ? b.I1 + b.m1 * k.R1 * k.R1
                                 : 1.0 / (1.0 / (b.I1 + b.m1 * k.R1 * k.R1) + 1.0 / (b.I2 + b.m2 * k.R2 * k.R2));
       const double C_crit = 2.0 * std::sqrt(I_r * k_r);
       M_d = -(at_limit ? p.f_visc : 1.0) * p.nu * C_crit * rel;
-      c.dashpot = -M_d * rel * dt;
+      c.dashpot = -M_d * rel * in.dt;
     }
     c.M1 = M_k + M_d;
     c.M2 = -c.M1;
     return c;
   }
-  static double stored(const ContactParams& p, const ContactBodies&, const ContactKinematics& k, double F_n,
-                       double* const* hist, std::size_t row) {
-    const double k_r = p.mu_r * R_eq(k) * F_n / p.theta_rmax;
-    const double M = hist[0][row];
+  static double stored(const ContactInput& in, History h) {
+    const double k_r = in.p.mu_r * R_eq(in.k) * in.F_n / in.p.theta_rmax;
+    const double M = h.M_k;
     return k_r > 0.0 ? 0.5 * M * M / k_r : 0.0;
   }
-  static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) { return p.mu_r * R_eq(k) * F_n; }
+  static double cap(const ContactInput& in) { return in.p.mu_r * R_eq(in.k) * in.F_n; }
 };
 
 }  // namespace rondel

@@ -18,7 +18,7 @@
 namespace rondel {
 
 inline constexpr ParamSpec kForceProportionalParams[] = {
-    {"mu_r", "-", Presence::required, 0.0, kNonNegative, "rolling friction", &ContactParams::mu_r},
+    {"mu_r", "-", Presence::required, 0.0, kNonNegative, "rolling friction", &ContactParams::mu_r, 0.1},
 };
 inline constexpr LawBlock kForceProportionalBlock{"force_proportional", "commercial manual Eq. 3275 (not objective)",
                                                   kForceProportionalParams};
@@ -28,20 +28,21 @@ struct RollingForceProportional {
   static constexpr const LawBlock* block = &kForceProportionalBlock;
   static constexpr const char* no_spring = "a friction couple without a spring";
   static constexpr bool kActive = true;
+  static constexpr const char* not_objective =
+      "each disc's couple follows its own spin (a pair in rigid rotation is braked)";
+  static constexpr const char* unsplit_work = "a friction couple without a spring: its work is left unsplit";
   static constexpr bool kOwnCouples = true;  // M2 is not -M1: the rows keep both couples
   static constexpr std::array<const char*, 0> slots{};
+  struct History {};
 
-  static RollingCouple moment(const ContactParams& p, const ContactBodies&, const ContactKinematics& k, double F_n,
-                              double, double w1, double w2, double* const*, std::size_t) {
-    const double f = p.mu_r * F_n;
+  static RollingCouple moment(const ContactInput& in, History) {
+    const ContactKinematics& k = in.k;
+    const double f = in.p.mu_r * in.F_n;
     if (k.wall) return {-f * k.a1 * sign(k.thetadot_r), 0.0};  // the disc's spin relative to the wall
-    return {-f * k.a1 * sign(w1), -f * k.a2 * sign(w2)};
+    return {-f * k.a1 * sign(in.w1), -f * k.a2 * sign(in.w2)};
   }
-  static double stored(const ContactParams&, const ContactBodies&, const ContactKinematics&, double, double* const*,
-                       std::size_t) {
-    return 0.0;
-  }
-  static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) { return p.mu_r * F_n * k.a1; }
+  static double stored(const ContactInput&, History) { return 0.0; }
+  static double cap(const ContactInput& in) { return in.p.mu_r * in.F_n * in.k.a1; }
 };
 
 }  // namespace rondel

@@ -26,9 +26,9 @@ inline double iwashita_oda_rate(const ContactKinematics& k, double w1, double w2
 }
 
 inline constexpr ParamSpec kIwashitaOdaParams[] = {
-    {"K_r", "N m/rad", Presence::required, 0.0, kPositive, "rolling stiffness", &ContactParams::K_r},
-    {"C_r", "N m s/rad", Presence::required, 0.0, kNonNegative, "rolling dashpot", &ContactParams::C_r},
-    {"eta", "m", Presence::required, 0.0, kNonNegative, "couple cap eta F_n", &ContactParams::eta},
+    {"K_r", "N m/rad", Presence::required, 0.0, kPositive, "rolling stiffness", &ContactParams::K_r, 0.75},
+    {"C_r", "N m s/rad", Presence::required, 0.0, kNonNegative, "rolling dashpot", &ContactParams::C_r, 1e-4},
+    {"eta", "m", Presence::required, 0.0, kNonNegative, "couple cap eta F_n", &ContactParams::eta, 5e-4},
 };
 inline constexpr LawBlock kIwashitaOdaBlock{
     "iwashita_oda", "Iwashita & Oda 1998 (legacy rolling measure, for comparison)", kIwashitaOdaParams};
@@ -36,27 +36,25 @@ inline constexpr LawBlock kIwashitaOdaBlock{
 struct RollingIwashitaOda {
   static constexpr const char* name = "iwashita_oda";
   static constexpr const LawBlock* block = &kIwashitaOdaBlock;
-  static RollingSpring spring(const ContactParams& p, const ContactBodies&, const ContactKinematics&) {
-    return {p.K_r, p.C_r};
-  }
+  static RollingSpring spring(const ContactInput& in) { return {in.p.K_r, in.p.C_r}; }
   static constexpr bool kActive = true;
+  static constexpr const char* unsplit_work = "its legacy measure books no dissipation: the work is left unsplit";
   static constexpr std::array<const char*, 1> slots{"theta_r"};
+  struct History {
+    double& theta_r;  // [rad]
+  };
 
-  static RollingCouple moment(const ContactParams& p, const ContactBodies&, const ContactKinematics& k, double F_n,
-                              double dt, double w1, double w2, double* const* hist, std::size_t row) {
-    double& theta_r = hist[0][row];
-    const double rate = iwashita_oda_rate(k, w1, w2);
-    theta_r += rate * dt;
+  static RollingCouple moment(const ContactInput& in, History h) {
+    const ContactParams& p = in.p;
+    double& theta_r = h.theta_r;
+    const double rate = iwashita_oda_rate(in.k, in.w1, in.w2);
+    theta_r += rate * in.dt;
     const double trial = -p.K_r * theta_r - p.C_r * rate;
-    const CapResult M = cap_spring_slider(trial, p.eta * F_n, p.K_r, theta_r);
+    const CapResult M = cap_spring_slider(trial, p.eta * in.F_n, p.K_r, theta_r);
     return {M.value, -M.value};
   }
-  static double stored(const ContactParams& p, const ContactBodies&, const ContactKinematics&, double,
-                       double* const* hist, std::size_t row) {
-    const double th = hist[0][row];
-    return 0.5 * p.K_r * th * th;
-  }
-  static double cap(const ContactParams& p, const ContactKinematics&, double F_n) { return p.eta * F_n; }
+  static double stored(const ContactInput& in, History h) { return 0.5 * in.p.K_r * h.theta_r * h.theta_r; }
+  static double cap(const ContactInput& in) { return in.p.eta * in.F_n; }
 };
 
 }  // namespace rondel

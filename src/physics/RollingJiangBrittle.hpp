@@ -15,39 +15,34 @@ namespace rondel {
 struct RollingJiangBrittle {
   static constexpr const char* name = "jiang_brittle";
   static constexpr const LawBlock* block = &kJiangBlock;
-  static RollingSpring spring(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k) {
-    return RollingJiangPlastic::spring(p, b, k);
-  }
+  static RollingSpring spring(const ContactInput& in) { return RollingJiangPlastic::spring(in); }
   static constexpr bool kActive = true;
   static constexpr bool kBreaks = true;  // books the stored energy released at a break (E_r_break)
   static constexpr std::array<const char*, 2> slots{"theta_r", "broken"};
+  struct History {
+    double& theta_r;  // [rad]
+    double& broken;   // 0 or 1
+  };
 
-  static RollingCouple moment(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double F_n,
-                              double dt, double, double, double* const* hist, std::size_t row) {
-    double& theta_r = hist[0][row];
-    double& broken = hist[1][row];
-    if (broken != 0.0) return {};
-    const JiangGeometry g = jiang_geometry(p, b, k);
-    const double before = theta_r;
-    theta_r += k.thetadot_r * dt;
-    const double theta_r0 = g.B > 0.0 ? 2.0 * F_n / (p.k_n * g.B) : 0.0;
-    if (std::fabs(theta_r) > theta_r0) {
-      broken = 1.0;
+  static RollingCouple moment(const ContactInput& in, History h) {
+    if (h.broken != 0.0) return {};
+    const JiangGeometry g = jiang_geometry(in);
+    const double before = h.theta_r;
+    h.theta_r += in.k.thetadot_r * in.dt;
+    const double theta_r0 = g.B > 0.0 ? 2.0 * in.F_n / (in.p.k_n * g.B) : 0.0;
+    if (std::fabs(h.theta_r) > theta_r0) {
+      h.broken = 1.0;
       RollingCouple c;
       c.released = 0.5 * g.K_m * before * before;
-      theta_r = 0.0;
+      h.theta_r = 0.0;
       return c;
     }
-    return jiang_spring_slider(g, F_n, k.thetadot_r, dt, theta_r);
+    return jiang_spring_slider(g, in.F_n, in.k.thetadot_r, in.dt, h.theta_r);
   }
-  static double stored(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double,
-                       double* const* hist, std::size_t row) {
-    const double th = hist[0][row];
-    return 0.5 * jiang_geometry(p, b, k).K_m * th * th;
+  static double stored(const ContactInput& in, History h) {
+    return 0.5 * jiang_geometry(in).K_m * h.theta_r * h.theta_r;
   }
-  static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) {
-    return RollingJiangPlastic::cap(p, k, F_n);
-  }
+  static double cap(const ContactInput& in) { return RollingJiangPlastic::cap(in); }
 };
 
 }  // namespace rondel

@@ -19,7 +19,7 @@ namespace rondel {
 // [jiang], shared by jiang_plastic and jiang_brittle.
 inline constexpr ParamSpec kJiangParams[] = {
     {"delta", "-", Presence::required, 0.0, kPositive, "shape parameter: contact width B = delta r",
-     &ContactParams::delta},
+     &ContactParams::delta, 0.3},
 };
 inline constexpr LawBlock kJiangBlock{"jiang", "Jiang, Yu & Harris 2005 (jiang_plastic, jiang_brittle)", kJiangParams};
 
@@ -27,9 +27,9 @@ struct JiangGeometry {
   double B, K_m, mu_m;
 };
 
-inline JiangGeometry jiang_geometry(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k) {
-  const double B = p.delta * harmonic_radius(k);
-  return {B, p.k_n * B * B / 12.0, NormalLinear::c_n(p, b) * B * B / 12.0};
+inline JiangGeometry jiang_geometry(const ContactInput& in) {
+  const double B = in.p.delta * harmonic_radius(in.k);
+  return {B, in.p.k_n * B * B / 12.0, NormalLinear::c_n(in.p, in.b) * B * B / 12.0};
 }
 
 // The elastic-plastic spring-slider shared by both Jiang models; theta_r already incremented.
@@ -51,41 +51,38 @@ struct RollingJiangPlastic {
   static constexpr const char* name = "jiang_plastic";
   static constexpr const LawBlock* block = &kJiangBlock;
   // K_m = k_n B^2/12 and mu_m = c_n B^2/12 (shared with jiang_brittle, which breaks at the same spring).
-  static RollingSpring spring(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k) {
-    const JiangGeometry g = jiang_geometry(p, b, k);
+  static RollingSpring spring(const ContactInput& in) {
+    const JiangGeometry g = jiang_geometry(in);
     return {g.K_m, g.mu_m};
   }
   static constexpr bool kActive = true;
   static constexpr std::array<const char*, 1> slots{"theta_r"};
+  struct History {
+    double& theta_r;  // [rad]
+  };
 
-  static RollingCouple moment(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double F_n,
-                              double dt, double, double, double* const* hist, std::size_t row) {
-    double& theta_r = hist[0][row];
-    theta_r += k.thetadot_r * dt;
-    return jiang_spring_slider(jiang_geometry(p, b, k), F_n, k.thetadot_r, dt, theta_r);
-  }
-  static double stored(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double,
-                       double* const* hist, std::size_t row) {
-    const double th = hist[0][row];
-    return 0.5 * jiang_geometry(p, b, k).K_m * th * th;
-  }
-  // The ledger's split made exact (docs/physics.md section 5): the kernel integrates the couple's work with
-  // the trapezoid of last and this step's couple, so the energy the rolling spring-slider takes from the
-  // motion this step is -(M' + M)/2 thetadot_r dt; what the spring does not store, K_m (theta_r^2 -
-  // theta_r'^2)/2, is dissipated: plastic work when the couple is at its cap, dashpot work otherwise. Booked
-  // so, D_rolling_plastic + D_rolling_dashpot + the stored rolling energy equal -W_rolling to round-off.
-  static void split(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double M_prev,
-                    double theta_before, double theta_after, double dt, RollingCouple& c) {
-    const double K_m = jiang_geometry(p, b, k).K_m;
-    const double taken = -0.5 * (M_prev + c.M1) * k.thetadot_r * dt;
-    const double lost = taken - 0.5 * K_m * (theta_after * theta_after - theta_before * theta_before);
+  // The ledger's split is made exact (docs/physics.md section 5): the kernel integrates the couple's work with the
+  // trapezoid of last and this step's couple, so the energy the rolling spring-slider takes from the motion this
+  // step is -(M' + M)/2 thetadot_r dt; what the spring does not store, K_m (theta_r^2 - theta_r'^2)/2, is
+  // dissipated: plastic work when the couple is at its cap, dashpot work otherwise. Booked so,
+  // D_rolling_plastic + D_rolling_dashpot + the stored rolling energy equal -W_rolling to round-off.
+  static RollingCouple moment(const ContactInput& in, History h) {
+    double& theta_r = h.theta_r;
+    const double before = theta_r;
+    theta_r += in.k.thetadot_r * in.dt;
+    const JiangGeometry g = jiang_geometry(in);
+    RollingCouple c = jiang_spring_slider(g, in.F_n, in.k.thetadot_r, in.dt, theta_r);
+    const double taken = -0.5 * (in.M1_prev + c.M1) * in.k.thetadot_r * in.dt;
+    const double lost = taken - 0.5 * g.K_m * (theta_r * theta_r - before * before);
     c.plastic = c.yielded ? lost : 0.0;
     c.dashpot = c.yielded ? 0.0 : lost;
+    return c;
+  }
+  static double stored(const ContactInput& in, History h) {
+    return 0.5 * jiang_geometry(in).K_m * h.theta_r * h.theta_r;
   }
   // The couple at yield, M0 = F_n B/6.
-  static double cap(const ContactParams& p, const ContactKinematics& k, double F_n) {
-    return F_n * p.delta * harmonic_radius(k) / 6.0;
-  }
+  static double cap(const ContactInput& in) { return in.F_n * in.p.delta * harmonic_radius(in.k) / 6.0; }
 };
 
 }  // namespace rondel

@@ -17,15 +17,10 @@ struct RollingNone {
   static constexpr const char* no_spring = "no rolling resistance";
   static constexpr bool kActive = false;
   static constexpr std::array<const char*, 0> slots{};
-  static RollingCouple moment(const ContactParams&, const ContactBodies&, const ContactKinematics&, double /*F_n*/,
-                              double /*dt*/, double /*w1*/, double /*w2*/, double* const*, std::size_t) {
-    return {};
-  }
-  static double stored(const ContactParams&, const ContactBodies&, const ContactKinematics&, double, double* const*,
-                       std::size_t) {
-    return 0.0;
-  }
-  static double cap(const ContactParams&, const ContactKinematics&, double) { return INFINITY; }
+  struct History {};
+  static RollingCouple moment(const ContactInput&, History) { return {}; }
+  static double stored(const ContactInput&, History) { return 0.0; }
+  static double cap(const ContactInput&) { return INFINITY; }
 };
 
 }  // namespace rondel

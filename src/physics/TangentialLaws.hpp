@@ -20,17 +20,15 @@ struct TangentialNone {
   static constexpr const char* no_spring = "frictionless: no tangential spring";
   static constexpr bool kFriction = false;
   static constexpr std::array<const char*, 0> slots{};
-  static TangentialForce force(const ContactParams&, const ContactBodies&, const ContactKinematics&, double, double,
-                               double* const*, std::size_t) {
-    return {};
-  }
-  static double stored(const ContactParams&, const ContactKinematics&, double* const*, std::size_t) { return 0.0; }
+  struct History {};
+  static TangentialForce force(const ContactInput&, History) { return {}; }
+  static double stored(const ContactInput&, History) { return 0.0; }
 };
 
 inline constexpr ParamSpec kCoulombParams[] = {
-    {"k_s", "N/m", Presence::required, 0.0, kPositive, "tangential stiffness", &ContactParams::k_s},
-    {"mu", "-", Presence::required, 0.0, kNonNegative, "friction coefficient", &ContactParams::mu},
-    {"zeta_t", "-", Presence::defaulted, 0.0, kNonNegative, "tangential damping ratio", &ContactParams::zeta_t},
+    {"k_s", "N/m", Presence::required, 0.0, kPositive, "tangential stiffness", &ContactParams::k_s, 0.75e6},
+    {"mu", "-", Presence::required, 0.0, kNonNegative, "friction coefficient", &ContactParams::mu, 0.5},
+    {"zeta_t", "-", Presence::defaulted, 0.0, kNonNegative, "tangential damping ratio", &ContactParams::zeta_t, 0.1},
 };
 inline constexpr LawBlock kCoulombBlock{"coulomb", "Cundall-Strack tangential spring with Coulomb cap", kCoulombParams};
 
@@ -40,22 +38,22 @@ struct TangentialCoulomb {
   static TangentialSpring spring(const ContactParams& p) { return {p.k_s, p.zeta_t}; }
   static constexpr bool kFriction = true;
   static constexpr std::array<const char*, 1> slots{"xi"};
-  static TangentialForce force(const ContactParams& p, const ContactBodies& b, const ContactKinematics& k, double F_n,
-                               double dt, double* const* hist, std::size_t row) {
-    double& xi = hist[0][row];
-    xi += k.V_s * dt;
+  struct History {
+    double& xi;  // [m]
+  };
+  static TangentialForce force(const ContactInput& in, History h) {
+    const ContactParams& p = in.p;
+    double& xi = h.xi;
+    xi += in.k.V_s * in.dt;
     // Without a dashpot (zeta_t = 0, the usual case) the trial is the spring alone: the same value as
     // -k_s xi - 0 V_s but for the sign of a zero.
     double trial = -p.k_s * xi;
-    if (p.zeta_t > 0.0) trial -= 2.0 * p.zeta_t * std::sqrt(b.m_eff * p.k_s) * k.V_s;
+    if (p.zeta_t > 0.0) trial -= 2.0 * p.zeta_t * std::sqrt(in.b.m_eff * p.k_s) * in.k.V_s;
     const double before = xi;
-    const CapResult F = cap_spring_slider(trial, p.mu * F_n, p.k_s, xi);
+    const CapResult F = cap_spring_slider(trial, p.mu * in.F_n, p.k_s, xi);
     return {F.value, F.capped ? std::fabs(F.value * (before - xi)) : 0.0};
   }
-  static double stored(const ContactParams& p, const ContactKinematics&, double* const* hist, std::size_t row) {
-    const double xi = hist[0][row];
-    return 0.5 * p.k_s * xi * xi;
-  }
+  static double stored(const ContactInput& in, History h) { return 0.5 * in.p.k_s * h.xi * h.xi; }
 };
 
 }  // namespace rondel

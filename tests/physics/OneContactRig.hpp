@@ -99,6 +99,11 @@ class OneContactRig {
   bool wall() const { return wall_; }
   DiscStore& discs() { return discs_; }
   const ContactTable& row_table() const { return wall_ ? wall_rows_ : pairs_; }
+  ContactTable& row_table() { return wall_ ? wall_rows_ : pairs_; }
+  // The contacts' stored energies as the kernel's stored-energy pass reports them (normal, tangential, rolling).
+  ContactSummary summary() {
+    return ops_.stored(KernelContext{discs_, domain_, walls_, params_, dt_}, pairs_, wall_rows_);
+  }
   // Sliding velocity V_s and relative rotation rate of the contact from the full-step velocities.
   double sliding_velocity() const {
     const double u_n = overlap();
@@ -122,9 +127,7 @@ class OneContactRig {
   Vec2 n, t;  // the contact's normal (1 -> 2) and tangent at rest
 
  private:
-  double stored() {
-    return ops_.stored(KernelContext{discs_, domain_, walls_, params_, dt_}, pairs_, wall_rows_).total();
-  }
+  double stored() { return summary().total(); }
   // The sums after the kernel: the fixed discs finished, then the preload.
   void finish() {
     assembly_.finish(discs_);

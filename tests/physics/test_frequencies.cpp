@@ -101,7 +101,7 @@ TEST_P(RollingModeOnWall, MeasuredFrequencyIsVerletsDiscreteFrequency) {
   if (c.law == "jiang_plastic") {
     p.delta = std::sqrt(12.0 * c.K / p.k_n) / (2.0 * kR);
     const ContactKinematics k = disc_wall_kinematics({0.0, -1.0}, kR - u0, kR, {}, {}, 0.0);
-    EXPECT_NEAR(jiang_geometry(p, disc_wall_bodies(kMass, kInertia), k).K_m, c.K, 1e-12 * c.K);
+    EXPECT_NEAR(jiang_geometry(ContactInput{p, disc_wall_bodies(kMass, kInertia), k}).K_m, c.K, 1e-12 * c.K);
   } else {
     p.k_r = c.K / (kR * kR);
     p.mu_r = 1.0;
@@ -254,7 +254,7 @@ TEST_P(JiangRollingMode, LibraryStiffnessCodeEstimateAndMeasuredFrequency) {
   const ContactKinematics k =
       wall ? disc_wall_kinematics(rig.n, kR - u0, kR, {}, {}, 0.0)
            : disc_disc_kinematics(D.position[1] - D.position[0], kR * (1.0 + rho) - u0, kR, rho * kR, {}, {}, 0.0, 0.0);
-  const double K_m = jiang_geometry(p, bodies, k).K_m;
+  const double K_m = jiang_geometry(ContactInput{p, bodies, k}).K_m;
   const double I_red = wall ? D.inertia[0] : D.inertia[0] * D.inertia[1] / (D.inertia[0] + D.inertia[1]);
   const double W = std::sqrt(K_m / I_red), w_n = std::sqrt(p.k_n / bodies.m_eff);
   EXPECT_NEAR(W / w_n, jiang_ratio_formula(rho, delta), 1e-12 * W / w_n);

@@ -200,17 +200,17 @@ TEST(HertzMindlin, MindlinStiffnessBelowTheCapAndTheCappingRule) {
       disc_disc_bodies(test::d5::mass(), test::d5::mass(), test::d5::inertia(), test::d5::inertia());
   const double S_t = 8.0 * p.G_star * std::sqrt(k.R_star * k.u_n), dt = 1e-7;
   std::vector<double> xi{0.0};
-  double* h[1] = {xi.data()};
+  const TangentialMindlin::History h{xi[0]};
   const double F_n = 1e6;  // a large cap
-  const TangentialForce below = TangentialMindlin::force(p, b, k, F_n, dt, h, 0);
+  const TangentialForce below = TangentialMindlin::force(ContactInput{p, b, k, F_n, dt}, h);
   EXPECT_NEAR(below.F_t, -S_t * k.V_s * dt, 1e-12 * S_t * k.V_s * dt);
   EXPECT_EQ(below.slip, 0.0);
   const double small = 1e-3;  // now above the cap mu F_n
-  const TangentialForce above = TangentialMindlin::force(p, b, k, small, dt, h, 0);
+  const TangentialForce above = TangentialMindlin::force(ContactInput{p, b, k, small, dt}, h);
   EXPECT_DOUBLE_EQ(above.F_t, -p.mu * small);
   EXPECT_DOUBLE_EQ(xi[0], -above.F_t / S_t) << "the spring is reset so that it alone gives the cap";
   EXPECT_GT(above.slip, 0.0);
-  EXPECT_NEAR(TangentialMindlin::stored(p, k, h, 0), above.F_t * above.F_t / (2.0 * S_t), 1e-20);
+  EXPECT_NEAR(TangentialMindlin::stored(ContactInput{p, b, k}, h), above.F_t * above.F_t / (2.0 * S_t), 1e-20);
 }
 
 TEST(HertzMindlin, NormalForceAndStoredEnergyAreTheFormulas) {
@@ -219,9 +219,9 @@ TEST(HertzMindlin, NormalForceAndStoredEnergyAreTheFormulas) {
   k.u_n = 3e-5;
   const ContactBodies b = disc_disc_bodies(1.0, 2.0, 1.0, 1.0);
   const double F = 4.0 / 3.0 * p.E_star * std::sqrt(k.R_star) * std::pow(k.u_n, 1.5);
-  EXPECT_NEAR(NormalHertz::force(p, b, k), F, 1e-12 * F);
+  EXPECT_NEAR(NormalHertz::force(ContactInput{p, b, k}), F, 1e-12 * F);
   const double E = 8.0 / 15.0 * p.E_star * std::sqrt(k.R_star) * std::pow(k.u_n, 2.5);
-  EXPECT_NEAR(NormalHertz::stored(p, k), E, 1e-12 * E);
+  EXPECT_NEAR(NormalHertz::stored(ContactInput{p, b, k}), E, 1e-12 * E);
 }
 
 // The critical step of a stiffening contact: S_n at the largest overlap the run allows.

@@ -139,9 +139,6 @@ Integrated integrate(const Motion& m, const Frame& f = {}) {
   const double dt = m.T / m.steps;
   const ContactParams p = law_params();
   double xi = 0.0, x_r = 0.0, x_r_am = 0.0;
-  double* hist[1] = {&xi};
-  double* rolling_hist[1] = {&x_r};
-  double* am_hist[1] = {&x_r_am};
   for (int n = 0; n < m.steps; ++n) {
     const double t = (n + 0.5) * dt;
     StepResult r;
@@ -149,11 +146,12 @@ Integrated integrate(const Motion& m, const Frame& f = {}) {
     const Instant& s = r.s;
     r.k = kinematics(s);
     const ContactBodies b = bodies(s);
-    r.F_n = NormalLinear::force(p, b, r.k);
-    r.F_t = TangentialCoulomb::force(p, b, r.k, r.F_n, dt, hist, 0).F_t;
+    r.F_n = NormalLinear::force(ContactInput{p, b, r.k});
+    const ContactInput in{p, b, r.k, r.F_n, dt, s.w1, s.w2};
+    r.F_t = TangentialCoulomb::force(in, {xi}).F_t;
     r.xi = xi;
-    r.M = RollingWang::moment(p, b, r.k, r.F_n, dt, s.w1, s.w2, rolling_hist, 0).M1;
-    r.M_am = RollingAlonsoMarroquin::moment(p, b, r.k, r.F_n, dt, s.w1, s.w2, am_hist, 0).M1;
+    r.M = RollingWang::moment(in, {x_r}).M1;
+    r.M_am = RollingAlonsoMarroquin::moment(in, {x_r_am}).M1;
     out.dU_r += r.k.V_r * dt;
     out.dU_s += r.k.V_s * dt;
     // v2 - v1 is formed from the velocities in this frame: its rounding scales with |v1| + |v2|.

@@ -302,11 +302,11 @@ std::vector<double> couples(const State& s, int steps) {
   p.mu_r = 0.1;
   p.c_r = 5.0;
   double x_r = 0.0;
-  double* hist[1] = {&x_r};
   const ContactKinematics k = kinematics(s);
+  const ContactBodies b = bodies(s);
   std::vector<double> M;
   // F_n = 10 N: the cap (1 N) is reached within the run by the faster motions, not by the slower ones.
-  for (int n = 0; n < steps; ++n) M.push_back(Law::moment(p, bodies(s), k, 10.0, 1e-5, s.w1, s.w2, hist, 0).M1);
+  for (int n = 0; n < steps; ++n) M.push_back(Law::moment(ContactInput{p, b, k, 10.0, 1e-5, s.w1, s.w2}, {x_r}).M1);
   return M;
 }
 
@@ -422,13 +422,12 @@ TEST(AlonsoMarroquin, SpringSliderLoadsYieldsAtCapAndBooksLikeWang) {
     const int n_yield = static_cast<int>(std::floor((p.mu_r * F_n - p.c_r * V) / (p.k_r * V * dt))) + 1;
     ASSERT_GT(n_yield, 100);
     double x_am = 0.0, x_wang = 0.0, x_exp = 0.0;
-    double* h_am[1] = {&x_am};
-    double* h_wang[1] = {&x_wang};
+    const ContactInput in{p, b, k, F_n, dt, s.w1, s.w2};
     int first_capped = -1;
     double dashpot = 0.0;
     for (int n = 1; n <= n_yield + 50; ++n) {
-      const RollingCouple am = RollingAlonsoMarroquin::moment(p, b, k, F_n, dt, s.w1, s.w2, h_am, 0);
-      const RollingCouple wa = RollingWang::moment(p, b, k, F_n, dt, s.w1, s.w2, h_wang, 0);
+      const RollingCouple am = RollingAlonsoMarroquin::moment(in, {x_am});
+      const RollingCouple wa = RollingWang::moment(in, {x_wang});
       const Expected e = expected_step(p, R_star, F_n, V, dt, x_exp);
       x_exp = e.x_r;
       ASSERT_TRUE(near(x_am, e.x_r)) << "step " << n;
@@ -452,9 +451,9 @@ TEST(AlonsoMarroquin, SpringSliderLoadsYieldsAtCapAndBooksLikeWang) {
     }
     EXPECT_EQ(first_capped, n_yield);
     EXPECT_TRUE(near(x_am, p.mu_r * F_n / p.k_r));  // held at the cap: x_r = mu_r F_n/k_r
-    EXPECT_TRUE(near(RollingAlonsoMarroquin::moment(p, b, k, F_n, dt, s.w1, s.w2, h_am, 0).M1, -R_star * p.mu_r * F_n));
-    EXPECT_TRUE(near(RollingAlonsoMarroquin::cap(p, k, F_n), R_star * p.mu_r * F_n));
-    EXPECT_TRUE(near(RollingAlonsoMarroquin::stored(p, b, k, F_n, h_am, 0), 0.5 * p.k_r * x_am * x_am));
+    EXPECT_TRUE(near(RollingAlonsoMarroquin::moment(in, {x_am}).M1, -R_star * p.mu_r * F_n));
+    EXPECT_TRUE(near(RollingAlonsoMarroquin::cap(in), R_star * p.mu_r * F_n));
+    EXPECT_TRUE(near(RollingAlonsoMarroquin::stored(in, {x_am}), 0.5 * p.k_r * x_am * x_am));
     // The dashpot worked in the elastic steps only.
     EXPECT_TRUE(near(dashpot, (n_yield - 1) * p.c_r * V * V * dt));
   }
@@ -471,15 +470,18 @@ TEST(AlonsoMarroquin, SpringHeldWhileSlidingOrOfDifferentSigns) {
   State s = pair(2 * kR1, 1e-6);
   const ContactBodies b = bodies(s);
   double x_r = 0.0;
-  double* h[1] = {&x_r};
   s.w1 = 10.0, s.w2 = -5.0;  // pure rolling: load the spring
-  for (int n = 0; n < 20; ++n) RollingAlonsoMarroquin::moment(p, b, kinematics(s), F_n, dt, s.w1, s.w2, h, 0);
+  for (int n = 0; n < 20; ++n) {
+    const ContactKinematics k = kinematics(s);
+    RollingAlonsoMarroquin::moment(ContactInput{p, b, k, F_n, dt, s.w1, s.w2}, {x_r});
+  }
   const double loaded = x_r;
   ASSERT_GT(loaded, 0.0);
   ASSERT_LT(p.k_r * loaded + p.c_r * kR1 * 10.0, p.mu_r * F_n);  // below the cap
   for (auto [w1, w2] : {std::pair{10.0, 10.0}, std::pair{10.0, 2.0}, std::pair{-3.0, -7.0}}) {
     s.w1 = w1, s.w2 = w2;
-    const RollingCouple c = RollingAlonsoMarroquin::moment(p, b, kinematics(s), F_n, dt, s.w1, s.w2, h, 0);
+    const ContactKinematics k = kinematics(s);
+    const RollingCouple c = RollingAlonsoMarroquin::moment(ContactInput{p, b, k, F_n, dt, s.w1, s.w2}, {x_r});
     EXPECT_EQ(x_r, loaded);
     EXPECT_TRUE(near(c.M1, -reduced_radius(kR1, 2 * kR1) * p.k_r * loaded));
     EXPECT_EQ(c.plastic, 0.0);
@@ -496,10 +498,11 @@ TEST(AlonsoMarroquin, SharesWangsBlockSpringAndCap) {
   for (bool wall : {false, true}) {
     const ContactKinematics k = contact_geometry(kR1, 3 * kR1, wall);
     const ContactBodies b = wall ? disc_wall_bodies(1.0, 1e-4) : disc_disc_bodies(1.0, 9.0, 1e-4, 9e-3);
-    const RollingSpring a = RollingAlonsoMarroquin::spring(p, b, k), w = RollingWang::spring(p, b, k);
+    const ContactInput in{p, b, k, 2.0};
+    const RollingSpring a = RollingAlonsoMarroquin::spring(in), w = RollingWang::spring(in);
     EXPECT_EQ(a.K, w.K);
     EXPECT_EQ(a.C, w.C);
-    EXPECT_EQ(RollingAlonsoMarroquin::cap(p, k, 2.0), RollingWang::cap(p, k, 2.0));
+    EXPECT_EQ(RollingAlonsoMarroquin::cap(in), RollingWang::cap(in));
   }
 }
 

@@ -39,9 +39,12 @@ namespace {
 constexpr double kR = test::d5::R;
 constexpr double kDensity = test::d5::density;
 
-// Parameters for every rolling law at once (each law reads its own fields), with every dashpot on.
+// Parameters for every rolling law at once (each law reads its own fields): every law's examples, then these
+// values, with every dashpot on.
 ContactParams all_law_params() {
   ContactParams p = test::set_S();
+  for (const LawInfo& law : law_catalog().rolling.laws)
+    if (law.block) p = law.block->with_examples(p);
   p.zeta_n = 0.3;
   p.zeta_t = 0.5;
   p.delta = 0.3;
@@ -58,16 +61,10 @@ ContactParams all_law_params() {
   return p;
 }
 
-const std::vector<std::string>& rolling_laws() {
-  static const std::vector<std::string> laws{"none",
-                                             "jiang_plastic",
-                                             "jiang_brittle",
-                                             "wang",
-                                             "iwashita_oda",
-                                             "alonso_marroquin",
-                                             "force_proportional",
-                                             "constant_torque",
-                                             "displacement_damping"};
+// Every rolling law of the registry.
+std::vector<std::string> rolling_laws() {
+  std::vector<std::string> laws;
+  for (const LawInfo& law : law_catalog().rolling.laws) laws.emplace_back(law.keyword);
   return laws;
 }
 
