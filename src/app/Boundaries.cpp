@@ -104,6 +104,17 @@ void Boundaries::move_glued(DiscStore& discs, const WallSet& walls, const Domain
   }
 }
 
+double Boundaries::move_walls(WallSet& walls, DiscStore& discs, const Domain& domain, double thickness,
+                              double dt) const {
+  if (controlled_) steer(walls, domain, thickness, dt);
+  for (auto& w : walls) w.move(dt);
+  if (!rough_) return 0.0;
+  move_glued(discs, walls, domain, dt);
+  double v_wall = 0.0;
+  for (const Wall& w : walls) v_wall = std::max(v_wall, std::sqrt(dot(w.velocity, w.velocity)));
+  return v_wall * dt;
+}
+
 double Boundaries::glued_work_half(const DiscStore& discs, double dt) {
   double W = 0.0;
   for (std::size_t i = 0; i < discs.n_owned(); ++i)

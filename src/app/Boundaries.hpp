@@ -49,6 +49,23 @@ class Boundaries {
   // True when a wall is servo- or strain-rate-controlled or shears (then loads are measured every step).
   static bool controlled(const WallSet& walls);
   static bool any_rough(const WallSet& walls);
+  // The walls this object steers: remembers whether any is controlled or rough (after a restart's glue too).
+  void bind(const WallSet& walls) { controlled_ = controlled(walls), rough_ = any_rough(walls); }
+  bool controlled() const { return controlled_; }
+  bool rough() const { return rough_; }
+  // Step 2 of a run: the controlled walls steer from their loads (steer), every wall moves by one step, and the
+  // discs glued to a rough wall move with it. Returns the largest distance a glued disc moved (0 without rough
+  // walls): it moves after the discs' displacement was measured, so the caller adds it to that bound.
+  double move_walls(WallSet& walls, DiscStore& discs, const Domain& domain, double thickness, double dt) const;
+  // The walls' work on the free discs through the glued ones (rough walls), the trapezoid of the last and this
+  // step's reaction forces: glued_work_before() takes the last step's half before this step's sums start;
+  // add_glued_work() after the sums adds it and this step's half to W_w (nothing without rough walls).
+  void glued_work_before(const DiscStore& discs, double dt) { last_half_ = rough_ ? glued_work_half(discs, dt) : 0.0; }
+  void add_glued_work(const DiscStore& discs, double dt, double& W_w) const {
+    if (!rough_) return;
+    W_w += last_half_;
+    W_w += glued_work_half(discs, dt);
+  }
   // A wall's load: its own contacts plus, for a rough wall, the contacts of free discs with the discs glued
   // to it (the pair rows with exactly one glued disc), each counted once over the ranks (booked rows).
   void measure(WallSet& walls, const DiscStore& discs, const Domain& domain, const ContactTable& pairs,
@@ -77,6 +94,8 @@ class Boundaries {
 
  private:
   double gain_, v_max_, k_n_, c_n_;
+  bool controlled_ = false, rough_ = false;
+  double last_half_ = 0.0;
 };
 
 }  // namespace rondel

@@ -28,7 +28,8 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
       comm_(comm),
       write_files_(write_files),
       neighbours_(0.0),
-      files_(config_, comm_, write_files) {
+      files_(config_, comm_, write_files),
+      reduction_(comm_, config_, Boundaries::controlled(config_.walls)) {
   // Each set-up phase ends in an agreement (parallel/Agreement.hpp): an error that one rank finds (a disc
   // behind a wall in its block of a checkpoint, a file it cannot read) stops every rank, with one message,
   // before the next collective call. The phases that call collectives agree inside.
@@ -38,8 +39,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
     pairs_ = make_contact_table(laws_, false);
     wall_rows_ = make_contact_table(laws_, true);
     walls_ = config_.walls;
-    controlled_walls_ = Boundaries::controlled(walls_);
-    rough_walls_ = Boundaries::any_rough(walls_);
+    boundaries_.bind(walls_);
     box0_ = Boundaries::box(walls_, config_.domain);
     resolve_pair_constants(config_.params, config_.materials);
   });
@@ -62,20 +62,17 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
   if (restart) {
     // Forces, history and ledger come from the file (no recomputation before the first kick); the first
     // step's reduction sums the walls' loads from the rows read, as the interrupted run's step would have.
-    if (controlled_walls_) loads_ = Boundaries::local_loads(walls_, discs_, config_.domain, pairs_, wall_rows_);
+    if (boundaries_.controlled()) loads_ = Boundaries::local_loads(walls_, discs_, config_.domain, pairs_, wall_rows_);
     return;
   }
   // Forces at t = 0 for the first half kick: the kernel at the initial state with a zero increment,
   // committing no history and booking no work (KernelOps::initial).
-  ForceAssembly::begin(discs_, BodyForce{config_.gravity});
-  kernel_.initial(KernelContext{discs_, config_.domain, walls_, config_.params, 0.0}, pairs_, wall_rows_,
-                  ForceSums::of(discs_));
-  assembly_.finish(discs_);
-  if (controlled_walls_) {
+  StepCore::initial_forces(step_inputs(false));
+  if (boundaries_.controlled()) {
     boundaries_.measure(walls_, discs_, config_.domain, pairs_, wall_rows_, comm_);
     loads_ = Boundaries::local_loads(walls_, discs_, config_.domain, pairs_, wall_rows_);
   }
-  ledger_.start(kinetic_energy());
+  core_.ledger().start(kinetic_energy());
 }
 
 void Simulation::keep_rough_walls(const std::string& path) {
@@ -90,13 +87,13 @@ void Simulation::keep_rough_walls(const std::string& path) {
   });
   for (std::size_t w = 0; w < walls_.size(); ++w)
     if (comm_.sum(glued[w]) > 0) walls_[w].rough = true;
-  rough_walls_ = Boundaries::any_rough(walls_);
+  boundaries_.bind(walls_);
 }
 
 void Simulation::build_discs() {
   agree(comm_, [&] { add_scene_discs(); });
   measure_radii();  // every rank holds the whole scene here
-  if (rough_walls_) {
+  if (boundaries_.rough()) {
     Boundaries::glue(discs_, walls_, config_.rough_depth > 0.0 ? config_.rough_depth : 2.0 * R_max_);
     assign_rough_materials();
   }
@@ -235,12 +232,13 @@ void Simulation::setup_boundaries() {
     const ContactParams q = linear(w, m_max, R_max_);
     k_n = std::max(k_n, q.k_n), c_n = std::max(c_n, dashpot(q, m_max));
   }
-  if (rough_walls_)
+  if (boundaries_.rough())
     for (const ContactParams& p : config_.params.pairs()) {
       const ContactParams q = linear(p, 0.5 * m_max, 0.5 * R_max_);
       k_n = std::max(k_n, q.k_n), c_n = std::max(c_n, dashpot(q, 0.5 * m_max));
     }
   boundaries_ = Boundaries(config_.servo_gain, config_.servo_max_speed, k_n, c_n);
+  boundaries_.bind(walls_);
 }
 
 void Simulation::resolve_time_step() {
@@ -346,7 +344,7 @@ void Simulation::load_checkpoint(const std::string& path) {
     decomposition_->migrated();
   }
   agree(comm_, [&] { file->read_rows(pairs_, wall_rows_, discs_); });
-  agree(comm_, [&] { file->read_ledger(ledger_); });
+  agree(comm_, [&] { file->read_ledger(core_.ledger()); });
 }
 
 std::string Simulation::write_checkpoint() {
@@ -369,7 +367,7 @@ double Simulation::kinetic_energy() const { return Reports(*this).kinetic_energy
 DiagnosticsRow Simulation::diagnostics() {
   settle_errors();
   summary_ = kernel_.stored(KernelContext{discs_, config_.domain, walls_, config_.params, dt_}, pairs_, wall_rows_);
-  return Reports(*this).diagnostics(summary_, ledger_.scale);
+  return Reports(*this).diagnostics(summary_, core_.ledger().scale);
 }
 
 MeasuresRow Simulation::measures(const ContactSummary& contacts) {

@@ -10,6 +10,7 @@
 #include "app/PhaseTimes.hpp"
 #include "app/RunFiles.hpp"
 #include "app/Runner.hpp"
+#include "app/StepReduction.hpp"
 #include "core/Config.hpp"
 #include "core/ContactTable.hpp"
 #include "core/Diagnostics.hpp"
@@ -22,6 +23,7 @@
 #include "physics/CriticalTimeStep.hpp"
 #include "physics/EnergyLedger.hpp"
 #include "physics/LawRegistry.hpp"
+#include "physics/StepCore.hpp"
 
 namespace rondel {
 
@@ -52,7 +54,7 @@ class Simulation {
     while (done < n) {
       request_stop(stop_flags());
       advance_step(++done == n);
-      if (stop_agreed_ != 0) break;
+      if (agreed_stop() != 0) break;
     }
     close_step();
     return done;
@@ -62,8 +64,8 @@ class Simulation {
   void settle_errors();
   // The stop request of this rank for the coming step (Runner: twice the signal number, plus one for a
   // due wall-clock checkpoint) and, after step(), the maximum over the ranks if the step reduced (else 0).
-  void request_stop(std::int64_t flags) { stop_request_ = flags; }
-  std::int64_t agreed_stop() const { return stop_agreed_; }
+  void request_stop(std::int64_t flags) { reduction_.request_stop(flags); }
+  std::int64_t agreed_stop() const { return reduction_.agreed_stop(); }
   // What this object's steps asked of MPI (collectives, messages, bytes) and how many steps it took.
   const CommStats& step_comm() const { return step_comm_; }
   std::int64_t steps_taken() const { return steps_taken_; }
@@ -83,7 +85,7 @@ class Simulation {
   // The box at the start of the stage (the reference of the strains).
   const BoxGeometry& box0() const { return box0_; }
   // This rank's share of the energy ledger (the whole ledger on one rank).
-  const EnergyLedger& ledger() const { return ledger_; }
+  const EnergyLedger& ledger() const { return core_.ledger(); }
   // The run's ledger: every rank's share summed (collective).
   EnergyLedger global_ledger() const;
   const CriticalStep& critical() const { return critical_; }
@@ -96,7 +98,7 @@ class Simulation {
   std::size_t ghost_count() const { return exchange_.ghost_count(); }
   // Discs this rank has sent to others so far.
   std::size_t migrated() const { return migrated_; }
-  double imbalance() const { return imbalance_; }
+  double imbalance() const { return reduction_.imbalance(); }
   // This rank's seconds per phase so far (PhaseTimes.hpp), set-up included.
   const PhaseTimes& phases() const { return phases_; }
   PhaseTimes& phases() { return phases_; }
@@ -150,18 +152,17 @@ class Simulation {
   void resume_time_step(double file_dt, const std::string& path);
   void check_initial_state();
   void rebuild();
+  // The inputs of the step's serial core (StepCore); `bounds`: the drift measures the motion bound.
+  StepInputs step_inputs(bool bounds);
   // step() with `close`; without it the closing kick and the step's ledger booking wait for the next step's
   // drift or close_step().
   void advance_step(bool close);
   // The deferred closing kick of the last step and its ledger booking, if one is pending.
   void close_step();
-  // The step's reduction (FusedReduction): returns the largest displacement since the last build over
-  // every rank; agrees on errors, stop requests and the balance check; sets the walls' loads.
-  double reduce(double moved);
-  // Counts a step without a reduction; true when this step must reduce.
-  bool reduction_due();
-  // This rank's largest |v| dt and |F/m| dt^2 (the motion bound between reductions).
-  std::pair<double, double> motion_bounds() const;
+  // The run's parts of a step (SimulationStep.cpp): steps 2 and 3 after the drift, and what follows the sums.
+  struct StepHooks;
+  void walls_and_neighbours(const Integrator::Drift& drift);
+  void after_kernel(LedgerStep& work);
   std::exception_ptr overlap_error(const LedgerStep& work) const;
   std::exception_ptr motion_error(double moved) const;
 
@@ -175,7 +176,7 @@ class Simulation {
   ContactTable pairs_, wall_rows_;
   NeighbourList neighbours_;
   ForceAssembly assembly_;
-  EnergyLedger ledger_;
+  StepCore core_;  // the step's serial core and the ledger of the steps
   CriticalStep critical_;
   double dt_ = 0.0;
   double time_ = 0.0;
@@ -184,33 +185,17 @@ class Simulation {
   std::int64_t n_discs_ = 0;                          // every disc (measure_radii)
   std::unique_ptr<Decomposition> decomposition_;
   DiscExchange exchange_;
-  bool rebalance_due_ = false;
-  double imbalance_ = 1.0;
   PhaseTimes phases_;
   std::size_t migrated_ = 0;
   RunFiles files_;
   Boundaries boundaries_{0.2, 0.1};
-  bool controlled_walls_ = false;
-  bool rough_walls_ = false;
-  BoxGeometry box0_;        // the box at the start of the run (reference of the strains)
-  ContactSummary summary_;  // of the last diagnostics
-  // The step's one reduction (docs/scaling.md).
-  std::exception_ptr pending_error_;  // this rank's error, not yet agreed
-  WallLoads loads_;                   // this rank's part of the controlled walls' loads, of the last step
-  std::int64_t since_reduction_ = 0;
-  double base_disp_ = 0.0, predicted_ = 0.0;      // largest displacement at the last reduction; its bound now
-  double v_step_ = 0.0, a_step_ = 0.0;            // largest |v| dt and |F/m| dt^2 at the last reduction
-  double drift_speed_ = 0.0, drift_accel_ = 0.0;  // this rank's largest |v| and |F/m| of this step's drift
-  bool bounds_known_ = false;                     // the first step (and a restart's) reduces
-  bool balance_pending_ = false, remeasure_ = false;
-  std::int64_t balance_work_ = 0;
-  std::int64_t stop_request_ = 0, stop_agreed_ = 0;
+  BoxGeometry box0_;            // the box at the start of the run (reference of the strains)
+  ContactSummary summary_;      // of the last diagnostics
+  StepReduction reduction_;     // the step's one reduction (docs/scaling.md)
+  WallLoads loads_;             // this rank's part of the controlled walls' loads, of the last step
+  bool repartitioned_ = false;  // the last step migrated the discs to a new map
   std::int64_t steps_taken_ = 0;
   CommStats step_comm_;
-  // A deferred closing kick (advance): the last step's terms wait for it to be booked.
-  bool kick_pending_ = false;
-  LedgerStep pending_work_;
-  double pending_W_g_ = 0.0, pending_D_open_ = 0.0;
 };
 
 }  // namespace rondel

@@ -24,9 +24,9 @@
 #include "core/ContactParams.hpp"
 #include "core/Vec2.hpp"
 #include "physics/ContactKinematics.hpp"
+#include "physics/LawConcepts.hpp"
 #include "physics/LawTypes.hpp"
 #include "physics/NormalLinear.hpp"
-#include "physics/LawConcepts.hpp"
 #include "physics/TangentialLaws.hpp"
 
 namespace rondel::testing_rig {

@@ -1,8 +1,9 @@
 #pragma once
-// A single contact (two discs, or a disc on a wall) integrated with the library's own pieces, in the order
-// of Simulation::step (docs/design.md section 4): Integrator::half_kick_drift, the fused contact kernel selected
-// by select_kernel with the per-disc sums of ForceAssembly, Integrator::half_kick. No neighbour list: the one row is
-// always present. Used by the frequency tests and stability test F4 (docs/validation.md section 5).
+// A single contact (two discs, or a disc on a wall) stepped by the step's own serial core (physics/StepCore.hpp, the
+// function Simulation's step calls: the half kick and drift, the fused contact kernel selected by select_kernel with
+// the per-disc sums of ForceAssembly, the closing half kick). No neighbour list, no walls' motion: the one row is
+// always present. Used by the frequency tests, stability test F4 (docs/validation.md section 5) and the law
+// conformance tests.
 //
 // Geometry (docs/physics.md section 1 conventions):
 //  - two discs: disc 1 (gid 1, radius R1) at the origin, disc 2 (gid 2, radius R2) at (R1 + R2 - u0, 0),
@@ -26,6 +27,7 @@
 #include "core/Wall.hpp"
 #include "physics/ContactKernel.hpp"
 #include "physics/LawRegistry.hpp"
+#include "physics/StepCore.hpp"
 
 namespace rondel::testing_rig {
 
@@ -67,21 +69,19 @@ class OneContactRig {
   // history (KernelOps::initial, as the Simulation constructor does), and the reference for the energy.
   void start(double dt) {
     dt_ = dt;
-    ForceAssembly::begin(discs_, BodyForce{gravity_});
-    ops_.initial(KernelContext{discs_, domain_, walls_, params_, 0.0}, pairs_, wall_rows_, ForceSums::of(discs_));
-    finish();
+    StepCore::initial_forces(inputs());
+    add_preload();
     stored0_ = stored();
   }
 
-  // One step; the kernel's ledger terms of the step are added to *ledger when one is given.
+  // One step; the kernel's ledger terms of the step are given to *ledger when one is given.
   void step(LedgerStep* ledger = nullptr) {
-    Integrator::half_kick_drift(discs_, domain_, dt_, BodyForce{gravity_}, false);
-    LedgerStep unused;
-    assembly_.begin_fixed_and_ghosts(discs_);
-    ops_.run(KernelContext{discs_, domain_, walls_, params_, dt_}, pairs_, wall_rows_, ForceSums::of(discs_),
-             ledger ? *ledger : unused);
-    finish();
-    Integrator::half_kick(discs_, dt_);
+    struct Preload : NoStepHooks {
+      OneContactRig& rig;
+      void after(LedgerStep&) { rig.add_preload(); }
+    };
+    const LedgerStep& work = core_.advance(inputs(), true, Preload{{}, *this});
+    if (ledger) *ledger = work;
   }
 
   // Total mechanical energy relative to the resting state: kinetic + contact springs (as the kernel's
@@ -128,9 +128,11 @@ class OneContactRig {
 
  private:
   double stored() { return summary().total(); }
-  // The sums after the kernel: the fixed discs finished, then the preload.
-  void finish() {
-    assembly_.finish(discs_);
+  StepInputs inputs() {
+    return StepInputs{discs_, pairs_, wall_rows_, assembly_, ops_, domain_, walls_, params_, BodyForce{gravity_}, dt_};
+  }
+  // After the sums (the fixed discs finished): the preload.
+  void add_preload() {
     if (wall_) {
       discs_.force[0] += preload_ * walls_[0].proximity(discs_.position[0]).n;
     } else {
@@ -150,6 +152,7 @@ class OneContactRig {
   WallSet walls_;
   ContactTable pairs_, wall_rows_;
   ForceAssembly assembly_;
+  StepCore core_;
   double preload_ = 0.0;
   std::vector<Vec2> x0_;
   double d0_ = 0.0;

@@ -134,10 +134,8 @@ Trace trace(const ContactParams& p, const Motion& m, const Frame& f, int steps, 
     const double F_n = N::force(ContactInput{p, s.b, s.k});
     const ContactInput in{p, s.b, s.k, F_n, dt, s.w1, s.w2, M1_prev};
     const TangentialForce F_t = T::force(in, th);
-    const RollingCouple M = R::moment(N::kStiffening ? ContactInput{N::linearised(in), s.b, s.k, F_n, dt, s.w1,
-                                                                     s.w2, M1_prev}
-                                                      : in,
-                                      rh);
+    const RollingCouple M =
+        R::moment(N::kStiffening ? ContactInput{N::linearised(in), s.b, s.k, F_n, dt, s.w1, s.w2, M1_prev} : in, rh);
     M1_prev = M.M1;
     for (double v : {F_n, F_t.F_t, M.M1, M.M2}) out.values.push_back(v);
     for (std::size_t k = 0; k < T::slots.size(); ++k) out.values.push_back(t_slots[k]);
@@ -256,7 +254,9 @@ TYPED_TEST(RollingConformance, ItsSpringBoundsTheStiffnessItShows) {
       // A small rolling without slip, far below every cap (alonso_marroquin answers pure rolling only).
       Motion m;
       m.wall = wall, m.v1 = {}, m.v2 = {}, m.w1 = 0.1, m.w2 = -0.1 * kR1 / kR2;
-      if (wall) m.w2 = 0.0, m.v1 = -0.1 * wall_lever(kR1, kR1 - kOverlap) * perp(Vec2{std::cos(m.direction), std::sin(m.direction)});
+      if (wall)
+        m.w2 = 0.0,
+        m.v1 = -0.1 * wall_lever(kR1, kR1 - kOverlap) * perp(Vec2{std::cos(m.direction), std::sin(m.direction)});
       const double dt = 1e-5;
       const Seen s = seen(m, {});
       const RollingSpring spring = R::spring(ContactInput{p, s.b, s.k});
@@ -317,9 +317,9 @@ LedgerGap rolling_ledger(double omega, double slip, int steps) {
 }
 
 // Rolling without slip below the cap, the couple's spring loaded and unloaded over a few periods of the rolling
-// mode: the stored energy (and the dashpot) must carry the work to 1e-5 of it; then rolling and slipping hard, the couple at its
-// cap (or broken): the dissipation must carry it to 1e-3 (the step in which a spring-slider first yields is booked
-// to first order).
+// mode: the stored energy (and the dashpot) must carry the work to 1e-5 of it; then rolling and slipping hard, the
+// couple at its cap (or broken): the dissipation must carry it to 1e-3 (the step in which a spring-slider first yields
+// is booked to first order).
 TYPED_TEST(RollingConformance, ItsStoredEnergyAndDissipationCloseTheLedger) {
   using R = TypeParam;
   if constexpr (!R::kActive || !splits_work<R>()) {
@@ -371,7 +371,8 @@ TYPED_TEST(TangentialConformance, ARotatedFrameOrASuperposedSpinChangesNothing) 
       for (const double angle : {37.0, 137.0})
         EXPECT_EQ(differ(base, trace<N, T, RollingNone>(p, m, {angle * kDeg}, 300, 1e-5), 1e-12), "")
             << angle << " degrees, wall " << wall;
-      EXPECT_EQ(differ(base, trace<N, T, RollingNone>(p, m, {0.0, 5.0}, 300, 1e-5), 1e-10), "") << "spin, wall " << wall;
+      EXPECT_EQ(differ(base, trace<N, T, RollingNone>(p, m, {0.0, 5.0}, 300, 1e-5), 1e-10), "")
+          << "spin, wall " << wall;
     }
   });
 }

@@ -34,13 +34,14 @@ std::vector<Law> every_law() {
   return out;
 }
 
-// 50 touching discs of 5 mm stacked in a box, spun and pushed sideways (1200 steps, a checkpoint at 600), with the reference contact of the laws'
-// examples (docs/developing.md), and `law` selected with its examples (and the normal law and elastic constants
-// it needs).
+// 50 touching discs of 5 mm stacked in a box, spun and pushed sideways (1200 steps, a checkpoint at 600), with the
+// reference contact of the laws' examples (docs/developing.md), and `law` selected with its examples (and the normal
+// law and elastic constants it needs).
 std::vector<std::string> overrides_for(const Law& law) {
   const LawCatalog& catalog = law_catalog();
   std::vector<std::string> out{"--contact." + std::string(law.kind->kind) + "=" + law.info->keyword};
-  const LawInfo* normal = law.kind == &catalog.normal ? law.info : catalog.normal.find(catalog.normal.laws.front().keyword);
+  const LawInfo* normal =
+      law.kind == &catalog.normal ? law.info : catalog.normal.find(catalog.normal.laws.front().keyword);
   if (law.info->needs_normal) {
     out.push_back("--contact.normal=" + std::string(law.info->needs_normal));
     normal = catalog.normal.find(law.info->needs_normal);
