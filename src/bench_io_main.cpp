@@ -131,7 +131,7 @@ WriterPhases time_writer_phases(rondel::Simulation& sim, const Options& o, const
   WriterPhases p;
   rondel::StateWriter writer;
   const std::string path = (fs::path(o.output) / "phases.h5").string();
-  const rondel::StateHeader header = rondel::Restart::header(sim, "checkpoint");
+  const rondel::StateHeader header = rondel::Restart::header(sim.state(), "checkpoint");
   for (long r = 0; r < o.repeat; ++r) {
     comm.barrier();
     writer.write(path, header, sim.discs(), sim.pairs(), sim.wall_rows(), sim.walls(), comm, {}, 0.0);

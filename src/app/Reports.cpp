@@ -9,7 +9,6 @@
 #include <sstream>
 
 #include "app/RowGeometry.hpp"
-#include "app/Simulation.hpp"
 #include "core/Errors.hpp"
 #include "core/ExactSum.hpp"
 #include "core/Format.hpp"
@@ -19,14 +18,14 @@
 
 namespace rondel {
 
-Reports::Reports(const Simulation& sim)
-    : sim_(sim),
-      comm_(sim.comm()),
-      discs_(sim.discs()),
-      pairs_(sim.pairs()),
-      wall_rows_(sim.wall_rows()),
-      walls_(sim.walls()),
-      ledger_(sim.ledger()) {}
+Reports::Reports(const RunState& state)
+    : state_(state),
+      comm_(state.comm),
+      discs_(state.discs),
+      pairs_(state.pairs),
+      wall_rows_(state.wall_rows),
+      walls_(state.walls),
+      ledger_(state.ledger) {}
 
 EnergyLedger Reports::global_ledger() const {
   // Each rank integrates the work of the rows it books; the run's ledger is their sum (KE0 and the energy
@@ -59,8 +58,8 @@ double Reports::kinetic_energy() const {
 
 DiagnosticsRow Reports::diagnostics(const ContactSummary& stored, double& scale) const {
   DiagnosticsRow row;
-  row.step = sim_.step_count();
-  row.time = sim_.time();
+  row.step = state_.step;
+  row.time = state_.time;
   ExactSum ke_t, ke_r;
   kinetic_sums(ke_t, ke_r);
   row.ke_trans = comm_.exact_sum(ke_t);
@@ -71,7 +70,7 @@ DiagnosticsRow Reports::diagnostics(const ContactSummary& stored, double& scale)
     if (!(pairs_.F_n[r] > 0.0) || static_cast<std::size_t>(pairs_.i1[r]) >= discs_.n_owned()) continue;
     ++contacts;
     const auto i = static_cast<std::size_t>(pairs_.i1[r]), j = static_cast<std::size_t>(pairs_.i2[r]);
-    const double u = RowGeometry::pair(discs_, sim_.config().domain, i, j).u_n;
+    const double u = RowGeometry::pair(discs_, state_.config.domain, i, j).u_n;
     worst = std::max(worst, u / std::min(discs_.radius[i], discs_.radius[j]));
   }
   for (std::size_t r = 0; r < wall_rows_.size(); ++r) {
@@ -89,10 +88,10 @@ DiagnosticsRow Reports::diagnostics(const ContactSummary& stored, double& scale)
   ExactSum stored_sum;
   stored_sum += stored.total();
   row.E_stored = comm_.exact_sum(stored_sum);
-  row.imbalance = sim_.imbalance();
-  const double ghosts = comm_.sum(static_cast<double>(sim_.ghost_count()));
+  row.imbalance = state_.imbalance;
+  const double ghosts = comm_.sum(static_cast<double>(state_.ghosts));
   row.ghost_fraction = n > 0 ? ghosts / n : 0.0;
-  row.migrated = comm_.sum(static_cast<std::int64_t>(sim_.migrated()));
+  row.migrated = comm_.sum(static_cast<std::int64_t>(state_.migrated));
   row.D_other = g.D_other(row.E_stored);
   row.residual = g.relative_residual(row.ke_trans + row.ke_rot);
   static_cast<LedgerTerms&>(row) = g;  // the run's ledger terms, scale updated
@@ -116,10 +115,10 @@ std::string Reports::most_energetic_disc() const {
 void Reports::check_stability(const DiagnosticsRow& row, double& d_other_peak) const {
   if (!std::isfinite(row.ke_trans + row.ke_rot))
     throw InstabilityError("step " + std::to_string(row.step) + ": the kinetic energy is not finite");
-  if (row.residual > sim_.config().max_residual)
+  if (row.residual > state_.config.max_residual)
     throw InstabilityError(
         "step " + std::to_string(row.step) + ": the energy ledger residual reached " + fmt(row.residual) +
-        " of the energy scale (run.max_residual = " + fmt(sim_.config().max_residual) +
+        " of the energy scale (run.max_residual = " + fmt(state_.config.max_residual) +
         "): energy grows with no work done, the integration is unstable; the most energetic disc is " +
         most_energetic_disc() + "; lower run.dt or run.safety");
   // D_other = -E_stored(0) + the dissipation of the dashpots (and the integration error): for closed
@@ -127,11 +126,11 @@ void Reports::check_stability(const DiagnosticsRow& row, double& d_other_peak) c
   // the ledger itself cannot catch (its books close whatever the step).
   d_other_peak = std::max(d_other_peak, row.D_other);
   const double gain = d_other_peak - row.D_other, scale = std::max(row.scale, row.E_stored);
-  if (scale > 0.0 && gain > sim_.config().max_energy_gain * scale)
+  if (scale > 0.0 && gain > state_.config.max_energy_gain * scale)
     throw InstabilityError("step " + std::to_string(row.step) + ": the contacts created " + fmt(gain) +
                            " J of energy (D_other fell from " + fmt(d_other_peak) + " to " + fmt(row.D_other) +
                            " J: " + fmt(gain / scale, 3) +
-                           " of the energy scale; run.max_energy_gain = " + fmt(sim_.config().max_energy_gain) +
+                           " of the energy scale; run.max_energy_gain = " + fmt(state_.config.max_energy_gain) +
                            "): a closed spring-dashpot cannot do positive work, so the time step is too large for "
                            "the contacts; the most energetic disc is " +
                            most_energetic_disc() + "; lower run.dt, or leave run.force_dt off");
@@ -178,7 +177,7 @@ std::string Reports::state_text() const {
   }
   std::sort(records.begin(), records.end(), [](const auto& a, const auto& b) { return a.gid < b.gid; });
   std::string out = kFinalHeader;
-  const bool decimal = sim_.config().final_format == FinalFormat::decimal;
+  const bool decimal = state_.config.final_format == FinalFormat::decimal;
   for (const FinalRecord& d : records) append_final_line(d, decimal, out);
   return out;
 }
@@ -196,7 +195,7 @@ void Reports::write_final(const std::string& path) const {
         std::memcpy(out, &r, sizeof r);
       },
       comm_);
-  const bool decimal = sim_.config().final_format == FinalFormat::decimal;
+  const bool decimal = state_.config.final_format == FinalFormat::decimal;
   write_ordered_text(
       path, kFinalHeader, order,
       [&](std::size_t k, std::string& out) {

@@ -1,6 +1,7 @@
 #pragma once
 #include <string>
 
+#include "app/RunState.hpp"
 #include "core/ContactTable.hpp"
 #include "core/Diagnostics.hpp"
 #include "core/DiscStore.hpp"
@@ -12,12 +13,10 @@
 
 namespace rondel {
 
-class Simulation;
-
-// What the run reports about a Simulation's present state; every function is collective.
+// What the run reports about a simulation's present state (RunState); every function is collective.
 class Reports {
  public:
-  explicit Reports(const Simulation& sim);
+  explicit Reports(const RunState& state);
 
   // The run's ledger: every rank's share summed.
   EnergyLedger global_ledger() const;
@@ -41,7 +40,7 @@ class Reports {
   void kinetic_sums(ExactSum& trans, ExactSum& rot) const;
   std::string most_energetic_disc() const;
 
-  const Simulation& sim_;
+  RunState state_;
   const Communicator& comm_;
   const DiscStore& discs_;
   const ContactTable &pairs_, &wall_rows_;

@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "app/Checkpointing.hpp"
-#include "app/Simulation.hpp"
+#include "app/Reports.hpp"
 #include "core/Errors.hpp"
 #include "core/WallKinds.hpp"
 
@@ -39,22 +39,22 @@ void check_disc_materials(const std::string& path, const DiscStore& d, const Con
 
 }  // namespace
 
-StateHeader Restart::header(const Simulation& sim, const char* kind) {
-  const Config& config = sim.config();
+StateHeader Restart::header(const RunState& state, const char* kind) {
+  const Config& config = state.config;
   StateHeader h;
   h.kind = kind;
-  h.step = sim.step_count();
-  h.time = sim.time();
-  h.dt = sim.dt();
+  h.step = state.step;
+  h.time = state.time;
+  h.dt = state.dt;
   h.normal_law = config.normal_law;
   h.tangential_law = config.tangential_law;
   h.rolling_law = config.rolling_law;
-  h.slots = history_slots(sim.laws());
+  h.slots = history_slots(state.laws);
   h.config = config.resolved_text;
   h.materials = material_table_text(config.materials);
-  h.box_width0 = sim.box0().width;
-  h.box_height0 = sim.box0().height;
-  h.ledger = sim.global_ledger();
+  h.box_width0 = state.box0.width;
+  h.box_height0 = state.box0.height;
+  h.ledger = Reports(state).global_ledger();
   return h;
 }
 

@@ -2,6 +2,7 @@
 #include <string>
 #include <vector>
 
+#include "app/RunState.hpp"
 #include "core/Config.hpp"
 #include "core/ContactTable.hpp"
 #include "core/DiscStore.hpp"
@@ -15,14 +16,12 @@
 
 namespace rondel {
 
-class Simulation;
-
 // A run's state in a Rondel file (FORMAT.md), both ways: the header a checkpoint or snapshot carries, and
 // what a restart or a scene.type = file stage takes back from one.
 class Restart {
  public:
   // Collective (the global ledger): the header of a file of `kind` ("checkpoint", "snapshot") now.
-  static StateHeader header(const Simulation& sim, const char* kind);
+  static StateHeader header(const RunState& state, const char* kind);
 
   // A checkpoint to continue from: reads its header (collective) and checks that the configuration selects
   // the same laws (or run.reset_history).

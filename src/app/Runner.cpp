@@ -6,7 +6,6 @@
 
 #include "app/Reports.hpp"
 #include "app/RunFiles.hpp"
-#include "app/Simulation.hpp"
 #include "core/Errors.hpp"
 #include "core/Format.hpp"
 #include "core/StopSignal.hpp"
@@ -21,34 +20,34 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 }
 }  // namespace
 
-Runner::Runner(Simulation& sim) : sim_(sim), files_(sim.files()), phases_(sim.phases()) {}
+Runner::Runner(RunTarget& target) : sim_(target), files_(target.files()), phases_(target.phases()) {}
 
 void Runner::log_start(std::int64_t n_discs) {
-  const Config& config = sim_.config();
-  const Communicator& comm = sim_.comm();
+  const Config& config = sim_.state().config;
+  const Communicator& comm = sim_.state().comm;
   const CriticalStep& critical = sim_.critical();
   files_.log(std::string("Rondel ") + kRondelVersion + " (commit " + kRondelCommit + "): " + std::to_string(n_discs) +
-             " discs, " + std::to_string(sim_.walls().size()) + " walls, " + std::to_string(comm.size()) +
+             " discs, " + std::to_string(sim_.state().walls.size()) + " walls, " + std::to_string(comm.size()) +
              " rank(s); laws: normal " + config.normal_law + ", tangential " + config.tangential_law + ", rolling " +
              config.rolling_law);
-  if (Boundaries::any_rough(sim_.walls())) log_rough_walls();
-  files_.log("time step " + fmt(sim_.dt()) + " s = " + fmt(sim_.dt() / critical.dt, 4) + " x critical " +
+  if (Boundaries::any_rough(sim_.state().walls)) log_rough_walls();
+  files_.log("time step " + fmt(sim_.state().dt) + " s = " + fmt(sim_.state().dt / critical.dt, 4) + " x critical " +
              fmt(critical.dt) + " s, limited by the " + critical.mode + " mode (" + critical.pair + ")");
-  files_.log("neighbour skin " + fmt(sim_.skin()) + " m; output in " +
+  files_.log("neighbour skin " + fmt(sim_.counts().skin) + " m; output in " +
              (files_.has_directory() ? config.output + " (resolved configuration in config.ini and log.txt)"
                                      : std::string("(none)")) +
-             (sim_.step_count() > 0 ? "; resumed at step " + std::to_string(sim_.step_count()) : ""));
+             (sim_.state().step > 0 ? "; resumed at step " + std::to_string(sim_.state().step) : ""));
   // The resolved configuration is long (every key): log.txt and config.ini keep it, the terminal does not.
   files_.log_file_only("resolved configuration:\n" + config.resolved_text);
 }
 
 void Runner::log_rough_walls() {
-  const WallSet& walls = sim_.walls();
-  const std::vector<std::int64_t> glued = Boundaries::glued_counts(sim_.discs(), walls.size());
+  const WallSet& walls = sim_.state().walls;
+  const std::vector<std::int64_t> glued = Boundaries::glued_counts(sim_.state().discs, walls.size());
   std::string line = "rough walls:";
   for (std::size_t w = 0; w < walls.size(); ++w) {
     if (!walls[w].rough) continue;
-    const std::int64_t n = sim_.comm().sum(glued[w]);
+    const std::int64_t n = sim_.state().comm.sum(glued[w]);
     line +=
         " wall " + std::to_string(w) + " carries " + std::to_string(n) + " glued discs" +
         (n == 0 ? " (warning: none; glue happens at the start of a stage, within walls.rough_depth of the wall)" : "") +
@@ -59,16 +58,16 @@ void Runner::log_rough_walls() {
 
 void Runner::record() {
   // The rows are computed collectively; rank 0 writes them, agreed (a full disk stops every rank).
-  const Communicator& comm = sim_.comm();
+  const Communicator& comm = sim_.state().comm;
   const DiagnosticsRow row = sim_.diagnostics();
   agree(comm, [&] {
     files_.write_diagnostics(row);
-    const std::int64_t every = sim_.config().thermo_every;
-    if (every > 0 && (row.step % every == 0 || row.step == sim_.config().steps)) thermo(row);
+    const std::int64_t every = sim_.state().config.thermo_every;
+    if (every > 0 && (row.step % every == 0 || row.step == sim_.state().config.steps)) thermo(row);
     files_.check_log();
   });
   // From the global row: every rank alike (its message calls collectives), agreed so that it is printed once.
-  agree(comm, [&] { Reports(sim_).check_stability(row, d_other_peak_); });
+  agree(comm, [&] { Reports(sim_.state()).check_stability(row, d_other_peak_); });
   if (!files_.has_directory()) return;
   const MeasuresRow m = sim_.measures(sim_.last_contacts());
   agree(comm, [&] { files_.write_measures(m); });
@@ -99,23 +98,23 @@ void Runner::checkpoint() {
   last_checkpoint_ = std::chrono::steady_clock::now();
   // The tables' rows up to this step reach their files first: a run killed after the checkpoint and resumed
   // from it then finds every row up to the checkpoint's step (and RunFiles::prepare cuts the later ones).
-  agree(sim_.comm(), [&] { files_.flush_tables(); });
-  agree(sim_.comm(), [&] {
+  agree(sim_.state().comm, [&] { files_.flush_tables(); });
+  agree(sim_.state().comm, [&] {
     sum_.last_checkpoint = sim_.write_checkpoint();
     files_.check_log();
   });
-  checkpointed_ = sim_.step_count();
+  checkpointed_ = sim_.state().step;
 }
 
 void Runner::snapshot() {
-  agree(sim_.comm(), [&] { sim_.write_snapshot(); });
+  agree(sim_.state().comm, [&] { sim_.write_snapshot(); });
 }
 
 std::int64_t Runner::stop_flags() {
   // This rank's stop request; the ranks agree on the step of a signal or of a wall-clock checkpoint in the
   // step's reduction (rank 0's clock decides).
-  const Config& config = sim_.config();
-  const Communicator& comm = sim_.comm();
+  const Config& config = sim_.state().config;
+  const Communicator& comm = sim_.state().comm;
   const double minutes = seconds_since(last_checkpoint_) / 60.0;
   const bool timed = comm.root() && config.checkpoint_minutes > 0.0 && minutes >= config.checkpoint_minutes;
   // Both ride in the step's reduction (Simulation::request_stop): the signal number times 2, plus 1 for a
@@ -124,23 +123,23 @@ std::int64_t Runner::stop_flags() {
 }
 
 int Runner::loop(ProgressLine& progress, std::int64_t first) {
-  const Config& config = sim_.config();
+  const Config& config = sim_.state().config;
   // The steps up to the next one that something looks at (diagnostics, a snapshot, a checkpoint, the end)
   // run as one advance (Simulation::advance: a pass over the discs less per step); a stop agreed in a step's
   // reduction ends it early.
   const auto next_multiple = [](std::int64_t step, std::int64_t every) { return (step / every + 1) * every; };
-  while (sim_.step_count() < config.steps) {
-    const std::int64_t now = sim_.step_count();
+  while (sim_.state().step < config.steps) {
+    const std::int64_t now = sim_.state().step;
     std::int64_t until = std::min(config.steps, next_multiple(now, config.diag_every));
     if (files_.has_directory() && config.snapshot_every > 0)
       until = std::min(until, next_multiple(now, config.snapshot_every));
     if (files_.has_directory() && config.checkpoint_every > 0)
       until = std::min(until, next_multiple(now, config.checkpoint_every));
-    sim_.advance(until - now, [&] {
-      progress.update(sim_.step_count() - first);
+    sim_.advance_steps(until - now, [&] {
+      progress.update(sim_.state().step - first);
       return stop_flags();
     });
-    const std::int64_t step = sim_.step_count();
+    const std::int64_t step = sim_.state().step;
     phases_.restart();
     if (step % config.diag_every == 0 || step == config.steps) record();
     if (files_.has_directory() && config.snapshot_every > 0 && step % config.snapshot_every == 0) snapshot();
@@ -164,11 +163,11 @@ int Runner::loop(ProgressLine& progress, std::int64_t first) {
 }
 
 RunSummary Runner::run() {
-  const auto n_discs = sim_.comm().sum(static_cast<std::int64_t>(sim_.discs().n_owned()));
+  const auto n_discs = sim_.state().comm.sum(static_cast<std::int64_t>(sim_.state().discs.n_owned()));
   log_start(n_discs);
-  const Config& config = sim_.config();
-  const std::int64_t first = sim_.step_count(), remaining = std::max<std::int64_t>(0, config.steps - first);
-  ProgressLine progress(remaining, n_discs, files_.has_directory() && config.progress && sim_.comm().root());
+  const Config& config = sim_.state().config;
+  const std::int64_t first = sim_.state().step, remaining = std::max<std::int64_t>(0, config.steps - first);
+  ProgressLine progress(remaining, n_discs, files_.has_directory() && config.progress && sim_.state().comm.root());
   files_.set_progress(&progress);
   StopSignal::install();
   start_ = last_checkpoint_ = thermo_clock_ = std::chrono::steady_clock::now();
@@ -181,16 +180,16 @@ RunSummary Runner::run() {
     sum_.stop_signal = loop(progress, first);
     sim_.settle_errors();  // a rank's error found since the last reduction stops the run here
     if (files_.has_directory() && config.checkpoint_at_end && sum_.stop_signal == 0 &&
-        checkpointed_ != sim_.step_count())
+        checkpointed_ != sim_.state().step)
       checkpoint();
     phases_.lap(PhaseTimes::output);
   } catch (const std::exception& e) {  // an instability, an I/O error: log.txt says so (rank 0)
-    progress.finish(sim_.step_count() - first);
+    progress.finish(sim_.state().step - first);
     files_.set_progress(nullptr);
     files_.log(std::string("FAILED: ") + e.what());
     throw;
   }
-  progress.finish(sim_.step_count() - first);
+  progress.finish(sim_.state().step - first);
   files_.set_progress(nullptr);
   finish(first, n_discs, at_start);
   return sum_;
@@ -198,28 +197,29 @@ RunSummary Runner::run() {
 
 void Runner::finish(std::int64_t first, std::int64_t n_discs, const PhaseTimes& at_start) {
   const CriticalStep& critical = sim_.critical();
-  const double dt = sim_.dt();
+  const double dt = sim_.state().dt;
   RunSummary& sum = sum_;
-  sum.steps = sim_.step_count() - first;
+  sum.steps = sim_.state().step - first;
   sum.discs = n_discs;
   sum.wall_seconds = seconds_since(start_);
   sum.disc_steps_per_second = sum.wall_seconds > 0 ? sum.discs * sum.steps / sum.wall_seconds : 0.0;
   sum.dt = dt;
   sum.critical = critical;
-  EnergyLedger g = sim_.global_ledger();
-  sum.ledger_residual = g.relative_residual(sim_.kinetic_energy());
-  sum.neighbour_builds = sim_.neighbour_builds();
+  const Reports reports(sim_.state());
+  EnergyLedger g = reports.global_ledger();
+  sum.ledger_residual = g.relative_residual(reports.kinetic_energy());
+  sum.neighbour_builds = sim_.counts().neighbour_builds;
   std::ostringstream s;
   s << "summary: " << sum.steps << " steps of " << sum.discs << " discs in " << fmt(sum.wall_seconds, 4) << " s wall, "
     << fmt(sum.disc_steps_per_second, 4) << " disc-steps/s; dt " << fmt(dt) << " s (" << fmt(dt / critical.dt, 4)
     << " x critical, " << critical.mode << " mode); ledger residual " << fmt(sum.ledger_residual, 3) << "; "
     << sum.neighbour_builds << " neighbour builds";
-  if (sim_.comm().size() > 1 && sim_.steps_taken() > 0) {
+  if (sim_.state().comm.size() > 1 && sim_.counts().steps_taken > 0) {
     // What the steps asked of MPI, largest rank (docs/scaling.md): at most one collective per step.
-    const Communicator& comm = sim_.comm();
-    const CommStats& c = sim_.step_comm();
+    const Communicator& comm = sim_.state().comm;
+    const CommStats& c = sim_.counts().step_comm;
     const auto per_step = [&](std::int64_t v) {
-      return static_cast<double>(comm.max(v)) / static_cast<double>(sim_.steps_taken());
+      return static_cast<double>(comm.max(v)) / static_cast<double>(sim_.counts().steps_taken);
     };
     sum.collectives_per_step = per_step(c.collectives);
     sum.messages_per_step = per_step(c.messages);
@@ -230,13 +230,13 @@ void Runner::finish(std::int64_t first, std::int64_t n_discs, const PhaseTimes& 
   const std::string phases = phases_.line_since(at_start) + " (rank 0)";
   files_.log(phases);
   if (!files_.has_directory()) return;
-  const std::string output = sim_.config().output;
-  agree(sim_.comm(), [&] {
+  const std::string output = sim_.state().config.output;
+  agree(sim_.state().comm, [&] {
     files_.flush_tables();
     files_.check_log();
   });
   sim_.write_final(files_.final_path());  // every rank its block, in gid order (agreed inside)
-  agree(sim_.comm(), [&] {
+  agree(sim_.state().comm, [&] {
     files_.write_results(s.str() + "\n" + phases, summary_json(at_start), sum.stop_signal != 0);
     files_.log("results in " + output +
                "/ (config.ini, log.txt, diagnostics.csv, measures.csv, final.csv, summary.txt, summary.json" +
@@ -266,8 +266,8 @@ std::string Runner::summary_json(const PhaseTimes& at_start) const {
   j << "{\n  \"status\": " << str(m.stop_signal != 0 ? "stopped" : "complete")
     << ",\n  \"stop_signal\": " << (m.stop_signal != 0 ? str(StopSignal::name(m.stop_signal)) : "null")
     << ",\n  \"rondel_version\": " << str(kRondelVersion) << ",\n  \"rondel_commit\": " << str(kRondelCommit)
-    << ",\n  \"steps\": " << m.steps << ",\n  \"final_step\": " << sim_.step_count() << ",\n  \"discs\": " << m.discs
-    << ",\n  \"ranks\": " << sim_.comm().size() << ",\n  \"wall_seconds\": " << num(m.wall_seconds)
+    << ",\n  \"steps\": " << m.steps << ",\n  \"final_step\": " << sim_.state().step << ",\n  \"discs\": " << m.discs
+    << ",\n  \"ranks\": " << sim_.state().comm.size() << ",\n  \"wall_seconds\": " << num(m.wall_seconds)
     << ",\n  \"disc_steps_per_second\": " << num(m.disc_steps_per_second) << ",\n  \"dt\": " << num(m.dt)
     << ",\n  \"critical_dt\": " << num(m.critical.dt) << ",\n  \"critical_mode\": " << str(m.critical.mode)
     << ",\n  \"critical_pair\": " << str(m.critical.pair) << ",\n  \"ledger_residual\": " << num(m.ledger_residual)

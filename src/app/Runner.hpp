@@ -2,17 +2,21 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <string>
 
+#include "app/Measures.hpp"
 #include "app/PhaseTimes.hpp"
+#include "app/RunState.hpp"
+#include "core/Diagnostics.hpp"
+#include "parallel/Communicator.hpp"
+#include "physics/ContactKernel.hpp"
 #include "physics/CriticalTimeStep.hpp"
 
 namespace rondel {
 
-class Simulation;
 class RunFiles;
 class ProgressLine;
-struct DiagnosticsRow;
 
 struct RunSummary {
   int stop_signal = 0;          // the signal that stopped the run early (0: it ran to the end)
@@ -28,13 +32,43 @@ struct RunSummary {
   double collectives_per_step = 0.0, messages_per_step = 0.0;  // the steps', largest rank (several ranks)
 };
 
-// The run of a Simulation to run.steps: the opening log lines, the time loop with the schedules of
+// The counts a run's summary reports.
+struct RunCounts {
+  double skin = 0.0;                 // the neighbour list's skin [m]
+  std::size_t neighbour_builds = 0;  // so far
+  std::int64_t steps_taken = 0;      // by this object's steps
+  CommStats step_comm;               // what those steps asked of MPI, on this rank
+};
+
+// What a Runner drives (Simulation is one): the steps, the outputs and a view of the state. Collective where a
+// Simulation's function of the same name is.
+class RunTarget {
+ public:
+  virtual ~RunTarget() = default;
+  virtual RunState state() const = 0;
+  virtual const CriticalStep& critical() const = 0;
+  virtual RunCounts counts() const = 0;
+  virtual RunFiles& files() = 0;
+  virtual PhaseTimes& phases() = 0;
+  // Up to n steps that nothing looks at in between; stop_flags() before each gives this rank's stop request.
+  virtual std::int64_t advance_steps(std::int64_t n, const std::function<std::int64_t()>& stop_flags) = 0;
+  virtual std::int64_t agreed_stop() const = 0;
+  virtual void settle_errors() = 0;
+  virtual DiagnosticsRow diagnostics() = 0;
+  virtual const ContactSummary& last_contacts() const = 0;
+  virtual MeasuresRow measures(const ContactSummary& contacts) = 0;
+  virtual std::string write_checkpoint() = 0;
+  virtual void write_snapshot() = 0;
+  virtual void write_final(const std::string& path) const = 0;
+};
+
+// The run of a RunTarget to run.steps: the opening log lines, the time loop with the schedules of
 // diagnostics, measures, snapshots and checkpoints, the signals (every rank agrees on the step of a stop),
 // the progress and thermo lines, and the summary with its phase times (log.txt, summary.txt, summary.json,
 // final.csv).
 class Runner {
  public:
-  explicit Runner(Simulation& sim);
+  explicit Runner(RunTarget& target);
   RunSummary run();
 
  private:
@@ -55,7 +89,7 @@ class Runner {
   int loop(ProgressLine& progress, std::int64_t first);
   void finish(std::int64_t first, std::int64_t n_discs, const PhaseTimes& at_start);
 
-  Simulation& sim_;
+  RunTarget& sim_;
   RunFiles& files_;
   PhaseTimes& phases_;
   RunSummary sum_;

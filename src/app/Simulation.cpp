@@ -351,23 +351,41 @@ std::string Simulation::write_checkpoint() {
   settle_errors();
   if (!files_.has_directory())
     throw ConfigError("a checkpoint needs an output directory (this simulation writes no files)");
-  return files_.write_checkpoint(Restart::header(*this, "checkpoint"), discs_, pairs_, wall_rows_, walls_);
+  return files_.write_checkpoint(Restart::header(state(), "checkpoint"), discs_, pairs_, wall_rows_, walls_);
 }
 
 void Simulation::write_snapshot() {
   settle_errors();
   const auto n = comm_.sum(static_cast<std::int64_t>(discs_.n_owned()));
-  files_.write_snapshot(Restart::header(*this, "snapshot"), discs_, walls_, n);
+  files_.write_snapshot(Restart::header(state(), "snapshot"), discs_, walls_, n);
 }
 
-EnergyLedger Simulation::global_ledger() const { return Reports(*this).global_ledger(); }
+RunState Simulation::state() const {
+  return RunState{config_,
+                  comm_,
+                  laws_,
+                  discs_,
+                  pairs_,
+                  wall_rows_,
+                  walls_,
+                  core_.ledger(),
+                  box0_,
+                  step_,
+                  time_,
+                  dt_,
+                  reduction_.imbalance(),
+                  exchange_.ghost_count(),
+                  migrated_};
+}
 
-double Simulation::kinetic_energy() const { return Reports(*this).kinetic_energy(); }
+EnergyLedger Simulation::global_ledger() const { return Reports(state()).global_ledger(); }
+
+double Simulation::kinetic_energy() const { return Reports(state()).kinetic_energy(); }
 
 DiagnosticsRow Simulation::diagnostics() {
   settle_errors();
   summary_ = kernel_.stored(KernelContext{discs_, config_.domain, walls_, config_.params, dt_}, pairs_, wall_rows_);
-  return Reports(*this).diagnostics(summary_, core_.ledger().scale);
+  return Reports(state()).diagnostics(summary_, core_.ledger().scale);
 }
 
 MeasuresRow Simulation::measures(const ContactSummary& contacts) {
@@ -376,8 +394,8 @@ MeasuresRow Simulation::measures(const ContactSummary& contacts) {
       .row(step_, time_, discs_, pairs_, wall_rows_, walls_, box0_, contacts);
 }
 
-std::string Simulation::state_text() const { return Reports(*this).state_text(); }
+std::string Simulation::state_text() const { return Reports(state()).state_text(); }
 
-void Simulation::write_final(const std::string& path) const { Reports(*this).write_final(path); }
+void Simulation::write_final(const std::string& path) const { Reports(state()).write_final(path); }
 
 }  // namespace rondel

@@ -9,6 +9,7 @@
 #include "app/Measures.hpp"
 #include "app/PhaseTimes.hpp"
 #include "app/RunFiles.hpp"
+#include "app/RunState.hpp"
 #include "app/Runner.hpp"
 #include "app/StepReduction.hpp"
 #include "core/Config.hpp"
@@ -30,7 +31,7 @@ namespace rondel {
 // The composition root: builds the objects from the configuration and steps them (docs/design.md section 4).
 // All set-up checks happen in the constructor, before any file is written. The run loop is Runner's, the
 // files RunFiles', the file state Restart's, the reports Reports' and the measures Measures'.
-class Simulation {
+class Simulation final : public RunTarget {
  public:
   // `restart_file`: continue from this checkpoint (its discs, contact history, walls, step, time, dt and
   // ledger), on any rank count; the configuration must select the same laws.
@@ -40,6 +41,10 @@ class Simulation {
 
   // Runs config.steps steps with diagnostics and output; returns the summary (also logged).
   RunSummary run() { return Runner(*this).run(); }
+  std::int64_t advance_steps(std::int64_t n, const std::function<std::int64_t()>& stop_flags) override {
+    return advance(n, stop_flags);
+  }
+  RunCounts counts() const override { return {neighbours_.skin(), neighbours_.builds(), steps_taken_, step_comm_}; }
   // One time step (docs/design.md section 4). On several ranks it makes at most one collective call (none
   // on most steps of a scene without controlled walls) and talks point to point with neighbouring ranks.
   void step() { advance_step(true); }
@@ -61,11 +66,11 @@ class Simulation {
   }
   // Collective: agrees on any rank's pending error (every rank throws it) and brings the walls' loads up
   // to this step. Every output below calls it first.
-  void settle_errors();
+  void settle_errors() override;
   // The stop request of this rank for the coming step (Runner: twice the signal number, plus one for a
   // due wall-clock checkpoint) and, after step(), the maximum over the ranks if the step reduced (else 0).
   void request_stop(std::int64_t flags) { reduction_.request_stop(flags); }
-  std::int64_t agreed_stop() const { return reduction_.agreed_stop(); }
+  std::int64_t agreed_stop() const override { return reduction_.agreed_stop(); }
   // What this object's steps asked of MPI (collectives, messages, bytes) and how many steps it took.
   const CommStats& step_comm() const { return step_comm_; }
   std::int64_t steps_taken() const { return steps_taken_; }
@@ -74,6 +79,8 @@ class Simulation {
   std::size_t exchange_bytes() const { return exchange_.memory_bytes(); }
   std::size_t neighbour_bytes() const { return neighbours_.memory_bytes(); }
 
+  // A view of the present state for the reports, the files and the restart (RunState.hpp).
+  RunState state() const override;
   const Config& config() const { return config_; }
   const Communicator& comm() const { return comm_; }
   const LawSelection& laws() const { return laws_; }
@@ -88,7 +95,7 @@ class Simulation {
   const EnergyLedger& ledger() const { return core_.ledger(); }
   // The run's ledger: every rank's share summed (collective).
   EnergyLedger global_ledger() const;
-  const CriticalStep& critical() const { return critical_; }
+  const CriticalStep& critical() const override { return critical_; }
   double dt() const { return dt_; }
   double time() const { return time_; }
   std::int64_t step_count() const { return step_; }
@@ -101,21 +108,21 @@ class Simulation {
   double imbalance() const { return reduction_.imbalance(); }
   // This rank's seconds per phase so far (PhaseTimes.hpp), set-up included.
   const PhaseTimes& phases() const { return phases_; }
-  PhaseTimes& phases() { return phases_; }
+  PhaseTimes& phases() override { return phases_; }
   // Seconds this rank spent in communication (ghost updates, rebuilds with migration, and the step's
   // reductions), including waiting for other ranks.
   double comm_seconds() const { return phases_.seconds(PhaseTimes::communication); }
-  RunFiles& files() { return files_; }
+  RunFiles& files() override { return files_; }
   // Collective: writes a checkpoint into the output directory now; returns its path.
-  std::string write_checkpoint();
+  std::string write_checkpoint() override;
   // Collective: a snapshot into the output directory now.
-  void write_snapshot();
+  void write_snapshot() override;
   double kinetic_energy() const;
-  DiagnosticsRow diagnostics();
+  DiagnosticsRow diagnostics() override;
   // This rank's contact summary at the last diagnostics() (counts, stored energy).
-  const ContactSummary& last_contacts() const { return summary_; }
+  const ContactSummary& last_contacts() const override { return summary_; }
   // Collective: the macroscopic measures now (Measures.hpp), from the contact summary of diagnostics().
-  MeasuresRow measures(const ContactSummary& contacts);
+  MeasuresRow measures(const ContactSummary& contacts) override;
   MeasuresRow measures() {
     diagnostics();
     return measures(summary_);
@@ -125,7 +132,7 @@ class Simulation {
   std::string state_text() const;
   // Collective: the same lines as final.csv at `path`, written by every rank in gid order (MPI-IO, no
   // gather: what a run writes; state_text() serves tests).
-  void write_final(const std::string& path) const;
+  void write_final(const std::string& path) const override;
 
  private:
   void build_discs();

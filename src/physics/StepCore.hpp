@@ -34,9 +34,9 @@ struct StepInputs {
   const ContactParamTable& params;
   BodyForce body;
   double dt = 0.0;
-  double damping = 0.0;               // run.local_damping
-  double overlap_limit = INFINITY;    // run.max_overlap: the kernel reports overlaps above it
-  bool bounds = false;                // the drift measures the motion bound of spaced reductions
+  double damping = 0.0;             // run.local_damping
+  double overlap_limit = INFINITY;  // run.max_overlap: the kernel reports overlaps above it
+  bool bounds = false;              // the drift measures the motion bound of spaced reductions
 };
 
 // A run's hooks that do nothing (the rig's, and the base of a run's).

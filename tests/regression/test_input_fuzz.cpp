@@ -255,7 +255,7 @@ Outcome run_case(const std::string& ini, const Case& c) {
     Simulation sim(parse_config_text(ini, {"--" + c.key + "=" + c.value, "--run.steps=3"}), comm, false);
     for (int k = 0; k < 3; ++k) sim.step();
     double d_other_peak = -HUGE_VAL;
-    Reports(sim).check_stability(sim.diagnostics(), d_other_peak);
+    Reports(sim.state()).check_stability(sim.diagnostics(), d_other_peak);
     o.kind = Outcome::ran;
   } catch (const ConfigError& e) {
     o.kind = Outcome::refused, o.message = e.what();
