@@ -207,7 +207,7 @@ int main(int argc, char** argv) {
     const auto no_stop = [] { return std::int64_t{0}; };
     sim.advance(o.warmup, no_stop);
     if (other) other->advance(o.warmup, no_stop);
-    const std::size_t builds0 = sim.neighbour_builds();
+    const std::size_t builds0 = sim.counts().neighbour_builds;
     const double comm_before = sim.comm_seconds();
     const rondel::PhaseTimes phases0 = sim.phases();
     // Timed by the slowest rank. With --against the two simulations take the timed steps in alternating chunks,
@@ -247,7 +247,7 @@ int main(int argc, char** argv) {
     const double rows = comm.sum(static_cast<double>(sim.pairs().size()));
     const double wall_rows = comm.sum(static_cast<double>(sim.wall_rows().size()));
     const double twice = comm.sum(static_cast<double>(border));
-    const double ghosts = comm.sum(static_cast<double>(sim.ghost_count()));
+    const double ghosts = comm.sum(static_cast<double>(sim.state().ghosts));
     const double comm_time = comm.max(sim.comm_seconds() - comm_before);
     const double store = comm.sum(
         static_cast<double>(sim.discs().memory_bytes() + sim.pairs().memory_bytes() + sim.wall_rows().memory_bytes()));
@@ -275,7 +275,7 @@ int main(int argc, char** argv) {
           "  ghosts per disc       %.4f\n  rows computed twice   %.2f %% of all rows (border pairs)\n",
           o.discs, nx, ny, o.rolling.c_str(), o.steps, o.warmup, sim.dt(), sim.critical().dt,
           sim.critical().mode.c_str(), comm.size(), secs, rate, all_contacts / n, 2.0 * all_contacts / n, rows / n,
-          sim.neighbour_builds() - builds0, store / n, rss / n,
+          sim.counts().neighbour_builds - builds0, store / n, rss / n,
           other        ? " (of both simulations: --against)"
           : peak_reset ? ""
                        : " (with the triad's arrays: use --no-stream)",

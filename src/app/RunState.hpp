@@ -28,9 +28,9 @@ struct RunState {
   const BoxGeometry& box0;     // the box at the start of the stage (the reference of the strains)
   std::int64_t step = 0;
   double time = 0.0, dt = 0.0;
-  double imbalance = 1.0;     // max over mean work per rank at the last balance check
-  std::size_t ghosts = 0;     // ghost discs this rank holds
-  std::size_t migrated = 0;   // discs this rank has sent to others so far
+  double imbalance = 1.0;    // max over mean work per rank at the last balance check
+  std::size_t ghosts = 0;    // ghost discs this rank holds
+  std::size_t migrated = 0;  // discs this rank has sent to others so far
 };
 
 }  // namespace rondel

@@ -44,6 +44,7 @@ class Simulation final : public RunTarget {
   std::int64_t advance_steps(std::int64_t n, const std::function<std::int64_t()>& stop_flags) override {
     return advance(n, stop_flags);
   }
+  // The skin, the neighbour builds, and what this object's steps asked of MPI (collectives, messages, bytes).
   RunCounts counts() const override { return {neighbours_.skin(), neighbours_.builds(), steps_taken_, step_comm_}; }
   // One time step (docs/design.md section 4). On several ranks it makes at most one collective call (none
   // on most steps of a scene without controlled walls) and talks point to point with neighbouring ranks.
@@ -71,9 +72,6 @@ class Simulation final : public RunTarget {
   // due wall-clock checkpoint) and, after step(), the maximum over the ranks if the step reduced (else 0).
   void request_stop(std::int64_t flags) { reduction_.request_stop(flags); }
   std::int64_t agreed_stop() const override { return reduction_.agreed_stop(); }
-  // What this object's steps asked of MPI (collectives, messages, bytes) and how many steps it took.
-  const CommStats& step_comm() const { return step_comm_; }
-  std::int64_t steps_taken() const { return steps_taken_; }
   // Bytes this rank holds for the decomposition, the exchanges and the neighbour search (the scaling audit).
   std::size_t decomposition_bytes() const { return decomposition_->memory_bytes(); }
   std::size_t exchange_bytes() const { return exchange_.memory_bytes(); }
@@ -83,14 +81,11 @@ class Simulation final : public RunTarget {
   RunState state() const override;
   const Config& config() const { return config_; }
   const Communicator& comm() const { return comm_; }
-  const LawSelection& laws() const { return laws_; }
   const DiscStore& discs() const { return discs_; }
   DiscStore& discs() { return discs_; }
   const ContactTable& pairs() const { return pairs_; }
   const ContactTable& wall_rows() const { return wall_rows_; }
   const WallSet& walls() const { return walls_; }
-  // The box at the start of the stage (the reference of the strains).
-  const BoxGeometry& box0() const { return box0_; }
   // This rank's share of the energy ledger (the whole ledger on one rank).
   const EnergyLedger& ledger() const { return core_.ledger(); }
   // The run's ledger: every rank's share summed (collective).
@@ -99,13 +94,7 @@ class Simulation final : public RunTarget {
   double dt() const { return dt_; }
   double time() const { return time_; }
   std::int64_t step_count() const { return step_; }
-  double skin() const { return neighbours_.skin(); }
-  std::size_t neighbour_builds() const { return neighbours_.builds(); }
   const Decomposition& decomposition() const { return *decomposition_; }
-  std::size_t ghost_count() const { return exchange_.ghost_count(); }
-  // Discs this rank has sent to others so far.
-  std::size_t migrated() const { return migrated_; }
-  double imbalance() const { return reduction_.imbalance(); }
   // This rank's seconds per phase so far (PhaseTimes.hpp), set-up included.
   const PhaseTimes& phases() const { return phases_; }
   PhaseTimes& phases() override { return phases_; }

@@ -36,9 +36,9 @@ int main(int argc, char** argv) {
     sim.write_checkpoint();
     const auto after = comm.stats();
     auto max_of = [&](std::size_t v) { return comm.max(static_cast<std::int64_t>(v)); };
-    const std::int64_t n = static_cast<std::int64_t>(sim.steps_taken());
-    const auto& c = sim.step_comm();
-    const std::int64_t owned = max_of(sim.discs().n_owned()), ghosts = max_of(sim.ghost_count());
+    const std::int64_t n = static_cast<std::int64_t>(sim.counts().steps_taken);
+    const auto& c = sim.counts().step_comm;
+    const std::int64_t owned = max_of(sim.discs().n_owned()), ghosts = max_of(sim.state().ghosts);
     const std::int64_t dec = max_of(sim.decomposition_bytes()), exch = max_of(sim.exchange_bytes()),
                        neigh = max_of(sim.neighbour_bytes()), ckpt = max_of(rondel::peak_checkpoint_structure_bytes());
     const std::int64_t coll = comm.max(c.collectives), msgs = comm.max(c.messages), bytes = comm.max(c.bytes);
@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
           static_cast<long long>(ghosts), static_cast<long long>(dec), static_cast<long long>(exch),
           static_cast<long long>(neigh), static_cast<long long>(ckpt), static_cast<long long>(coll),
           static_cast<long long>(msgs), static_cast<long long>(bytes), static_cast<long long>(ckpt_coll),
-          static_cast<long long>(sim.neighbour_builds()));
+          static_cast<long long>(sim.counts().neighbour_builds));
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "rondel_scaling_audit: " << e.what() << '\n';

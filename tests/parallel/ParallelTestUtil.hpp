@@ -308,7 +308,7 @@ inline LockstepResult run_lockstep(const std::string& ini, const std::vector<std
   }
   MPI_Bcast(&res.max_copies, 1, MPI_INT, 0, MPI_COMM_WORLD);
   res.migrated = par.diagnostics().migrated;
-  res.builds = par.neighbour_builds();
+  res.builds = par.counts().neighbour_builds;
   return res;
 }
 

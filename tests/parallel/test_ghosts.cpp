@@ -103,8 +103,8 @@ class GhostChecker {
     for (std::size_t i = 0; i < d.n_owned(); ++i) owned.insert(d.gid[i]);
     for (std::size_t i = d.n_owned(); i < d.size(); ++i)
       if (!ghosts.insert(d.gid[i]).second) fail("ghost " + std::to_string(d.gid[i]) + " twice");
-    if (ghosts.size() != sim_.ghost_count())
-      fail("ghost_count() = " + std::to_string(sim_.ghost_count()) + " but " + std::to_string(ghosts.size()) +
+    if (ghosts.size() != sim_.state().ghosts)
+      fail("ghost_count() = " + std::to_string(sim_.state().ghosts) + " but " + std::to_string(ghosts.size()) +
            " ghosts stored");
     for (std::int64_t gid : ghosts)
       if (owned.count(gid)) fail("disc " + std::to_string(gid) + " is owned and a ghost");
@@ -226,13 +226,13 @@ void check_ghosts(const std::string& scene, const std::string& ini, const std::v
   int bad = checker.check(true, true, true, log);
   report(bad, log, scene + ": after construction");
   const std::int64_t every = sim.config().balance_every;
-  std::size_t builds = sim.neighbour_builds();
+  std::size_t builds = sim.counts().neighbour_builds;
   int rebuild_checks = 0, other_checks = 0;
   std::size_t ghosts_max = 0, ghosts_min = SIZE_MAX;
   for (int s = 0; s < steps; ++s) {
     sim.step();
-    const bool rebuilt = sim.neighbour_builds() != builds;
-    builds = sim.neighbour_builds();
+    const bool rebuilt = sim.counts().neighbour_builds != builds;
+    builds = sim.counts().neighbour_builds;
     // A balance check at the end of this step may have changed the map after the rebuild: skip the
     // halo rule then (the next step rebuilds with the new map).
     const bool map_fresh =
@@ -242,8 +242,8 @@ void check_ghosts(const std::string& scene, const std::string& ini, const std::v
     bad = checker.check(rebuilt, map_fresh, false, log);
     report(bad, log, scene + ": step " + std::to_string(sim.step_count()));
     ++(rebuilt && map_fresh ? rebuild_checks : other_checks);
-    ghosts_max = std::max(ghosts_max, sim.ghost_count());
-    ghosts_min = std::min(ghosts_min, sim.ghost_count());
+    ghosts_max = std::max(ghosts_max, sim.state().ghosts);
+    ghosts_min = std::min(ghosts_min, sim.state().ghosts);
   }
   const auto migrated = sim.diagnostics().migrated;
   if (world_rank() == 0)
@@ -255,9 +255,9 @@ void check_ghosts(const std::string& scene, const std::string& ini, const std::v
     if (min_rebuild_checks > 0) {
       EXPECT_GT(migrated, 0) << scene;
     }
-    EXPECT_TRUE(all_ranks(sim.ghost_count() > 0)) << scene << ": a rank holds no ghost";
+    EXPECT_TRUE(all_ranks(sim.state().ghosts > 0)) << scene << ": a rank holds no ghost";
   } else {
-    EXPECT_EQ(sim.ghost_count(), 0u);
+    EXPECT_EQ(sim.state().ghosts, 0u);
   }
 }
 

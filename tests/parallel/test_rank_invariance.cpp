@@ -354,7 +354,7 @@ TEST(RankInvariance, TwoDiscImpactAtBorder) {
 // --- docs/design.md section 6: METIS balance on a strongly non-uniform scene ---------------------------------
 
 // A random pile in the bottom-left quarter of a wide box, settling under gravity; balance checks every 1000
-// steps with forced repartitioning. sim.imbalance() is measured at a check before that check repartitions,
+// steps with forced repartitioning. sim.state().imbalance is measured at a check before that check repartitions,
 // so the value at step 2000 is the quality of the partition made at step 1000 (after the migration).
 // 4 ranks: METIS must reach max/mean <= 1.05; fewer ranks: no worse than the grid blocks.
 TEST(MetisBalance, PileOnWideFloor) {
@@ -402,11 +402,11 @@ force_balance = true
     }
     // The check at step 3000 measures the map of step 2900; step 3001 agrees on it (its reduction).
     for (int s = 1001; s < 3001; ++s) sim.step();
-    imbalance[part] = sim.imbalance();
+    imbalance[part] = sim.state().imbalance;
     if (world_rank() == 0)
       std::cout << "[ balance  ] pile on a wide floor (" << sim.decomposition().grid().nx() << " x "
                 << sim.decomposition().grid().ny() << " cells), " << world_size() << " ranks, " << part
-                << ": imbalance (max/mean of owned discs + booked contact rows) = " << sim.imbalance() << "\n";
+                << ": imbalance (max/mean of owned discs + booked contact rows) = " << sim.state().imbalance << "\n";
   }
   if (world_size() == 4) {
     EXPECT_LE(imbalance["metis"], 1.05) << "METIS imbalance on 4 ranks (grid: " << imbalance["grid"] << ")";
