@@ -92,8 +92,8 @@ void Simulation::walls_and_neighbours(const Integrator::Drift& drift) {
   };
   if (reduction_.due_before_walls()) reduce();
   phases_.lap(PhaseTimes::communication);
-  // Glued discs move after the displacement was measured: this step's wall motion is added (the same on every
-  // rank), as the old order (measure after moving them) had it.
+  // Glued discs move after the displacement was measured: this step's wall motion is added to it (the same on
+  // every rank), so that the neighbour list's bound covers them.
   const double glued = boundaries_.move_walls(walls_, discs_, config_.domain, config_.thickness, dt_);
   if (boundaries_.rough()) disp += glued, moved += glued;
   phases_.lap(PhaseTimes::integrate);

@@ -63,7 +63,6 @@ class ContactTable {
 
   std::size_t size() const { return key.size(); }
   const std::vector<std::string>& slot_names() const { return slot_names_; }
-  bool has_moment() const { return couples_ > 0; }
   // The rolling couple columns: 0, 1 (M1; the couple on disc 2 is -M1) or 2 (M1 and M2).
   int couples() const { return couples_; }
   bool wall_rows() const { return wall_rows_; }

@@ -11,7 +11,7 @@ namespace rondel {
 
 double mode_limit(double omega, double zeta) {
   // sqrt(1 + zeta^2) - zeta = 1 / (sqrt(1 + zeta^2) + zeta): the second form for a huge damping (the first
-  // cancels to 0, or overflows), the first below (the steps of every run so far, bit for bit).
+  // cancels to 0, or overflows), the first below (the form docs/physics.md writes, rounded as it is).
   if (zeta > 1e3) return (2.0 / omega) / (std::hypot(1.0, zeta) + zeta);
   return (2.0 / omega) * (std::sqrt(1.0 + zeta * zeta) - zeta);
 }
