@@ -67,7 +67,7 @@ inline long peak_rss_kib() {
   std::string key;
   long value = 0;
   while (in >> key) {
-    if (key == "VmHWM:") {
+    if (key == "VmHWM:") {  // the kernel's name of the peak resident set in /proc/self/status
       in >> value;
       return value;
     }

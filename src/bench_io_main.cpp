@@ -207,64 +207,68 @@ FileRows time_reads(const std::string& path, std::int64_t step, const rondel::Co
   return rows;
 }
 
+int bench(int argc, char** argv, const rondel::Communicator& comm) {
+  const Options o = parse(argc, argv);
+  long nx = 0, ny = 0;
+  const rondel::Config config = lattice_config(o, nx, ny);
+  // The directory is removed at the end (unless --keep): never one that holds something already.
+  if (comm.any(fs::exists(o.output) && !(fs::is_directory(o.output) && fs::is_empty(o.output))))
+    throw rondel::ConfigError("--output " + o.output + " exists and is not empty; name a new directory");
+
+  auto sim = std::make_unique<rondel::Simulation>(config, comm, true);
+  const auto n = comm.sum(static_cast<std::int64_t>(sim->discs().n_owned()));
+  const double step_time = time_steps(*sim, o, comm);
+  Timing write, write_sync, read, restart;
+  const std::string path = time_writes(*sim, o, comm, write, write_sync);
+  const double file_bytes = comm.sum(comm.root() ? static_cast<double>(fs::file_size(path)) : 0.0);
+  const std::int64_t step = sim->step_count();
+  const WriterPhases phases = time_writer_phases(*sim, o, comm);
+  sim.reset();  // the restart below holds the only copy of the state
+  const Timing raw = time_raw_write(file_bytes, o, comm);
+  const FileRows rows = time_reads(path, step, config, o, comm, read, restart);
+  const double rss = comm.sum(static_cast<double>(rondel::peak_rss_kib()) * 1024.0);
+  if (comm.root()) {
+    const double mb = file_bytes / 1e6;
+    const double interval = static_cast<double>(o.every) * step_time;
+    std::printf(
+        "rondel_bench_io: %lld discs (%ld x %ld square lattice, periodic, wang rolling), %d rank(s), step %lld\n"
+        "  contact rows in the file   %lld disc pairs (%lld carry state), %lld wall rows\n"
+        "  file size                  %.1f MB, %.1f B per disc\n"
+        "  step time                  %.4g s (%ld timed steps after %ld warm-up)\n"
+        "  write_checkpoint           %.3f s median, %.3f s best of %ld: %.0f MB/s\n"
+        "    of which                 order %.3f s, copy into blocks %.3f s, HDF5 %.3f s (medians, slowest rank)\n"
+        "    checkpoint structures    %.1f MB on the largest rank (%.0f B per disc and rank)\n"
+        "  write + sync               %.3f s median: %.0f MB/s\n"
+        "  raw HDF5 write, same bytes %.3f s median: %.0f MB/s (one dataset, no reordering)\n"
+        "  read (file layer)          %.3f s median, %.3f s best: %.0f MB/s\n"
+        "  restart (read + set-up)    %.3f s median, %.3f s best\n"
+        "  checkpoint every %ld steps: %.4g s of steps; write %.3f %%, write + sync %.3f %% overhead\n"
+        "  peak RSS                   %.0f MB over all ranks (%.0f B per disc)\n",
+        static_cast<long long>(n), nx, ny, comm.size(), static_cast<long long>(step),
+        static_cast<long long>(rows.pairs), static_cast<long long>(rows.with_history),
+        static_cast<long long>(rows.walls), mb, file_bytes / static_cast<double>(n), step_time, o.steps, o.warmup,
+        write.median(), write.best(), o.repeat, mb / write.median(), phases.order.median(), phases.columns.median(),
+        phases.hdf5.median(), phases.structure_bytes / 1e6,
+        phases.structure_bytes * comm.size() / static_cast<double>(n), write_sync.median(), mb / write_sync.median(),
+        raw.median(), mb / raw.median(), read.median(), read.best(), mb / read.median(), restart.median(),
+        restart.best(), o.every, interval, 100.0 * write.median() / interval, 100.0 * write_sync.median() / interval,
+        rss / 1e6, rss / static_cast<double>(n));
+  }
+  comm.barrier();
+  if (!o.keep && comm.root()) {
+    std::error_code ec;
+    fs::remove_all(o.output, ec);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   rondel::MpiEnvironment mpi(&argc, &argv);
   rondel::Communicator comm;
   try {
-    const Options o = parse(argc, argv);
-    long nx = 0, ny = 0;
-    const rondel::Config config = lattice_config(o, nx, ny);
-    // The directory is removed at the end (unless --keep): never one that holds something already.
-    if (comm.any(fs::exists(o.output) && !(fs::is_directory(o.output) && fs::is_empty(o.output))))
-      throw rondel::ConfigError("--output " + o.output + " exists and is not empty; name a new directory");
-
-    auto sim = std::make_unique<rondel::Simulation>(config, comm, true);
-    const auto n = comm.sum(static_cast<std::int64_t>(sim->discs().n_owned()));
-    const double step_time = time_steps(*sim, o, comm);
-    Timing write, write_sync, read, restart;
-    const std::string path = time_writes(*sim, o, comm, write, write_sync);
-    const double file_bytes = comm.sum(comm.root() ? static_cast<double>(fs::file_size(path)) : 0.0);
-    const std::int64_t step = sim->step_count();
-    const WriterPhases phases = time_writer_phases(*sim, o, comm);
-    sim.reset();  // the restart below holds the only copy of the state
-    const Timing raw = time_raw_write(file_bytes, o, comm);
-    const FileRows rows = time_reads(path, step, config, o, comm, read, restart);
-    const double rss = comm.sum(static_cast<double>(rondel::peak_rss_kib()) * 1024.0);
-    if (comm.root()) {
-      const double mb = file_bytes / 1e6;
-      const double interval = static_cast<double>(o.every) * step_time;
-      std::printf(
-          "rondel_bench_io: %lld discs (%ld x %ld square lattice, periodic, wang rolling), %d rank(s), step %lld\n"
-          "  contact rows in the file   %lld disc pairs (%lld carry state), %lld wall rows\n"
-          "  file size                  %.1f MB, %.1f B per disc\n"
-          "  step time                  %.4g s (%ld timed steps after %ld warm-up)\n"
-          "  write_checkpoint           %.3f s median, %.3f s best of %ld: %.0f MB/s\n"
-          "    of which                 order %.3f s, copy into blocks %.3f s, HDF5 %.3f s (medians, slowest rank)\n"
-          "    checkpoint structures    %.1f MB on the largest rank (%.0f B per disc and rank)\n"
-          "  write + sync               %.3f s median: %.0f MB/s\n"
-          "  raw HDF5 write, same bytes %.3f s median: %.0f MB/s (one dataset, no reordering)\n"
-          "  read (file layer)          %.3f s median, %.3f s best: %.0f MB/s\n"
-          "  restart (read + set-up)    %.3f s median, %.3f s best\n"
-          "  checkpoint every %ld steps: %.4g s of steps; write %.3f %%, write + sync %.3f %% overhead\n"
-          "  peak RSS                   %.0f MB over all ranks (%.0f B per disc)\n",
-          static_cast<long long>(n), nx, ny, comm.size(), static_cast<long long>(step),
-          static_cast<long long>(rows.pairs), static_cast<long long>(rows.with_history),
-          static_cast<long long>(rows.walls), mb, file_bytes / static_cast<double>(n), step_time, o.steps, o.warmup,
-          write.median(), write.best(), o.repeat, mb / write.median(), phases.order.median(), phases.columns.median(),
-          phases.hdf5.median(), phases.structure_bytes / 1e6,
-          phases.structure_bytes * comm.size() / static_cast<double>(n), write_sync.median(), mb / write_sync.median(),
-          raw.median(), mb / raw.median(), read.median(), read.best(), mb / read.median(), restart.median(),
-          restart.best(), o.every, interval, 100.0 * write.median() / interval, 100.0 * write_sync.median() / interval,
-          rss / 1e6, rss / static_cast<double>(n));
-    }
-    comm.barrier();
-    if (!o.keep && comm.root()) {
-      std::error_code ec;
-      fs::remove_all(o.output, ec);
-    }
-    return 0;
+    return bench(argc, argv, comm);
   } catch (const std::exception& e) {
     const std::string message = e.what();  // errors of this command name it already, others get its name
     if (comm.root())

@@ -162,161 +162,207 @@ void box_of(const std::string& file, double& lo, double& hi) {
   throw rondel::InputError("rondel_bench: '" + file + "' has no 'Periodic box x, y in [lo, hi]' comment");
 }
 
+// Memory bandwidth first, while no simulation holds memory: every rank at once, each pass timed by the slowest
+// rank, the ranks' shares summed. `peak_reset`: the peak RSS printed later is the simulation's.
+constexpr std::size_t kTriadBytes = std::size_t{128} << 20;  // each of the three arrays
+constexpr int kTriadRepeats = 5;
+double measure_bandwidth(const Options& o, const rondel::Communicator& comm, bool& peak_reset) {
+  peak_reset = true;
+  if (o.no_stream) return 0.0;
+  const double bandwidth = comm.sum(rondel::stream_triad_bandwidth(kTriadBytes, kTriadRepeats, [&comm](double seconds) {
+    comm.barrier();
+    return comm.max(seconds);
+  }));
+  peak_reset = rondel::reset_peak_rss();
+  return bandwidth;
+}
+
+// The benchmark's INI text for nx x ny copies of the packing `file` of period [lo, hi].
+std::string bench_ini(const Options& o, long nx, long ny, double lo, double hi) {
+  const double L = hi - lo;
+  char ini[4096];
+  std::snprintf(ini, sizeof ini,
+                "[run]\ndt = 3e-4\nsteps = 0\n[domain]\nxlo = %.17g\nxhi = %.17g\nylo = %.17g\nyhi = %.17g\n"
+                "periodic_x = true\nperiodic_y = true\n[material]\ndensity = 1\n[linear]\nk_n = 1e5\nzeta = 0.3\n"
+                "[coulomb]\nk_s = 28571.43\nmu = 0.5\n[scene]\ntype = csv\nfile = %s\nreplicate_x = %ld\n"
+                "replicate_y = %ld\nmax_initial_overlap = 0.2\n",
+                lo, lo + static_cast<double>(nx) * L, lo, lo + static_cast<double>(ny) * L, o.file.c_str(), nx, ny);
+  return std::string(ini) + (o.skin.empty() ? "" : "[neighbour]\nskin = " + o.skin + "\n");
+}
+
+// The timed steps: of `sim` alone, or with --against alternating with `other` in chunks, A B B A A B ..., so that a
+// slow spell of a shared machine falls on both (each pair's ratio is kept). Each chunk timed by the slowest rank.
+struct Timed {
+  double secs = 0.0, other_secs = 0.0;
+  std::vector<double> pair_ratios;  // this law's rate over the other's, per chunk pair
+};
+Timed run_timed(const Options& o, rondel::Simulation& sim, rondel::Simulation* other,
+                const rondel::Communicator& comm) {
+  const auto timed = [&comm](rondel::Simulation& s, long steps) {
+    comm.barrier();
+    const auto t = std::chrono::steady_clock::now();
+    s.advance(steps, [] { return std::int64_t{0}; });
+    return comm.max(std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count());
+  };
+  Timed out;
+  if (!other) {
+    out.secs = timed(sim, o.steps);
+    return out;
+  }
+  bool first = true;
+  for (long done = 0; done < o.steps; done += o.chunk, first = !first) {
+    const long c = std::min(o.chunk, o.steps - done);
+    double a = 0.0, b = 0.0;
+    if (first) {
+      a = timed(sim, c), b = timed(*other, c);
+    } else {
+      b = timed(*other, c), a = timed(sim, c);
+    }
+    out.secs += a, out.other_secs += b;
+    out.pair_ratios.push_back(b / a);
+  }
+  return out;
+}
+
+// What the report prints, summed over the ranks.
+struct Measured {
+  double n = 0, contacts = 0, rows = 0, wall_rows = 0, twice = 0, ghosts = 0, comm_time = 0, store = 0, rss = 0;
+  bool peak_reset = true;
+  std::array<double, rondel::PhaseTimes::count> phase{};  // the timed steps' rank-seconds per phase
+  double rank_seconds = 0, bytes = 0, bandwidth = 0;
+  std::size_t builds = 0;
+  rondel::TrafficModel model{};
+};
+Measured measure(const rondel::Simulation& sim, const rondel::Communicator& comm, const Timed& t, double comm_before,
+                 const rondel::PhaseTimes& phases0, std::size_t builds0) {
+  long contacts = 0, border = 0;
+  for (std::size_t r = 0; r < sim.pairs().size(); ++r) {
+    const bool booked = static_cast<std::size_t>(sim.pairs().i1[r]) < sim.discs().n_owned();
+    if (booked && sim.pairs().F_n[r] > 0.0) ++contacts;
+    if (!booked) ++border;  // computed here for a disc we own, booked by the other rank too
+  }
+  Measured m;
+  m.n = static_cast<double>(comm.sum(static_cast<std::int64_t>(sim.discs().n_owned())));
+  m.contacts = static_cast<double>(comm.sum(static_cast<std::int64_t>(contacts)));
+  m.rows = comm.sum(static_cast<double>(sim.pairs().size()));
+  m.wall_rows = comm.sum(static_cast<double>(sim.wall_rows().size()));
+  m.twice = comm.sum(static_cast<double>(border));
+  m.ghosts = comm.sum(static_cast<double>(sim.state().ghosts));
+  m.comm_time = comm.max(sim.comm_seconds() - comm_before);
+  m.store = comm.sum(
+      static_cast<double>(sim.discs().memory_bytes() + sim.pairs().memory_bytes() + sim.wall_rows().memory_bytes()));
+  m.rss = comm.sum(static_cast<double>(rondel::peak_rss_kib()) * 1024.0);
+  for (int p = 0; p < rondel::PhaseTimes::count; ++p) {
+    const auto ph = static_cast<rondel::PhaseTimes::Phase>(p);
+    m.phase[p] = comm.sum(sim.phases().seconds(ph) - phases0.seconds(ph));
+  }
+  m.rank_seconds = comm.sum(t.secs);
+  m.model = rondel::traffic_model(sim.pairs());
+  const rondel::TrafficModel wall_model = rondel::traffic_model(sim.wall_rows());
+  m.bytes = m.model.per_disc_step(m.rows / m.n, m.ghosts / m.n) + m.wall_rows / m.n * wall_model.row_bytes();
+  m.builds = sim.counts().neighbour_builds - builds0;
+  return m;
+}
+
+void print_report(const Options& o, long nx, long ny, const rondel::Simulation& sim, const Timed& t, const Measured& m,
+                  bool against) {
+  const int ranks = sim.state().comm.size();
+  const double n = m.n, rate = n * static_cast<double>(o.steps) / t.secs;
+  std::printf(
+      "rondel_bench: %ld discs (%ld x %ld copies), rolling %s, %ld timed steps (after %ld warm-up), dt %.3g s "
+      "(critical %.3g s, %s mode), %d rank(s)\n"
+      "  wall time             %.3f s\n  disc-steps per second %.4g\n"
+      "  contacts per disc     %.3f (coordination %.3f)\n  candidate rows/disc   %.3f\n"
+      "  neighbour builds      %zu\n  memory per disc       %.0f B in discs and contact rows, %.0f B peak RSS%s\n"
+      "  communication         %.3f s (%.1f %% of the wall time, slowest rank)\n"
+      "  ghosts per disc       %.4f\n  rows computed twice   %.2f %% of all rows (border pairs)\n",
+      o.discs, nx, ny, o.rolling.c_str(), o.steps, o.warmup, sim.state().dt, sim.critical().dt,
+      sim.critical().mode.c_str(), ranks, t.secs, rate, m.contacts / n, 2.0 * m.contacts / n, m.rows / n, m.builds,
+      m.store / n, m.rss / n,
+      against        ? " (of both simulations: --against)"
+      : m.peak_reset ? ""
+                     : " (with the triad's arrays: use --no-stream)",
+      m.comm_time, 100.0 * m.comm_time / t.secs, m.ghosts / n, 100.0 * m.twice / m.rows);
+  // Per phase: the mean over the ranks, and its share of the mean wall time.
+  if (ranks > 1) std::printf("  the phases below: mean over the %d ranks\n", ranks);
+  for (int p = 0; p < rondel::PhaseTimes::count; ++p)
+    std::printf("  phase %-15s %.3f s (%.1f %%)\n", rondel::PhaseTimes::name(static_cast<rondel::PhaseTimes::Phase>(p)),
+                m.phase[p] / ranks, m.rank_seconds > 0.0 ? 100.0 * m.phase[p] / m.rank_seconds : 0.0);
+  const double contact_steps = m.contacts * static_cast<double>(o.steps);
+  if (contact_steps > 0.0)
+    std::printf("  ns per contact-step   %.2f in the force phase, %.2f in all (rank-seconds / contacts x steps)\n",
+                1e9 * m.phase[rondel::PhaseTimes::force] / contact_steps, 1e9 * m.rank_seconds / contact_steps);
+}
+
+// --against: the second law's rate, and the ratio per chunk pair (median, range) and of the totals. Not "disc-steps
+// per second": tools/bench_pairs.sh reads the one line that says so.
+void print_against(const Options& o, const Timed& t, double n) {
+  std::vector<double> sorted = t.pair_ratios;
+  std::sort(sorted.begin(), sorted.end());
+  const std::size_t m = sorted.size();
+  const double median = m % 2 ? sorted[m / 2] : 0.5 * (sorted[m / 2 - 1] + sorted[m / 2]);
+  std::printf("  against %-13s %.4g disc-steps/s, the same steps in %zu chunk pairs of %ld (A B B A ...)\n",
+              o.against.c_str(), n * static_cast<double>(o.steps) / t.other_secs, m, o.chunk);
+  std::printf("  rate %s / %s: %.3f median of the pairs (%.3f to %.3f), %.3f of the totals\n", o.rolling.c_str(),
+              o.against.c_str(), median, sorted.front(), sorted.back(), t.other_secs / t.secs);
+}
+
+// The memory bandwidth, the model of the bytes a step moves per disc and the bound the two give.
+void print_bandwidth(const Options& o, const Measured& m, double rate, int ranks) {
+  if (o.no_stream)
+    std::printf("  stream triad          not measured (--no-stream)\n");
+  else
+    std::printf("  stream triad          %.2f GB/s (3 arrays of %zu MiB per rank, best of %d; %s)\n",
+                1e-9 * m.bandwidth, kTriadBytes >> 20, kTriadRepeats,
+                ranks > 1 ? "every rank at once, summed" : "1 rank");
+  std::printf("  bytes per disc-step (model) %.0f B (%.3f rows x %.0f B, discs %.0f B, %.4f ghosts x %.0f B)\n",
+              m.bytes, m.rows / m.n, m.model.row_bytes(), m.model.disc_bytes(), m.ghosts / m.n, m.model.ghost_bytes());
+  if (o.no_stream) return;
+  const double bound = m.bandwidth / m.bytes;
+  std::printf("  bandwidth bound       %.4g disc-steps/s (triad bandwidth / bytes per disc-step)\n", bound);
+  std::printf("  measured / bound      %.3f\n", rate / bound);
+}
+
+int bench(int argc, char** argv, const rondel::Communicator& comm) {
+  Options o = parse(argc, argv);
+  if (o.file.empty()) o.file = default_packing();
+  const auto [nx, ny] = copies_of(o.discs, count_discs(o.file));
+  double lo = 0, hi = 0;
+  box_of(o.file, lo, hi);
+  bool peak_reset = true;
+  const double bandwidth = measure_bandwidth(o, comm, peak_reset);
+  const std::string ini = bench_ini(o, nx, ny, lo, hi);
+  const auto config_of = [&](const std::string& law, const char* option) {
+    return rondel::parse_config_text(ini + rolling_block(law, option));
+  };
+  rondel::Simulation sim(config_of(o.rolling, "--rolling"), comm, false);
+  // --against: the second law's simulation of the same discs, held beside the first.
+  std::unique_ptr<rondel::Simulation> other;
+  if (!o.against.empty()) other = std::make_unique<rondel::Simulation>(config_of(o.against, "--against"), comm, false);
+  // The steps as a run takes them between outputs (Simulation::advance; no stop requests here).
+  const auto no_stop = [] { return std::int64_t{0}; };
+  sim.advance(o.warmup, no_stop);
+  if (other) other->advance(o.warmup, no_stop);
+  const std::size_t builds0 = sim.counts().neighbour_builds;
+  const double comm_before = sim.comm_seconds();
+  const rondel::PhaseTimes phases0 = sim.phases();
+  const Timed t = run_timed(o, sim, other.get(), comm);
+  Measured m = measure(sim, comm, t, comm_before, phases0, builds0);
+  m.peak_reset = !comm.any(!peak_reset), m.bandwidth = bandwidth;
+  if (!comm.root()) return 0;
+  print_report(o, nx, ny, sim, t, m, other != nullptr);
+  if (other) print_against(o, t, m.n);
+  print_bandwidth(o, m, m.n * static_cast<double>(o.steps) / t.secs, comm.size());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   rondel::MpiEnvironment mpi(&argc, &argv);
   rondel::Communicator comm;
   try {
-    Options o = parse(argc, argv);
-    if (o.file.empty()) o.file = default_packing();
-    const auto [nx, ny] = copies_of(o.discs, count_discs(o.file));
-    double lo = 0, hi = 0;
-    box_of(o.file, lo, hi);
-    // Memory bandwidth first, while no simulation holds memory: every rank at once, each pass timed by the
-    // slowest rank, the ranks' shares summed.
-    constexpr std::size_t kTriadBytes = std::size_t{128} << 20;  // each of the three arrays
-    constexpr int kTriadRepeats = 5;
-    double bandwidth = 0.0;
-    bool peak_reset = true;  // the peak RSS printed is the simulation's, not the triad arrays'
-    if (!o.no_stream) {
-      bandwidth = comm.sum(rondel::stream_triad_bandwidth(kTriadBytes, kTriadRepeats, [&comm](double seconds) {
-        comm.barrier();
-        return comm.max(seconds);
-      }));
-      peak_reset = rondel::reset_peak_rss();
-    }
-    const double L = hi - lo;
-    char ini[4096];
-    std::snprintf(ini, sizeof ini,
-                  "[run]\ndt = 3e-4\nsteps = 0\n[domain]\nxlo = %.17g\nxhi = %.17g\nylo = %.17g\nyhi = %.17g\n"
-                  "periodic_x = true\nperiodic_y = true\n[material]\ndensity = 1\n[linear]\nk_n = 1e5\nzeta = 0.3\n"
-                  "[coulomb]\nk_s = 28571.43\nmu = 0.5\n[scene]\ntype = csv\nfile = %s\nreplicate_x = %ld\n"
-                  "replicate_y = %ld\nmax_initial_overlap = 0.2\n",
-                  lo, lo + static_cast<double>(nx) * L, lo, lo + static_cast<double>(ny) * L, o.file.c_str(), nx, ny);
-    const auto config_of = [&](const std::string& law, const char* option) {
-      return rondel::parse_config_text(std::string(ini) + rolling_block(law, option) +
-                                       (o.skin.empty() ? "" : "[neighbour]\nskin = " + o.skin + "\n"));
-    };
-    rondel::Simulation sim(config_of(o.rolling, "--rolling"), comm, false);
-    // --against: the second law's simulation of the same discs, held beside the first.
-    std::unique_ptr<rondel::Simulation> other;
-    if (!o.against.empty())
-      other = std::make_unique<rondel::Simulation>(config_of(o.against, "--against"), comm, false);
-    // The steps as a run takes them between outputs (Simulation::advance; no stop requests here).
-    const auto no_stop = [] { return std::int64_t{0}; };
-    sim.advance(o.warmup, no_stop);
-    if (other) other->advance(o.warmup, no_stop);
-    const std::size_t builds0 = sim.counts().neighbour_builds;
-    const double comm_before = sim.comm_seconds();
-    const rondel::PhaseTimes phases0 = sim.phases();
-    // Timed by the slowest rank. With --against the two simulations take the timed steps in alternating chunks,
-    // A B B A A B ..., so that a slow spell of a shared machine falls on both; each pair's ratio is kept.
-    const auto timed = [&comm](rondel::Simulation& s, long steps) {
-      comm.barrier();
-      const auto t = std::chrono::steady_clock::now();
-      s.advance(steps, [] { return std::int64_t{0}; });
-      return comm.max(std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count());
-    };
-    double secs = 0.0, other_secs = 0.0;
-    std::vector<double> pair_ratios;  // this law's rate over the other's, per chunk pair
-    if (!other) {
-      secs = timed(sim, o.steps);
-    } else {
-      bool first = true;
-      for (long done = 0; done < o.steps; done += o.chunk, first = !first) {
-        const long c = std::min(o.chunk, o.steps - done);
-        double a = 0.0, b = 0.0;
-        if (first) {
-          a = timed(sim, c), b = timed(*other, c);
-        } else {
-          b = timed(*other, c), a = timed(sim, c);
-        }
-        secs += a, other_secs += b;
-        pair_ratios.push_back(b / a);
-      }
-    }
-    long contacts = 0, border = 0;
-    for (std::size_t r = 0; r < sim.pairs().size(); ++r) {
-      const bool booked = static_cast<std::size_t>(sim.pairs().i1[r]) < sim.discs().n_owned();
-      if (booked && sim.pairs().F_n[r] > 0.0) ++contacts;
-      if (!booked) ++border;  // computed here for a disc we own, booked by the other rank too
-    }
-    const double n = static_cast<double>(comm.sum(static_cast<std::int64_t>(sim.discs().n_owned())));
-    const double all_contacts = static_cast<double>(comm.sum(static_cast<std::int64_t>(contacts)));
-    const double rows = comm.sum(static_cast<double>(sim.pairs().size()));
-    const double wall_rows = comm.sum(static_cast<double>(sim.wall_rows().size()));
-    const double twice = comm.sum(static_cast<double>(border));
-    const double ghosts = comm.sum(static_cast<double>(sim.state().ghosts));
-    const double comm_time = comm.max(sim.comm_seconds() - comm_before);
-    const double store = comm.sum(
-        static_cast<double>(sim.discs().memory_bytes() + sim.pairs().memory_bytes() + sim.wall_rows().memory_bytes()));
-    const double rss = comm.sum(static_cast<double>(rondel::peak_rss_kib()) * 1024.0);
-    peak_reset = !comm.any(!peak_reset);
-    // The timed steps' seconds per phase, summed over the ranks (rank-seconds).
-    std::array<double, rondel::PhaseTimes::count> phase{};
-    for (int p = 0; p < rondel::PhaseTimes::count; ++p) {
-      const auto ph = static_cast<rondel::PhaseTimes::Phase>(p);
-      phase[p] = comm.sum(sim.phases().seconds(ph) - phases0.seconds(ph));
-    }
-    const double rank_seconds = comm.sum(secs);
-    const rondel::TrafficModel model = rondel::traffic_model(sim.pairs());
-    const rondel::TrafficModel wall_model = rondel::traffic_model(sim.wall_rows());
-    const double bytes = model.per_disc_step(rows / n, ghosts / n) + wall_rows / n * wall_model.row_bytes();
-    if (comm.root()) {
-      const double rate = n * static_cast<double>(o.steps) / secs;
-      std::printf(
-          "rondel_bench: %ld discs (%ld x %ld copies), rolling %s, %ld timed steps (after %ld warm-up), dt %.3g s "
-          "(critical %.3g s, %s mode), %d rank(s)\n"
-          "  wall time             %.3f s\n  disc-steps per second %.4g\n"
-          "  contacts per disc     %.3f (coordination %.3f)\n  candidate rows/disc   %.3f\n"
-          "  neighbour builds      %zu\n  memory per disc       %.0f B in discs and contact rows, %.0f B peak RSS%s\n"
-          "  communication         %.3f s (%.1f %% of the wall time, slowest rank)\n"
-          "  ghosts per disc       %.4f\n  rows computed twice   %.2f %% of all rows (border pairs)\n",
-          o.discs, nx, ny, o.rolling.c_str(), o.steps, o.warmup, sim.dt(), sim.critical().dt,
-          sim.critical().mode.c_str(), comm.size(), secs, rate, all_contacts / n, 2.0 * all_contacts / n, rows / n,
-          sim.counts().neighbour_builds - builds0, store / n, rss / n,
-          other        ? " (of both simulations: --against)"
-          : peak_reset ? ""
-                       : " (with the triad's arrays: use --no-stream)",
-          comm_time, 100.0 * comm_time / secs, ghosts / n, 100.0 * twice / rows);
-      // Per phase: the mean over the ranks, and its share of the mean wall time.
-      const double ranks = comm.size();
-      if (comm.size() > 1) std::printf("  the phases below: mean over the %d ranks\n", comm.size());
-      for (int p = 0; p < rondel::PhaseTimes::count; ++p)
-        std::printf("  phase %-15s %.3f s (%.1f %%)\n",
-                    rondel::PhaseTimes::name(static_cast<rondel::PhaseTimes::Phase>(p)), phase[p] / ranks,
-                    rank_seconds > 0.0 ? 100.0 * phase[p] / rank_seconds : 0.0);
-      const double contact_steps = all_contacts * static_cast<double>(o.steps);
-      if (contact_steps > 0.0)
-        std::printf("  ns per contact-step   %.2f in the force phase, %.2f in all (rank-seconds / contacts x steps)\n",
-                    1e9 * phase[rondel::PhaseTimes::force] / contact_steps, 1e9 * rank_seconds / contact_steps);
-      if (other) {
-        std::vector<double> sorted = pair_ratios;
-        std::sort(sorted.begin(), sorted.end());
-        const std::size_t m = sorted.size();
-        const double median = m % 2 ? sorted[m / 2] : 0.5 * (sorted[m / 2 - 1] + sorted[m / 2]);
-        // Not "disc-steps per second": tools/bench_pairs.sh reads the one line that says so.
-        std::printf("  against %-13s %.4g disc-steps/s, the same steps in %zu chunk pairs of %ld (A B B A ...)\n",
-                    o.against.c_str(), n * static_cast<double>(o.steps) / other_secs, m, o.chunk);
-        std::printf("  rate %s / %s: %.3f median of the pairs (%.3f to %.3f), %.3f of the totals\n", o.rolling.c_str(),
-                    o.against.c_str(), median, sorted.front(), sorted.back(), other_secs / secs);
-      }
-      if (o.no_stream)
-        std::printf("  stream triad          not measured (--no-stream)\n");
-      else
-        std::printf("  stream triad          %.2f GB/s (3 arrays of %zu MiB per rank, best of %d; %s)\n",
-                    1e-9 * bandwidth, kTriadBytes >> 20, kTriadRepeats,
-                    comm.size() > 1 ? "every rank at once, summed" : "1 rank");
-      std::printf("  bytes per disc-step (model) %.0f B (%.3f rows x %.0f B, discs %.0f B, %.4f ghosts x %.0f B)\n",
-                  bytes, rows / n, model.row_bytes(), model.disc_bytes(), ghosts / n, model.ghost_bytes());
-      if (!o.no_stream) {
-        const double bound = bandwidth / bytes;
-        std::printf("  bandwidth bound       %.4g disc-steps/s (triad bandwidth / bytes per disc-step)\n", bound);
-        std::printf("  measured / bound      %.3f\n", rate / bound);
-      }
-    }
-    return 0;
+    return bench(argc, argv, comm);
   } catch (const std::exception& e) {
     if (comm.root()) std::cerr << e.what() << '\n';
     return 1;

@@ -30,7 +30,7 @@ std::string resume_directory(int argc, char** argv, bool& has_file) {
   has_file = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--resume" && i + 1 < argc)
+    if (a == "--resume" && i + 1 < argc)  // read before the configuration, which it may come from
       dir = argv[++i];
     else if (a.rfind("--resume=", 0) == 0)
       dir = a.substr(9);

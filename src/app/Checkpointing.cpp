@@ -10,6 +10,7 @@
 #include <limits>
 #include <sstream>
 
+#include "app/OutputNames.hpp"
 #include "core/Errors.hpp"
 #include "core/WallKinds.hpp"
 #include "parallel/Agreement.hpp"
@@ -19,13 +20,15 @@ namespace rondel {
 namespace fs = std::filesystem;
 
 namespace {
-// The files <prefix>*.h5 of `dir`, in ascending name order (= ascending step: the step is zero-padded).
-std::vector<fs::path> h5_files(const fs::path& dir, const char* prefix) {
+// Whether `path` is a file <kind>_<anything>.h5.
+bool state_file_of(const fs::path& path, const char* kind) {
+  return path.filename().string().rfind(std::string(kind) + "_", 0) == 0 && path.extension() == output::kStateExtension;
+}
+// The files <kind>_*.h5 of `dir`, in ascending name order (= ascending step: the step is zero-padded).
+std::vector<fs::path> h5_files(const fs::path& dir, const char* kind) {
   std::vector<fs::path> found;
-  for (const auto& e : fs::directory_iterator(dir)) {
-    const std::string n = e.path().filename().string();
-    if (n.rfind(prefix, 0) == 0 && e.path().extension() == ".h5") found.push_back(e.path());
-  }
+  for (const auto& e : fs::directory_iterator(dir))
+    if (state_file_of(e.path(), kind)) found.push_back(e.path());
   std::sort(found.begin(), found.end());
   return found;
 }
@@ -43,18 +46,18 @@ Checkpointing::Checkpointing(std::string directory, int keep, bool verify, std::
 
 std::string Checkpointing::file_name(const char* prefix, std::int64_t step) {
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%s_%010lld.h5", prefix, static_cast<long long>(step));
+  std::snprintf(buf, sizeof buf, "%s_%010lld%s", prefix, static_cast<long long>(step), output::kStateExtension);
   return buf;
 }
 
 std::string Checkpointing::write_checkpoint(const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
                                             const ContactTable& wall_rows, const WallSet& walls, double wall_seconds) {
-  const fs::path final_path = fs::path(dir_) / file_name("checkpoint", header.step);
+  const fs::path final_path = fs::path(dir_) / file_name(output::kCheckpoint, header.step);
   // Hidden and never matched by checkpoint_*.h5 until complete; a name of its own per attempt (rank 0's
   // process id and a counter), so that nothing a killed attempt left behind (the file, or an MPI-IO lock
   // named after it) is met again.
   std::string part_name = ".";
-  part_name += file_name("checkpoint", header.step);
+  part_name += file_name(output::kCheckpoint, header.step);
   part_name += '.';  // appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on a + chain
   part_name += std::to_string(token_);
   part_name += '-';
@@ -84,7 +87,7 @@ std::string Checkpointing::write_checkpoint(const StateHeader& header, DiscStore
     if (!comm_.root()) return;
     try {
       fs::rename(part, final_path);
-      const std::vector<fs::path> existing = h5_files(dir_, "checkpoint_");
+      const std::vector<fs::path> existing = h5_files(dir_, output::kCheckpoint);
       for (std::size_t k = 0; k + static_cast<std::size_t>(keep_) < existing.size(); ++k) fs::remove(existing[k]);
     } catch (const fs::filesystem_error& e) {
       throw IoError("checkpoint " + final_path.string() + ": " + e.what());
@@ -96,7 +99,7 @@ std::string Checkpointing::write_checkpoint(const StateHeader& header, DiscStore
 void Checkpointing::adopt_snapshots(std::int64_t step) {
   snapshots_.clear();
   std::vector<fs::path> later;
-  for (const fs::path& p : h5_files(dir_, "snapshot_")) {
+  for (const fs::path& p : h5_files(dir_, output::kSnapshot)) {
     try {
       const StateHeader h = read_state_header(p.string(), comm_);
       if (h.step > step) {
@@ -114,7 +117,7 @@ void Checkpointing::adopt_snapshots(std::int64_t step) {
   if (!comm_.root()) return;
   // What a killed checkpoint attempt left (its temporary file) goes.
   for (const auto& e : fs::directory_iterator(dir_))
-    if (e.path().filename().string().rfind(".checkpoint_", 0) == 0) fs::remove(e.path());
+    if (e.path().filename().string().rfind(output::kHiddenCheckpoint, 0) == 0) fs::remove(e.path());
   if (later.empty()) return;
   for (const fs::path& p : later) fs::remove(p);
   write_xdmf();
@@ -124,16 +127,15 @@ void Checkpointing::remove_old_files() const {
   if (!comm_.root()) return;
   for (const auto& e : fs::directory_iterator(dir_)) {
     const std::string n = e.path().filename().string();
-    const bool ours =
-        ((n.rfind("checkpoint_", 0) == 0 || n.rfind("snapshot_", 0) == 0) && e.path().extension() == ".h5") ||
-        n.rfind(".checkpoint_", 0) == 0 || n == "snapshots.xdmf" || n == ".snapshots.xdmf.part";
+    const bool ours = state_file_of(e.path(), output::kCheckpoint) || state_file_of(e.path(), output::kSnapshot) ||
+                      n.rfind(output::kHiddenCheckpoint, 0) == 0 || n == output::kXdmf || n == output::kXdmfPart;
     if (ours) fs::remove(e.path());
   }
 }
 
 std::string Checkpointing::write_snapshot(const StateHeader& header, DiscStore& discs, const WallSet& walls,
                                           std::int64_t n_discs) {
-  const std::string name = file_name("snapshot", header.step);
+  const std::string name = file_name(output::kSnapshot, header.step);
   const ContactTable none;
   writer_.write((fs::path(dir_) / name).string(), header, discs, none, none, walls, comm_, fields_, 0.0);
   std::vector<std::string> written = fields_;
@@ -233,7 +235,7 @@ void Checkpointing::write_xdmf() const {
   }
   x << "  </Grid>\n </Domain>\n</Xdmf>\n";
   // Written whole under a temporary name and renamed: a reader never sees half a series.
-  const fs::path path = fs::path(dir_) / "snapshots.xdmf", part = fs::path(dir_) / ".snapshots.xdmf.part";
+  const fs::path path = fs::path(dir_) / output::kXdmf, part = fs::path(dir_) / output::kXdmfPart;
   std::ofstream out(part);
   out << x.str();
   out.close();
@@ -249,7 +251,7 @@ void Checkpointing::write_xdmf() const {
 std::string Checkpointing::newest_checkpoint(const std::string& directory, const Communicator& comm,
                                              std::vector<std::string>* skipped) {
   std::vector<fs::path> found;
-  if (fs::is_directory(directory)) found = h5_files(directory, "checkpoint_");
+  if (fs::is_directory(directory)) found = h5_files(directory, output::kCheckpoint);
   std::reverse(found.begin(), found.end());  // newest first
   std::vector<std::string> reasons;
   for (const fs::path& p : found) {

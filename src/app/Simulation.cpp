@@ -6,6 +6,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "app/OutputNames.hpp"
 #include "app/Reports.hpp"
 #include "app/Restart.hpp"
 #include "app/RowGeometry.hpp"
@@ -351,13 +352,13 @@ std::string Simulation::write_checkpoint() {
   settle_errors();
   if (!files_.has_directory())
     throw ConfigError("a checkpoint needs an output directory (this simulation writes no files)");
-  return files_.write_checkpoint(Restart::header(state(), "checkpoint"), discs_, pairs_, wall_rows_, walls_);
+  return files_.write_checkpoint(Restart::header(state(), output::kCheckpoint), discs_, pairs_, wall_rows_, walls_);
 }
 
 void Simulation::write_snapshot() {
   settle_errors();
   const auto n = comm_.sum(static_cast<std::int64_t>(discs_.n_owned()));
-  files_.write_snapshot(Restart::header(state(), "snapshot"), discs_, walls_, n);
+  files_.write_snapshot(Restart::header(state(), output::kSnapshot), discs_, walls_, n);
 }
 
 RunState Simulation::state() const {

@@ -107,8 +107,8 @@ namespace config {
 void declare_material_keys(po::options_description& d, std::vector<KeySpec>& keys, const std::string& prefix,
                            bool named, std::vector<KeyReader<Material>>* readers) {
   static constexpr Choice<Material::Body> kBodies[] = {
-      {"disc", Material::Body::disc, "m = rho pi R^2 t, I = m R^2/2"},
-      {"sphere", Material::Body::sphere, "m = 4/3 pi rho R^3, I = 2/5 m R^2"}};
+      {kBodyNames[0].name, kBodyNames[0].body, "m = rho pi R^2 t, I = m R^2/2"},
+      {kBodyNames[1].name, kBodyNames[1].body, "m = 4/3 pi rho R^3, I = 2/5 m R^2"}};
   const std::string p = prefix + ".";
   KeyTable<Material> table(d, keys, readers);
   if (named)

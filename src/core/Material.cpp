@@ -25,9 +25,12 @@ std::vector<Material> parse_material_table(const std::string& text) {
     std::istringstream f(line);
     Material m;
     std::string body, v[4];
-    if (!(f >> m.name >> body >> v[0] >> v[1] >> v[2] >> v[3]) || (body != "disc" && body != "sphere"))
-      throw std::invalid_argument("malformed material line '" + line + "'");
-    m.body = body == "disc" ? Material::Body::disc : Material::Body::sphere;
+    const BodyName* named = nullptr;
+    if (f >> m.name >> body >> v[0] >> v[1] >> v[2] >> v[3])
+      for (const BodyName& b : kBodyNames)
+        if (body == b.name) named = &b;
+    if (!named) throw std::invalid_argument("malformed material line '" + line + "'");
+    m.body = named->body;
     double* dst[4] = {&m.density, &m.thickness, &m.youngs_modulus, &m.poisson_ratio};
     for (int k = 0; k < 4; ++k) *dst[k] = std::strtod(v[k].c_str(), nullptr);
     out.push_back(m);

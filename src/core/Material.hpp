@@ -29,7 +29,13 @@ struct Material {
   bool operator==(const Material&) const = default;
 };
 
-inline const char* body_name(Material::Body b) { return b == Material::Body::disc ? "disc" : "sphere"; }
+// The bodies by name (material.body, the material table of a file).
+struct BodyName {
+  Material::Body body;
+  const char* name;
+};
+inline constexpr BodyName kBodyNames[] = {{Material::Body::disc, "disc"}, {Material::Body::sphere, "sphere"}};
+inline const char* body_name(Material::Body b) { return kBodyNames[b == Material::Body::disc ? 0 : 1].name; }
 
 // The index of the material named `name` in `materials`; -1 when none has it.
 inline int material_index(const std::vector<Material>& materials, const std::string& name) {

@@ -16,7 +16,7 @@ std::uint64_t physical_memory() {
   std::ifstream in("/proc/meminfo");
   for (std::string name; in >> name;) {
     std::uint64_t kb = 0;
-    if (name == "MemTotal:" && in >> kb) return kb * 1024;
+    if (name == "MemTotal:" && in >> kb) return kb * 1024;  // the field of /proc/meminfo
     in.ignore(1 << 12, '\n');
   }
   return 0;

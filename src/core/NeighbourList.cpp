@@ -39,17 +39,13 @@ long NeighbourList::bin_of(int cx, int cy) const {
   return static_cast<long>(y - rows_.begin()) * static_cast<long>(columns_.size()) + (x - columns_.begin());
 }
 
-void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet& walls, const ContactParamTable& params,
-                          ContactTable& pairs, ContactTable& wall_rows) {
-  double R_max = 0.0;
-  for (double R : discs.radius) R_max = std::max(R_max, R);
-  bin(discs, domain, R_max);
+std::vector<NeighbourList::Candidate> NeighbourList::candidates(const DiscStore& discs, const Domain& domain,
+                                                                std::size_t expected) const {
+  // About as many as the rows held now: reserved so that the list does not double past its size (the rebuild's
+  // peak memory is the old rows, the new rows and this list).
+  std::vector<Candidate> found;
+  found.reserve(expected + expected / 16 + 64);
   const std::size_t n_owned = discs.n_owned();
-
-  // The candidates, about as many as the rows held now: reserved so that the list does not double past its
-  // size (the rebuild's peak memory is the old rows, the new rows and this list).
-  std::vector<std::tuple<ContactKey, std::int32_t, std::int32_t>> found;
-  found.reserve(pairs.size() + pairs.size() / 16 + 64);
   std::vector<std::size_t> around;
   for (std::size_t c = 0; c + 1 < cell_start_.size(); ++c) {
     if (cell_start_[c] == cell_start_[c + 1]) continue;
@@ -78,7 +74,16 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
     }
   }
   std::sort(found.begin(), found.end(), [](const auto& x, const auto& y) { return std::get<0>(x) < std::get<0>(y); });
+  return found;
+}
+
+void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet& walls, const ContactParamTable& params,
+                          ContactTable& pairs, ContactTable& wall_rows) {
+  double R_max = 0.0;
+  for (double R : discs.radius) R_max = std::max(R_max, R);
+  bin(discs, domain, R_max);
   {
+    std::vector<Candidate> found = candidates(discs, domain, pairs.size());
     const ContactTable old_pairs = std::move(pairs);
     pairs = old_pairs.empty_like();
     pairs.reserve(found.size());
@@ -87,8 +92,17 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
     found = {};  // freed before the history is copied
     pairs.inherit_history(old_pairs);
   }
+  build_wall_rows(discs, walls, params, wall_rows);
+  position_at_build_.assign(discs.position.begin(), discs.position.begin() + discs.n_owned());
+  bound_ = 0.0;
+  for (auto& w : walls) w.displacement_since_build = {}, w.turn_since_build = 0.0;
+  ++builds_;
+}
 
-  // Wall rows: every owned disc against every wall, in (gid, wall id) order.
+void NeighbourList::build_wall_rows(const DiscStore& discs, const WallSet& walls, const ContactParamTable& params,
+                                    ContactTable& wall_rows) const {
+  // Every owned disc against every wall, in (gid, wall id) order.
+  const std::size_t n_owned = discs.n_owned();
   std::vector<std::size_t> order(n_owned);
   for (std::size_t i = 0; i < n_owned; ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return discs.gid[a] < discs.gid[b]; });
@@ -104,11 +118,6 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
     }
   }
   wall_rows.inherit_history(old_walls);
-
-  position_at_build_.assign(discs.position.begin(), discs.position.begin() + n_owned);
-  bound_ = 0.0;
-  for (auto& w : walls) w.displacement_since_build = {}, w.turn_since_build = 0.0;
-  ++builds_;
 }
 
 double NeighbourList::max_displacement(const DiscStore& discs, const Domain& domain) const {

@@ -1,6 +1,7 @@
 #pragma once
 #include <cmath>
 #include <cstddef>
+#include <tuple>
 #include <vector>
 
 #include "core/CellGrid.hpp"
@@ -57,6 +58,13 @@ class NeighbourList {
   void bin(const DiscStore& discs, const Domain& domain, double R_max);
   // The compressed bin of global column cx and row cy, or -1 when no local disc is in that column or row.
   long bin_of(int cx, int cy) const;
+  // The pairs within the interaction range (key, local indices), in ascending key, each once from its lower gid,
+  // at least one owned disc, no rigid body with itself; `expected`: about how many (the rows held now).
+  using Candidate = std::tuple<ContactKey, std::int32_t, std::int32_t>;
+  std::vector<Candidate> candidates(const DiscStore& discs, const Domain& domain, std::size_t expected) const;
+  // The wall rows anew (every owned disc within the range of a wall), history kept by key.
+  void build_wall_rows(const DiscStore& discs, const WallSet& walls, const ContactParamTable& params,
+                       ContactTable& wall_rows) const;
 
   double skin_;
   CellGrid grid_;

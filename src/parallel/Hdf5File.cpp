@@ -86,7 +86,7 @@ herr_t walk_link(hid_t group, const char* name, const H5L_info_t*, void* data) {
   const auto* walk = static_cast<const Walk*>(data);
   Handle object{H5Oopen(group, name, H5P_DEFAULT), H5Oclose};
   if (object.id < 0) return -1;
-  const std::string path = (walk->prefix == "/" ? "/" : walk->prefix + "/") + name;
+  const std::string path = (walk->prefix == "/" ? "/" : walk->prefix + "/") + name;  // HDF5's root group
   const H5I_type_t type = H5Iget_type(object.id);
   walk->out->emplace_back(path, type == H5I_DATASET);
   if (type != H5I_GROUP) return 0;
@@ -102,6 +102,7 @@ struct Digest {
 herr_t digest_attribute(hid_t object, const char* name, const H5A_info_t*, void* data) {
   auto* d = static_cast<Digest*>(data);
   const std::string n = name;
+  // The two attributes written after the checksum is taken (FORMAT.md, "attributes_checksum").
   if ((d->object == "/" && n == "complete") || (d->object == "/integrity" && n == "attributes_checksum")) return 0;
   Handle attr{H5Aopen(object, name, H5P_DEFAULT), H5Aclose};
   if (attr.id < 0) return -1;

@@ -22,6 +22,15 @@ std::string mpi_error(int code) {
   MPI_Error_string(code, text, &n);
   return std::string(text, static_cast<std::size_t>(n));
 }
+// Agrees on every rank's error (settle); when there is one, the partial file goes (rank 0) before every rank throws.
+void settle_or_remove(const Communicator& comm, const std::exception_ptr& error, const std::string& path) {
+  try {
+    settle(comm, error);
+  } catch (...) {
+    if (comm.root()) std::remove(path.c_str());
+    throw;
+  }
+}
 }  // namespace
 
 void write_ordered_text(const std::string& path, const std::string& header, const CanonicalOrder& order,
@@ -48,23 +57,13 @@ void write_ordered_text(const std::string& path, const std::string& header, cons
     const std::string why = reserve_file_space(path, total, injected_fault(FaultSite::text, comm.rank(), name));
     if (!why.empty()) error = std::make_exception_ptr(IoError("cannot write '" + path + "': " + why));
   }
-  try {
-    settle(comm, error);
-  } catch (...) {
-    if (comm.root()) std::remove(path.c_str());
-    throw;
-  }
+  settle_or_remove(comm, error, path);
   MPI_File file = MPI_FILE_NULL;
   int rc = MPI_File_open(comm.comm(), path.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &file);
   comm.count_collective();
   if (rc != MPI_SUCCESS)
     error = std::make_exception_ptr(IoError("cannot open '" + path + "' for writing: " + mpi_error(rc)));
-  try {
-    settle(comm, error);  // every rank opened it, or every rank throws
-  } catch (...) {
-    if (comm.root()) std::remove(path.c_str());
-    throw;
-  }
+  settle_or_remove(comm, error, path);                           // every rank opened it, or every rank throws
   rc = MPI_File_set_size(file, static_cast<MPI_Offset>(total));  // what the file held before goes
   comm.count_collective();
   // Every rank makes the same number of collective writes (an empty one when its block is done).
@@ -80,16 +79,7 @@ void write_ordered_text(const std::string& path, const std::string& header, cons
   comm.count_collective();
   if (rc == MPI_SUCCESS) rc = c;
   if (rc != MPI_SUCCESS) error = std::make_exception_ptr(IoError("writing '" + path + "' failed: " + mpi_error(rc)));
-  std::exception_ptr agreed;
-  try {
-    settle(comm, error);
-  } catch (...) {
-    agreed = std::current_exception();
-  }
-  if (agreed) {
-    if (comm.root()) std::remove(path.c_str());
-    std::rethrow_exception(agreed);
-  }
+  settle_or_remove(comm, error, path);
 }
 
 }  // namespace rondel

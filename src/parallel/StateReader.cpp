@@ -31,7 +31,7 @@ std::vector<std::string> split(const std::string& s) {
 namespace {
 
 StateHeader read_header(const Hdf5File& f, const std::string& path) {
-  if (!f.has_attribute("/", "format") || f.read_string_attribute("/", "format") != "rondel")
+  if (!f.has_attribute("/", "format") || f.read_string_attribute("/", "format") != "rondel")  // FORMAT.md
     throw InputError("'" + path + "' is not a Rondel checkpoint or snapshot (no format = rondel attribute)");
   const std::int64_t version = f.read_int_attribute("/", "format_version");
   if (version < kOldestReadableFormatVersion || version > kStateFormatVersion)

@@ -301,6 +301,70 @@ struct ContactKernel {
     if constexpr (kWall) tab.f1[r] = f1;
   }
 
+  // The last half of the trapezoid of a contact that opened this step (its forces and couples fall to zero).
+  template <bool kWall>
+  [[gnu::always_inline]] static void book_opening(const ContactTable& tab, std::size_t r, const Row& row, PassSums& S) {
+    const ContactKinematics& k = row.k;
+    double W_r = 0.0;
+    if constexpr (Rolling::kActive) {
+      if constexpr (kWall)
+        W_r = tab.M1[r] * k.thetadot_r;
+      else
+        W_r = tab.M1[r] * row.w1 + last_M2(tab, r) * row.w2;
+    }
+    S.work += Pair{tab.F_n[r] * k.v_n, tab.F_t[r] * k.V_s};
+    S.roll += Pair{W_r, 0.0};
+    if constexpr (kWall) {
+      S.W_w += dot(tab.f1[r], row.v_wall);
+      if constexpr (Rolling::kActive)
+        if (row.w2 != 0.0) S.W_w += tab.M1[r] * row.w2;
+    }
+  }
+
+  // The rolling law's couple of a row (none where the pair has no rolling resistance); a normal law that
+  // stiffens shows the rolling law this contact's normal stiffness and dashpot (its linearised parameters).
+  template <class H>
+  [[gnu::always_inline]] static RollingCouple couple(const ContactInput& in, const ContactTable& tab, std::size_t r,
+                                                     const Row& row, H& hist) {
+    RollingCouple M;
+    if constexpr (Rolling::kActive) {
+      if (rolls_every_row<Rolling>() || in.p.rolling) [[likely]] {
+        if constexpr (Normal::kStiffening) {
+          const ContactParams q = Normal::linearised(ContactInput{in.p, row.b, row.k});
+          M = Rolling::moment(ContactInput{q, row.b, row.k, in.F_n, in.dt, row.w1, row.w2, last_M1(tab, r)}, hist.r);
+        } else {
+          M = Rolling::moment(in, hist.r);
+        }
+      }
+    }
+    return M;
+  }
+
+  // The row's terms of its discs' sums, in row order (see the header): +f1 and its torque on disc 1, -f1 and its
+  // torque on disc 2.
+  template <bool kWall>
+  [[gnu::always_inline]] static void add_to_sums(const ContactTable& tab, std::size_t r, std::size_t i,
+                                                 const ContactKinematics& k, const TangentialForce& T,
+                                                 const RollingCouple& M, Vec2 f1, Vec2* sum_F, double* sum_T) {
+    sum_F[i] += f1;
+    sum_T[i] += k.a1 * T.F_t + M.M1;
+    if constexpr (!kWall) {
+      const auto j = static_cast<std::size_t>(tab.i2[r]);
+      sum_F[j] -= f1;
+      sum_T[j] += k.a2 * T.F_t + M.M2;
+    }
+  }
+
+  // A pass's terms into the step's: the kernel's sums and the worst overlap.
+  static void merge(const LedgerStep& L, LedgerStep& ledger) {
+    ledger.add_terms(L, kTermKernel);
+    if (L.worst_overlap > ledger.worst_overlap) {
+      ledger.worst_overlap = L.worst_overlap;
+      ledger.worst_key = L.worst_key;
+      ledger.worst_at_wall = L.worst_at_wall;
+    }
+  }
+
   template <bool kWall, bool kCommit = true>
   static void run_rows(const KernelContext& c, ContactTable& tab, ForceSums sums, LedgerStep& ledger) {
     const DiscView D(c.discs);
@@ -329,22 +393,7 @@ struct ContactKernel {
       const bool book = i < D.n_owned;
       if (k.u_n <= 0.0) {
         // The contact opened this step: book the last half of the trapezoid, then forget its history.
-        if (book) {
-          double W_r = 0.0;
-          if constexpr (Rolling::kActive) {
-            if constexpr (kWall)
-              W_r = tab.M1[r] * k.thetadot_r;
-            else
-              W_r = tab.M1[r] * row.w1 + last_M2(tab, r) * row.w2;
-          }
-          S.work += Pair{tab.F_n[r] * k.v_n, tab.F_t[r] * k.V_s};
-          S.roll += Pair{W_r, 0.0};
-          if constexpr (kWall) {
-            S.W_w += dot(tab.f1[r], row.v_wall);
-            if constexpr (Rolling::kActive)
-              if (row.w2 != 0.0) S.W_w += tab.M1[r] * row.w2;
-          }
-        }
+        if (book) book_opening<kWall>(tab, r, row, S);
         open_row<kWall, kCommit>(tab, r, h);
         continue;
       }
@@ -355,37 +404,14 @@ struct ContactKernel {
       History<kCommit> hist(h, r);
       const ContactInput in{p, row.b, k, F_n, dt, row.w1, row.w2, last_M1(tab, r)};
       const TangentialForce T = Tangential::force(in, hist.t);
-      RollingCouple M;
-      if constexpr (Rolling::kActive) {
-        if (rolls_every_row<Rolling>() || p.rolling) [[likely]] {
-          if constexpr (Normal::kStiffening) {  // the rolling law sees this contact's normal stiffness
-            const ContactParams q = Normal::linearised(ContactInput{p, row.b, k});
-            M = Rolling::moment(ContactInput{q, row.b, k, F_n, dt, row.w1, row.w2, last_M1(tab, r)}, hist.r);
-          } else {
-            M = Rolling::moment(in, hist.r);
-          }
-        }
-      }
+      const RollingCouple M = couple(in, tab, r, row, hist);
       const Vec2 f1 = T.F_t * k.t - F_n * k.n;
       if (book) book_work<kWall>(tab, r, row, F_n, T, M, f1, S);
       store_row<kWall>(tab, r, F_n, T, M, f1);
-      // The row's terms of its discs' sums, in row order (see the header): +f1 and its torque on disc 1,
-      // -f1 and its torque on disc 2. An open row adds nothing.
-      sum_F[i] += f1;
-      sum_T[i] += k.a1 * T.F_t + M.M1;
-      if constexpr (!kWall) {
-        const auto j = static_cast<std::size_t>(tab.i2[r]);
-        sum_F[j] -= f1;
-        sum_T[j] += k.a2 * T.F_t + M.M2;
-      }
+      add_to_sums<kWall>(tab, r, i, k, T, M, f1, sum_F, sum_T);
     }
     S.book(dt, L);
-    ledger.add_terms(L, kTermKernel);
-    if (L.worst_overlap > ledger.worst_overlap) {
-      ledger.worst_overlap = L.worst_overlap;
-      ledger.worst_key = L.worst_key;
-      ledger.worst_at_wall = L.worst_at_wall;
-    }
+    merge(L, ledger);
   }
 
   template <bool kWall>

@@ -406,5 +406,28 @@ TEST(Config, MissingFileIsAConfigErrorNamingIt) {
   }
 }
 
+// An unknown scene type used to fall through to the CSV builder (and fail there, or read a file it was not meant
+// to): scene.type is a choice of the scene registry, refused naming the value and every type the registry has.
+TEST(Config, AnUnknownSceneTypeIsRefusedListingTheRegistrysTypes) {
+  std::string message;
+  try {
+    parse_config_text(kValid, {"--scene.type=hexagonal"});
+  } catch (const ConfigError& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("scene.type"), std::string::npos) << message;
+  EXPECT_NE(message.find("hexagonal"), std::string::npos) << message;
+  for (const SceneType* type : scene_types()) EXPECT_NE(message.find(type->name), std::string::npos) << message;
+  // Without the key: missing, with the same list.
+  std::string without = kValid;
+  without.erase(without.find("type = lattice_square"), std::string("type = lattice_square").size());
+  try {
+    parse_config_text(without);
+    ADD_FAILURE() << "a configuration without scene.type was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("missing required key 'scene.type'"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace rondel
