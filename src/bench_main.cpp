@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -35,6 +36,7 @@
 #include "BenchSupport.hpp"
 #include "app/Simulation.hpp"
 #include "core/Errors.hpp"
+#include "core/Format.hpp"
 #include "parallel/Communicator.hpp"
 #include "physics/LawRegistry.hpp"
 
@@ -105,7 +107,8 @@ std::pair<long, long> copies_of(long discs, long base) {
   return {k / ny, ny};
 }
 
-// The benchmark's value of each rolling parameter it sets, by key; the others keep their defaults.
+// The benchmark's value of each rolling parameter it sets, by key, scaled to the packing; a required parameter
+// without one takes its law's example value (ParamSpec::example), the others keep their defaults.
 struct BenchValue {
   const char* key;
   const char* value;
@@ -131,9 +134,15 @@ std::string rolling_block(const std::string& law, const char* option) {
   std::string text = "[contact]\nrolling = " + law + "\n";
   if (!info->block) return text;
   text += "[" + std::string(info->block->section) + "]\n";
-  for (const rondel::ParamSpec& p : info->block->params)
-    for (const BenchValue& v : kRollingValues)
-      if (std::string(info->block->section) + "." + p.key == v.key) text += std::string(p.key) + " = " + v.value + "\n";
+  for (const rondel::ParamSpec& p : info->block->params) {
+    const std::string key = std::string(info->block->section) + "." + p.key;
+    const auto v = std::find_if(std::begin(kRollingValues), std::end(kRollingValues),
+                                [&key](const BenchValue& b) { return key == b.key; });
+    if (v != std::end(kRollingValues))
+      text += std::string(p.key) + " = " + v->value + "\n";
+    else if (p.presence == rondel::Presence::required && std::isfinite(p.example))
+      text += std::string(p.key) + " = " + rondel::fmt(p.example) + "\n";
+  }
   return text;
 }
 

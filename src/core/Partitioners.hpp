@@ -1,9 +1,10 @@
 #pragma once
 // The partitioners' registry (docs/developing.md, "How to add a partitioner"): one tag per word of
 // parallel.partitioner, listed once in `Partitioners`. parallel/ implements each tag in its own file
-// (PartitionerSfc.cpp, ...): the dispatch there instantiates the implementation of every tag of the list, so a
-// tag without one fails to link, and nothing else names a partitioner. The configuration reads the key against
-// the list and --help prints it; the memory check takes the bytes per cell from the tag.
+// (PartitionSfc.cpp, ...) with a make_partition overload declared in parallel/Partition.hpp: the dispatch there
+// instantiates the overload of every tag of the list, so a tag without one does not build, and nothing else names
+// a partitioner. The configuration reads the key against the list and --help prints it; the memory check takes the
+// bytes per cell from the tag.
 #include <span>
 #include <string>
 #include <vector>

@@ -1,6 +1,7 @@
 #pragma once
 // A circle wall whose inside holds the discs (walls.circles 'cx cy R_c [omega]', drums), rotating about its centre
 // (docs/physics.md section 8).
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -18,6 +19,8 @@ struct WallCircle {
   static constexpr const char* help =
       "circles 'cx cy R_c [omega]; ...' whose inside holds the discs (drums), rotating about their centre at omega "
       "(default 0)";
+  // A record of the key, for the registry's tests (a drum in the unit box, turning).
+  static constexpr std::array<double, 4> example{0.5, 0.5, 0.4, 2.0};
   // A disc inside: n from the disc to the rim, dist = R_c - |x - c| (< 0 outside).
   static Wall::Proximity proximity(const Wall& w, Vec2 x) {
     const Vec2 r = x - w.centre;

@@ -1,6 +1,7 @@
 #pragma once
 // A segment wall (walls.segments 'x1 y1 x2 y2 [vx vy | omega cx cy]'): discs meet it from either side and at its
 // ends.
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -18,6 +19,8 @@ struct WallSegment {
   static constexpr const char* help =
       "segments 'x1 y1 x2 y2 [vx vy | omega cx cy]; ...' (a translation or a rotation about the fixed centre (cx, "
       "cy), counter-clockwise positive)";
+  // A record of the key, for the registry's tests (moving up).
+  static constexpr std::array<double, 6> example{0.2, 0.1, 0.9, 0.2, 0.0, 0.01};
   // The distance to the closest point of the segment, and n towards it.
   static Wall::Proximity proximity(const Wall& w, Vec2 x) {
     const Vec2 e = w.p1 - w.p0;

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "core/Errors.hpp"
+#include "parallel/CellMaps.hpp"
 #include "parallel/Partition.hpp"
-#include "parallel/Partitioner.hpp"
 
 namespace rondel {
 

@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "parallel/CellMaps.hpp"
 #include "parallel/Decomposition.hpp"
 #include "parallel/Partition.hpp"
-#include "parallel/Partitioner.hpp"
 
 namespace rondel {
 

@@ -105,9 +105,8 @@ std::vector<std::uint64_t> SfcPartition::weighted_cuts(const Cells& cells, std::
   // rank finds each cut.
   const auto P = static_cast<std::uint64_t>(comm_.size());
   std::vector<std::uint64_t> cuts(P + 1, 0);
-  auto target = [&](std::uint64_t j) {
-    return static_cast<std::uint64_t>((static_cast<unsigned __int128>(j) * total) / P);
-  };
+  __extension__ typedef unsigned __int128 Wide;  // j x total needs 128 bits (GCC's and Clang's extension)
+  auto target = [&](std::uint64_t j) { return static_cast<std::uint64_t>((static_cast<Wide>(j) * total) / P); };
   std::uint64_t j = 1;
   while (j < P && target(j) < offset) ++j;
   std::uint64_t acc = offset, pos = lo;

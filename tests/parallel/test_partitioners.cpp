@@ -13,9 +13,9 @@
 
 #include "ParallelTestUtil.hpp"
 #include "core/Errors.hpp"
+#include "parallel/CellMaps.hpp"
 #include "parallel/Decomposition.hpp"
 #include "parallel/Hilbert.hpp"
-#include "parallel/Partitioner.hpp"
 #include "support/Assertions.hpp"
 
 namespace rondel {

@@ -1,5 +1,5 @@
 // Rank invariance (docs/design.md section 5, docs/validation.md section 8): a run on N ranks gives the bits of the
-// 1-rank run, with either partitioner and with forced rebalancing; contact history travels with its discs.
+// 1-rank run, with every partitioner and with forced rebalancing; contact history travels with its discs.
 // Also: the METIS partition balances a strongly non-uniform pile (docs/design.md section 6), and bad parallel
 // input is refused on every rank.
 //
@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "ParallelTestUtil.hpp"
+#include "core/Partitioners.hpp"
 
 namespace rondel {
 namespace {
@@ -26,19 +27,23 @@ namespace {
 using namespace partest;
 
 struct Variant {
-  const char* name;
+  std::string name;
   std::vector<std::string> overrides;
 };
 
+// Every partitioner of the registry (core/Partitioners.hpp), keeping its first map and repartitioning every 10
+// steps: a new partitioner is tested here without an edit.
 const std::vector<Variant>& variants() {
-  static const std::vector<Variant> v{
-      {"grid", {"--parallel.partitioner=grid"}},
-      {"metis", {"--parallel.partitioner=metis"}},
-      {"metis+rebalance/10",
-       {"--parallel.partitioner=metis", "--parallel.force_balance=true", "--parallel.balance_every=10"}},
-      {"grid+rebalance/10",
-       {"--parallel.partitioner=grid", "--parallel.force_balance=true", "--parallel.balance_every=10"}},
-  };
+  static const std::vector<Variant> v = [] {
+    std::vector<Variant> out;
+    for (const auto& partitioner : Partitioners::choices()) {
+      const std::string option = std::string("--parallel.partitioner=") + partitioner.word;
+      out.push_back({partitioner.word, {option}});
+      out.push_back({std::string(partitioner.word) + "+rebalance/10",
+                     {option, "--parallel.force_balance=true", "--parallel.balance_every=10"}});
+    }
+    return out;
+  }();
   return v;
 }
 
@@ -456,7 +461,8 @@ TEST(BadParallelInput, MoreRanksThanCells) {
   const std::string file = write_temp("rondel-tiny", csv_line(0, 0.003, 0.0025, kR, 0, 0, 0));
   for (const double xhi : {0.006, 0.010}) {
     const int cells = xhi < 0.008 ? 1 : 2;
-    for (const std::string part : {"grid", "metis", "sfc"}) {
+    for (const auto& partitioner : Partitioners::choices()) {
+      const std::string part = partitioner.word;
       bool all = false;
       const std::string msg = config_error_everywhere(
           [&] {

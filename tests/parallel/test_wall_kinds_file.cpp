@@ -33,16 +33,20 @@ TEST(WallKindsFile, EveryKindReadsBackAsItselfWithTheNamesOfTheCodes) {
   static const Communicator world(MPI_COMM_WORLD);
   const Domain domain{0.0, 1.0, 0.0, 1.0, false, false};
   WallSet walls;
-  WallKinds::each([&]<class K>() {
-    walls.push_back(K::read(
-        K::kind == Wall::Kind::circle ? std::vector<double>{0.5, 0.5, 0.4} : std::vector<double>{0.1, 0.1, 0.9, 0.2},
-        domain));
-  });
+  WallKinds::each([&]<class K>() { walls.push_back(K::read({K::example.begin(), K::example.end()}, domain)); });
   const partest::SharedTempDir dir("wallkinds");
   const std::string path = file_with(walls, dir.path().string());
   const WallSet back = read_state_walls(path, world);
   ASSERT_EQ(back.size(), walls.size());
-  for (std::size_t w = 0; w < walls.size(); ++w) EXPECT_EQ(back[w].kind, walls[w].kind) << "wall " << w;
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    EXPECT_EQ(back[w].kind, walls[w].kind) << "wall " << w;
+    EXPECT_EQ(back[w].p0.x, walls[w].p0.x) << "wall " << w;
+    EXPECT_EQ(back[w].p1.y, walls[w].p1.y) << "wall " << w;
+    EXPECT_EQ(back[w].centre.x, walls[w].centre.x) << "wall " << w;
+    EXPECT_EQ(back[w].radius, walls[w].radius) << "wall " << w;
+    EXPECT_EQ(back[w].omega, walls[w].omega) << "wall " << w;
+    EXPECT_EQ(back[w].velocity.y, walls[w].velocity.y) << "wall " << w;
+  }
   std::string names;
   for (const std::string& n : WallKinds::names_by_code()) names += (names.empty() ? "" : " ") + n;
   const Hdf5File f(path, Hdf5File::Mode::read, world);

@@ -104,6 +104,24 @@ TEST(ExitCodes, TheReadmesTableListsExactlyTheCodesOfTheRegistry) {
         << "error kind " << static_cast<int>(e.kind) << " exits with an unlisted code";
 }
 
+TEST(ExitCodes, TheFaultTableOfTheDevelopersGuideListsExactlyTheSites) {
+  std::ifstream in(kSource / "docs/developing.md");
+  ASSERT_TRUE(in) << "no docs/developing.md in " << kSource;
+  std::set<std::string> table;
+  bool inside = false;
+  const std::regex row(R"(^\| `([a-z0-9_]+:?)[A-Z]*` \| .*)");
+  for (std::string line; std::getline(in, line);) {
+    if (line == "| SITE | fails |") inside = true;
+    if (!inside) continue;
+    if (line.empty()) break;
+    std::smatch m;
+    if (std::regex_match(line, m, row)) table.insert(m[1]);
+  }
+  std::set<std::string> sites;
+  for (const FaultSiteInfo& f : kFaultSites) sites.insert(f.name);
+  EXPECT_EQ(table, sites) << "docs/developing.md's table of fault sites and core/FaultInjection.hpp differ";
+}
+
 // A misspelt fault site used to inject nothing and let the run exit with 0 (a test of an error path then passed
 // without its error). Every value that is not a fault is refused before any work, naming it and what is allowed.
 TEST(ExitCodes, AFaultHookThatInjectsNothingIsRefused) {

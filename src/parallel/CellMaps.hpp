@@ -7,8 +7,9 @@
 
 namespace rondel {
 
-// Assigns the cells of a CellGrid to ranks. Both partitioners are deterministic functions of their inputs,
-// so every rank computes (or receives) the same cell-to-rank map.
+// The cell-to-rank maps of the grid and metis partitioners (PartitionGrid.cpp, PartitionMetis.cpp) as plain
+// functions, tested on their own (tests/parallel/test_partitioners.cpp). Each is a deterministic function of its
+// inputs, so every rank computes (or receives) the same map.
 //  - grid: regular px x py blocks of cells (px py = ranks, blocks as square as the grid allows); no METIS.
 //  - metis: k-way partition of the cell graph (8-neighbour stencil, periodic wrap) with vertex weights
 //    (the work per cell: discs + contacts, plus one), fixed seed; the new parts are relabelled so that
