@@ -139,7 +139,7 @@ std::string Checkpointing::write_snapshot(const StateHeader& header, DiscStore& 
   const ContactTable none;
   writer_.write((fs::path(dir_) / name).string(), header, discs, none, none, walls, comm_, fields_, 0.0);
   std::vector<std::string> written = fields_;
-  written.emplace_back("index");
+  written.emplace_back(kIndexField);
   snapshots_.push_back({name, header.step, n_discs, header.time, written, wall_outline(walls, domain_)});
   agree(comm_, [&] {
     if (comm_.root()) write_xdmf();
@@ -157,32 +157,19 @@ std::string hdf_item(const std::string& file, const std::string& set, const std:
          "\" Format=\"HDF\">" + file + ":" + set + "</DataItem>";
 }
 
-// How each /discs dataset appears as an XDMF node attribute.
-struct XdmfField {
-  const char* name;
-  const char* number;
-  int precision;
-  bool vector;
-};
-constexpr XdmfField kXdmfFields[] = {
-    {"radius", "Float", 8, false}, {"velocity", "Float", 8, true}, {"omega", "Float", 8, false},
-    {"theta", "Float", 8, false},  {"force", "Float", 8, true},    {"torque", "Float", 8, false},
-    {"mass", "Float", 8, false},   {"inertia", "Float", 8, false}, {"flags", "UInt", 4, false},
-    {"gid", "Int", 8, false},      {"material", "Int", 4, false},  {"rank", "Int", 4, false}};
-
 void xdmf_discs(std::ostream& x, const std::string& file, std::int64_t discs, const std::vector<std::string>& has) {
   const std::string n = std::to_string(discs);
-  const bool indexed = std::find(has.begin(), has.end(), "index") != has.end();
+  const bool indexed = std::find(has.begin(), has.end(), kIndexField) != has.end();
   x << "     <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\" NodesPerElement=\"1\">"
-    << (indexed ? hdf_item(file, "/discs/index", n, "Int", 8) : "") << "</Topology>\n"
-    << "     <Geometry GeometryType=\"XY\">" << hdf_item(file, "/discs/position", n + " 2", "Float", 8)
-    << "</Geometry>\n";
-  for (const XdmfField& f : kXdmfFields)
-    if (std::find(has.begin(), has.end(), f.name) != has.end())
-      x << "     <Attribute Name=\"" << f.name << "\" AttributeType=\"" << (f.vector ? "Vector" : "Scalar")
+    << (indexed ? hdf_item(file, std::string("/discs/") + kIndexField, n, "Int", 8) : "") << "</Topology>\n"
+    << "     <Geometry GeometryType=\"XY\">"
+    << hdf_item(file, std::string("/discs/") + kPositionField, n + " 2", "Float", 8) << "</Geometry>\n";
+  // Every dataset of the file's disc fields but the geometry, as a node attribute.
+  for (const DiscFieldInfo& f : snapshot_fields())
+    if (f.name != kPositionField && std::find(has.begin(), has.end(), f.name) != has.end())
+      x << "     <Attribute Name=\"" << f.name << "\" AttributeType=\"" << (f.components == 2 ? "Vector" : "Scalar")
         << "\" Center=\"Node\">"
-        << hdf_item(file, std::string("/discs/") + f.name, f.vector ? n + " 2" : n, f.number, f.precision)
-        << "</Attribute>\n";
+        << hdf_item(file, "/discs/" + f.name, f.components == 2 ? n + " 2" : n, f.number, f.bytes) << "</Attribute>\n";
 }
 
 void xdmf_walls(std::ostream& x, const std::string& file, const std::vector<Vec2>& outline) {

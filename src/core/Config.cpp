@@ -9,6 +9,7 @@
 
 #include "core/ConfigRead.hpp"
 #include "core/ConfigSchema.hpp"
+#include "core/DiscStore.hpp"
 #include "core/Errors.hpp"
 
 namespace rondel {
@@ -65,8 +66,8 @@ namespace config {
 
 void read_run(const Reader&, Config& c) {
   check(!c.output.empty(), "run.output", "a directory name", "''");
-  if (std::find(c.snapshot_fields.begin(), c.snapshot_fields.end(), "position") == c.snapshot_fields.end())
-    c.snapshot_fields.emplace_back("position");  // the XDMF geometry
+  if (std::find(c.snapshot_fields.begin(), c.snapshot_fields.end(), kPositionField) == c.snapshot_fields.end())
+    c.snapshot_fields.emplace_back(kPositionField);  // the XDMF geometry
   const Domain& d = c.domain;
   check(d.xhi > d.xlo, "domain.xhi", "must be > domain.xlo", num(d.xhi));
   check(d.yhi > d.ylo, "domain.yhi", "must be > domain.ylo", num(d.yhi));

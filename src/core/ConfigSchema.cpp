@@ -59,12 +59,6 @@ std::span<const Choice<const SceneType*>> scene_type_choices() {
 
 std::vector<std::string> box_side_words() { return {std::begin(kBoxSides), std::end(kBoxSides)}; }
 
-std::vector<std::string> snapshot_field_words() {
-  std::vector<std::string> words = disc_field_names();
-  words.emplace_back("rank");
-  return words;
-}
-
 // The key lists below keep one key per line (clang-format would run them together).
 void add_run_sections(po::options_description& all, std::vector<KeySpec>& keys, Readers* readers) {
   po::options_description run("[run]"), out("[output] snapshots and checkpoints (HDF5, FORMAT.md)"),
@@ -93,7 +87,7 @@ void add_run_sections(po::options_description& all, std::vector<KeySpec>& keys, 
   Keys(out, keys, readers)
       .number("output.snapshot_every", at(&Config::snapshot_every), I64{0}, "steps", kCount, "snapshot interval; 0 = none")
       .words("output.snapshot_fields", at(&Config::snapshot_fields), "position velocity omega radius flags rank", "-",
-             "snapshot datasets (position is always written)", snapshot_field_words())
+             "snapshot datasets (position is always written)", snapshot_field_names())
       .number("output.checkpoint_every", at(&Config::checkpoint_every), I64{0}, "steps", kCount,
               "checkpoint interval; 0 = none (see checkpoint_minutes)")
       .number("output.checkpoint_minutes", at(&Config::checkpoint_minutes), 0.0, "min", kNonNegative,

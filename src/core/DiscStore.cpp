@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numbers>
 #include <stdexcept>
+#include <type_traits>
 
 namespace rondel {
 
@@ -86,9 +87,33 @@ std::size_t DiscStore::memory_bytes() const {
   return bytes;
 }
 
-std::vector<std::string> disc_field_names() {
+namespace {
+// How a file stores an element of type T.
+template <class T>
+DiscFieldInfo stored_as(const char* name) {
+  if constexpr (std::is_same_v<T, Vec2>)
+    return {name, "Float", 8, 2};
+  else if constexpr (std::is_floating_point_v<T>)
+    return {name, "Float", sizeof(T), 1};
+  else if constexpr (std::is_signed_v<T>)
+    return {name, "Int", sizeof(T), 1};
+  else
+    return {name, "UInt", sizeof(T), 1};
+}
+}  // namespace
+
+std::vector<DiscFieldInfo> snapshot_fields() {
+  std::vector<DiscFieldInfo> out;
+  DiscStore().for_each_field([&out](const char* name, unsigned, auto& field) {
+    out.push_back(stored_as<typename std::decay_t<decltype(field)>::value_type>(name));
+  });
+  out.push_back(stored_as<std::int32_t>(kRankField));
+  return out;
+}
+
+std::vector<std::string> snapshot_field_names() {
   std::vector<std::string> out;
-  DiscStore().for_each_field([&out](const char* name, unsigned, auto&) { out.emplace_back(name); });
+  for (const DiscFieldInfo& f : snapshot_fields()) out.push_back(f.name);
   return out;
 }
 

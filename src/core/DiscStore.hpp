@@ -91,8 +91,20 @@ class DiscStore {
   std::size_t n_owned_ = 0;
 };
 
-// The names of the fields (for_each_field), in its order; a snapshot may hold any of them and "rank"
-// (output.snapshot_fields).
-std::vector<std::string> disc_field_names();
+// The datasets of /discs a snapshot may hold (output.snapshot_fields), one row each: the fields of for_each_field
+// in its order, then the snapshot-only ones (kRankField, the owner rank: run metadata, never in a checkpoint), with
+// how a file stores them (FORMAT.md; the XDMF side-car's attributes come from these rows).
+struct DiscFieldInfo {
+  std::string name;
+  const char* number;  // "Float", "Int" or "UInt" (XDMF's NumberType)
+  int bytes;           // per component
+  int components;      // 2 for a vector
+};
+inline constexpr const char* kRankField = "rank";
+inline constexpr const char* kPositionField = "position";  // the geometry of the XDMF side-car: always written
+inline constexpr const char* kIndexField = "index";        // a snapshot's row numbers (its XDMF vertex cells)
+std::vector<DiscFieldInfo> snapshot_fields();
+// Their names ("position velocity ... rank"): the words output.snapshot_fields allows.
+std::vector<std::string> snapshot_field_names();
 
 }  // namespace rondel

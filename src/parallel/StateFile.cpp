@@ -172,15 +172,15 @@ void StateWriter::write_discs(Hdf5File& f, DiscStore& discs, const Communicator&
     at += sizeof(T);
   });
   // The owner rank is run metadata: in snapshots on request (for pictures), never in checkpoints.
-  if (!fields.empty() && listed(fields, "rank"))
+  if (!fields.empty() && listed(fields, kRankField))
     write_column<std::int32_t>(
-        f, "/discs/rank", [&me](std::size_t) { return &me; }, at);
+        f, std::string("/discs/") + kRankField, [&me](std::size_t) { return &me; }, at);
   // A snapshot's row numbers, the connectivity of its XDMF vertex cells (without cells ParaView shows
   // nothing on Apply).
   if (!fields.empty()) {
     std::vector<std::int64_t> index(order_.count());
     for (std::uint64_t k = 0; k < order_.count(); ++k) index[k] = static_cast<std::int64_t>(order_.offset() + k);
-    f.write("/discs/index", index, order_.total(), order_.offset());
+    f.write(std::string("/discs/") + kIndexField, index, order_.total(), order_.offset());
   }
   note_bytes(checkpoint_structure_bytes());
 }

@@ -108,7 +108,7 @@ std::vector<std::string> state_file_disc_datasets(const std::string& path, const
   fields.for_each_field([&](const char* name, unsigned uses, auto&) {
     if ((uses & kCheckpoint) && f.exists(std::string("/discs/") + name)) found.emplace_back(name);
   });
-  for (const char* extra : {"rank", "index"})
+  for (const char* extra : {kRankField, kIndexField})
     if (f.exists(std::string("/discs/") + extra)) found.emplace_back(extra);
   f.close();
   return found;
