@@ -67,8 +67,6 @@ struct LawList {
 // The registry rows. The first law of each list is the default of its contact.<kind> key.
 using NormalLaws = LawList<NormalRow, NormalLinear, NormalHertz>;
 using TangentialLaws = LawList<TangentialRow, TangentialCoulomb, TangentialNone, TangentialMindlin>;
-// The tangential laws of the linear normal law's step kernels (mindlin needs hertz: ConfigLaws refuses it).
-using LinearTangentialLaws = LawList<TangentialRow, TangentialCoulomb, TangentialNone>;
 using RollingLaws =
     LawList<RollingRow, RollingNone, RollingJiangPlastic, RollingJiangBrittle, RollingWang, RollingAlonsoMarroquin,
             RollingIwashitaOda, RollingForceProportional, RollingConstantTorque, RollingDisplacementDamping>;
