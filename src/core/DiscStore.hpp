@@ -11,6 +11,10 @@ namespace rondel {
 
 // What each disc field is used for. Ghost packing, migration and checkpoints loop over this table
 // (docs/design.md section 2) instead of naming fields one by one.
+// Disc ids are integers from 0 to kMaxGid - 1: final.csv and CSV scenes carry them as numbers that a double
+// holds exactly, and every reader of a file refuses others.
+inline constexpr std::int64_t kMaxGid = std::int64_t{1} << 53;
+
 enum DiscFieldUse : unsigned {
   kGhostCreate = 1u,  // copied when a ghost is created
   kGhostStep = 2u,    // refreshed on ghosts every step between rebuilds

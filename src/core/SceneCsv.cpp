@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/ConfigRead.hpp"
+#include "core/DiscStore.hpp"
 #include "core/Errors.hpp"
 #include "core/MemoryLimit.hpp"
 #include "core/SceneTypes.hpp"
@@ -35,7 +36,8 @@ void check_row(const std::string& file, std::size_t lineno, const std::vector<st
     throw InputError("scene.file '" + file + "' line " + std::to_string(lineno) + ": " + kColumns[col] + " = '" +
                      tokens[col] + "' is not allowed: " + allowed);
   };
-  if (!(v[0] >= 0.0 && v[0] < 0x1p53 && v[0] == std::floor(v[0]))) refuse(0, "an integer from 0 to 2^53 - 1");
+  if (!(v[0] >= 0.0 && v[0] < static_cast<double>(kMaxGid) && v[0] == std::floor(v[0])))
+    refuse(0, "an integer from 0 to 2^53 - 1");
   for (std::size_t col : {1, 2})
     if (!std::isfinite(v[col])) refuse(col, "a finite number");
   if (!(v[3] > 0.0 && std::isfinite(v[3]))) refuse(3, "radius must be > 0 and finite");

@@ -323,6 +323,10 @@ std::vector<std::pair<std::string, bool>> Hdf5File::objects() const {
   return out;
 }
 
+std::uint64_t Hdf5File::dataset_checksum(const void* bytes, std::size_t row_bytes, std::uint64_t rows) {
+  return row_checksum(static_cast<const char*>(bytes), row_bytes, rows, 0);
+}
+
 std::uint64_t Hdf5File::attribute_digest() const {
   std::uint64_t sum = 0;
   std::vector<std::string> paths{"/"};

@@ -96,6 +96,8 @@ class Hdf5File {
   // of every object but /integrity's `attributes_checksum` and the root's `complete`, of a mix of the FNV-1a hash of
   // "object path \0 name \0 value as stored". Collective only in that a failure is agreed.
   std::uint64_t attribute_digest() const;
+  // The checksum of a dataset (FORMAT.md "checksum") of `rows` rows of `row_bytes` bytes each, from `bytes`.
+  static std::uint64_t dataset_checksum(const void* bytes, std::size_t row_bytes, std::uint64_t rows);
   // Collective: reads this rank's block of dataset `name` (any type this class writes) and verifies its
   // checksum; `rows` is the count it must have. InputError on every rank otherwise.
   void verify_dataset(const std::string& name, std::uint64_t rows) const;

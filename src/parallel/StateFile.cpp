@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <limits>
 #include <string_view>
 #include <type_traits>
 
@@ -335,6 +336,25 @@ void answer_owners(const std::vector<std::pair<std::int64_t, int>>& owner, const
 }
 
 }  // namespace
+
+void check_unique_gids(const DiscStore& discs, const std::string& path, const Communicator& comm) {
+  // Each gid meets its copies on its home rank (the directory of route_rows_to_owners); the smallest gid
+  // found twice is named, the same one on any rank count.
+  Routing x;
+  const std::vector<std::pair<std::int64_t, int>> owner = gid_directory(discs, x, comm);
+  std::int64_t twice = std::numeric_limits<std::int64_t>::max();
+  for (std::size_t k = 1; k < owner.size(); ++k)
+    if (owner[k].first == owner[k - 1].first) {
+      twice = owner[k].first;
+      break;
+    }
+  // min over the ranks as minus the max of minus (the gids are >= 0 here: checked before)
+  twice = -comm.max(-twice);
+  if (twice != std::numeric_limits<std::int64_t>::max())
+    throw InputError("'" + path + "': disc id " + std::to_string(twice) +
+                     " occurs more than once in /discs/gid; every disc has an id of its own (a file "
+                     "written by another program? Rondel's writers never repeat an id)");
+}
 
 void route_rows_to_owners(ContactTable& rows, bool both_ends, const DiscStore& discs, const Communicator& comm) {
   const int ranks = comm.size();

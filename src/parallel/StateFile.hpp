@@ -102,6 +102,10 @@ void read_state_discs(const std::string& path, DiscStore& discs, const Communica
 void read_state_rows(const std::string& path, ContactTable& pairs, ContactTable& wall_rows, const Communicator& comm);
 WallSet read_state_walls(const std::string& path, const Communicator& comm);
 
+// Refuses a file in which two discs share an id (InputError naming `path` and the smallest such id, on every
+// rank alike; the ids must be >= 0). The same directory as route_rows_to_owners: O(N/P + P). Collective.
+void check_unique_gids(const DiscStore& discs, const std::string& path, const Communicator& comm);
+
 // Sends each row to the ranks owning its discs (both ends for disc pairs), rows sorted and de-duplicated;
 // rows of a disc no rank owns are dropped. The owners are found through a distributed directory (gid g is
 // registered on rank g mod P, which answers the owner of g to the ranks that ask), then each row travels

@@ -2,12 +2,16 @@
 // verification that --resume relies on, and each rank's block of discs, contact rows and the walls. The writer
 // and the routing of rows to their owners are in StateFile.cpp.
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <string_view>
 #include <type_traits>
 
+#include "core/ConfigRead.hpp"
 #include "core/Errors.hpp"
+#include "core/Format.hpp"
 #include "core/WallKinds.hpp"
+#include "parallel/Agreement.hpp"
 #include "parallel/CanonicalOrder.hpp"
 #include "parallel/Hdf5File.hpp"
 #include "parallel/RecordPacking.hpp"
@@ -114,6 +118,40 @@ std::vector<std::string> state_file_disc_datasets(const std::string& path, const
   return found;
 }
 
+namespace {
+
+// The discs of a file are checked as the rows of a CSV scene are (core/SceneCsv.cpp), each rank its block
+// (rows from `first`): the first bad row in the file is named on any rank count (the lowest failing rank's).
+void check_disc_rows(const std::string& path, const DiscStore& d, std::uint64_t first) {
+  for (std::size_t i = 0; i < d.n_owned(); ++i) {
+    const auto refuse = [&](const char* set, const std::string& value, const char* allowed) {
+      throw InputError("'" + path + "': /discs/" + set + " row " + std::to_string(first + i) + " (disc " +
+                       std::to_string(d.gid[i]) + ") is " + value + ": " + allowed);
+    };
+    const auto vec = [](Vec2 v) {
+      std::string s = fmt(v.x);  // built up in steps: GCC 12 warns (-Wrestrict, a false positive) on "(" + s
+      s.insert(0, 1, '(');
+      return s + ", " + fmt(v.y) + ")";
+    };
+    const auto finite = [](Vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); };
+    if (d.gid[i] < 0 || d.gid[i] >= kMaxGid)
+      refuse("gid", std::to_string(d.gid[i]), "a disc id is an integer from 0 to 2^53 - 1");
+    if (!(d.radius[i] > 0.0 && std::isfinite(d.radius[i])))
+      refuse("radius", fmt(d.radius[i]), "a radius is finite and > 0");
+    if (!(d.mass[i] > 0.0 && std::isfinite(d.mass[i]))) refuse("mass", fmt(d.mass[i]), "a mass is finite and > 0");
+    if (!(d.inertia[i] > 0.0 && std::isfinite(d.inertia[i])))
+      refuse("inertia", fmt(d.inertia[i]), "a moment of inertia is finite and > 0");
+    if (!finite(d.position[i])) refuse("position", vec(d.position[i]), "a position is finite");
+    if (!finite(d.velocity[i]) || std::hypot(d.velocity[i].x, d.velocity[i].y) > config::kLightSpeed)
+      refuse("velocity", vec(d.velocity[i]), "a velocity is finite and below the speed of light");
+    if (!finite(d.force[i])) refuse("force", vec(d.force[i]), "a force is finite");
+    for (const auto& [set, v] : {std::pair{"omega", d.omega[i]}, {"theta", d.theta[i]}, {"torque", d.torque[i]}})
+      if (!std::isfinite(v)) refuse(set, fmt(v), "a finite number");
+  }
+}
+
+}  // namespace
+
 void read_state_discs(const std::string& path, DiscStore& discs, const Communicator& comm) {
   Hdf5File f(path, Hdf5File::Mode::read, comm);
   const std::uint64_t total = f.rows("/discs/gid");
@@ -131,6 +169,8 @@ void read_state_discs(const std::string& path, DiscStore& discs, const Communica
     });
   });
   discs.set_owned_count(count);
+  agree(comm, [&] { check_disc_rows(path, discs, begin); });
+  check_unique_gids(discs, path, comm);
 }
 
 namespace {
