@@ -17,6 +17,7 @@
 #include "core/Errors.hpp"
 #include "core/ExitCodes.hpp"
 #include "core/FaultInjection.hpp"
+#include "core/StopSignal.hpp"
 #include "parallel/Agreement.hpp"
 #include "parallel/Communicator.hpp"
 #include "parallel/StateFile.hpp"
@@ -140,6 +141,8 @@ int report(std::exception_ptr error, MPI_Comm exit_comm, const rondel::Communica
 
 int main(int argc, char** argv) {
   rondel::MpiEnvironment mpi(&argc, &argv);
+  // Before anything is read or written: a stop signal during set-up is recorded, not fatal (core/StopSignal.hpp).
+  rondel::StopSignal::install();
   rondel::Communicator comm;
   // Exit codes: core/ExitCodes.hpp (README "Exit codes"). Every rank returns the same code; the message is printed
   // once.

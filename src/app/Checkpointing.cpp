@@ -12,6 +12,7 @@
 
 #include "app/OutputNames.hpp"
 #include "core/Errors.hpp"
+#include "core/InputFile.hpp"
 #include "core/WallKinds.hpp"
 #include "parallel/Agreement.hpp"
 
@@ -24,12 +25,21 @@ namespace {
 bool state_file_of(const fs::path& path, const char* kind) {
   return path.filename().string().rfind(std::string(kind) + "_", 0) == 0 && path.extension() == output::kStateExtension;
 }
-// The files <kind>_*.h5 of `dir`, in ascending name order (= ascending step: the step is zero-padded).
-std::vector<fs::path> h5_files(const fs::path& dir, const char* kind) {
+// The files <kind>_*.h5 of `dir`, in ascending name order (= ascending step: the step is zero-padded). Only
+// regular files (Rondel writes nothing else): a symbolic link, a FIFO or a directory of such a name is not
+// one of the run's files, so it is neither read nor pruned in place of one (`others` lists them).
+std::vector<fs::path> h5_files(const fs::path& dir, const char* kind, std::vector<fs::path>* others = nullptr) {
   std::vector<fs::path> found;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (state_file_of(e.path(), kind)) found.push_back(e.path());
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (!state_file_of(e.path(), kind)) continue;
+    std::error_code ec;
+    if (fs::symlink_status(e.path(), ec).type() == fs::file_type::regular)
+      found.push_back(e.path());
+    else if (others)
+      others->push_back(e.path());
+  }
   std::sort(found.begin(), found.end());
+  if (others) std::sort(others->begin(), others->end());
   return found;
 }
 }  // namespace
@@ -87,7 +97,10 @@ std::string Checkpointing::write_checkpoint(const StateHeader& header, DiscStore
     if (!comm_.root()) return;
     try {
       fs::rename(part, final_path);
-      const std::vector<fs::path> existing = h5_files(dir_, output::kCheckpoint);
+      // The oldest of this run's checkpoints go; one of a later step is not this run's (a resume passed it
+      // over: damaged, or another run's) and is left alone rather than kept in place of ours.
+      std::vector<fs::path> existing = h5_files(dir_, output::kCheckpoint);
+      existing.erase(std::upper_bound(existing.begin(), existing.end(), final_path), existing.end());
       for (std::size_t k = 0; k + static_cast<std::size_t>(keep_) < existing.size(); ++k) fs::remove(existing[k]);
     } catch (const fs::filesystem_error& e) {
       throw IoError("checkpoint " + final_path.string() + ": " + e.what());
@@ -235,15 +248,33 @@ void Checkpointing::write_xdmf() const {
   if (ec) throw IoError("cannot replace '" + path.string() + "': " + ec.message());
 }
 
+std::string Checkpointing::run_id_of(const std::string& directory) {
+  std::ifstream in(fs::path(directory) / output::kConfig);
+  const std::string tag = output::kRunIdComment;
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(tag, 0) == 0) return line.substr(tag.size());
+  return "";
+}
+
 std::string Checkpointing::newest_checkpoint(const std::string& directory, const Communicator& comm,
                                              std::vector<std::string>* skipped) {
-  std::vector<fs::path> found;
-  if (fs::is_directory(directory)) found = h5_files(directory, output::kCheckpoint);
+  std::vector<fs::path> found, others;
+  std::error_code ec;
+  if (fs::is_directory(directory, ec)) found = h5_files(directory, output::kCheckpoint, &others);
   std::reverse(found.begin(), found.end());  // newest first
   std::vector<std::string> reasons;
+  for (const fs::path& p : others) {
+    reasons.push_back(p.string() + ": " + file_type_name(p.string(), false) + ", not a file that Rondel wrote");
+    if (skipped) skipped->push_back(reasons.back());
+  }
+  const std::string run = run_id_of(directory);
   for (const fs::path& p : found) {
     try {
-      verify_state_file(p.string(), comm);
+      verify_state_file(p.string(), comm);  // its errors are agreed: every rank passes over it alike
+      const std::string writer = run.empty() ? std::string() : read_state_header(p.string(), comm).run_id;
+      if (!writer.empty() && writer != run)
+        throw InputError("written by another run (run id " + writer + "; this directory's " + output::kConfig +
+                         " names the run " + run + ")");
       return p.string();
     } catch (const InputError& e) {
       reasons.push_back(p.string() + ": " + e.what());

@@ -29,11 +29,14 @@ class Checkpointing {
   std::string write_snapshot(const StateHeader& header, DiscStore& discs, const WallSet& walls, std::int64_t n_discs);
 
   // The newest checkpoint of `directory` that passes verify_state_file (collective): it opens, is complete,
-  // and its attributes and datasets match their checksums; throws InputError naming the directory when there
-  // is none. `skipped` receives the files passed over, with the reason.
+  // and its attributes and datasets match their checksums, and it was written by the directory's run (the id
+  // in its config.ini, when both have one); throws InputError naming the directory when there is none.
+  // `skipped` receives the files passed over, with the reason.
   static std::string newest_checkpoint(const std::string& directory, const Communicator& comm,
                                        std::vector<std::string>* skipped = nullptr);
   static std::string file_name(const char* prefix, std::int64_t step);
+  // The run id that the config.ini of `directory` names ("" when it names none: a run before the ids).
+  static std::string run_id_of(const std::string& directory);
   // The drawn part of each wall, two points per wall: a segment as it is; an infinite line clipped to the
   // domain box and to the discs' side of the other lines (so the walls of a box meet at its corners).
   static std::vector<Vec2> wall_outline(const WallSet& walls, const Domain& domain);

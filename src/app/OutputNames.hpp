@@ -11,6 +11,9 @@ inline constexpr const char* kFinal = "final.csv";
 inline constexpr const char* kSummaryText = "summary.txt";
 inline constexpr const char* kSummaryJson = "summary.json";
 inline constexpr const char* kLock = "rondel.lock";
+// The line of config.ini that names the run (its id, also in every checkpoint: a checkpoint of another run found
+// in the directory is passed over by --resume).
+inline constexpr const char* kRunIdComment = "# run id: ";
 // The HDF5 files: <kind>_<step>.h5 (Checkpointing::file_name), a checkpoint written under a hidden name first, and
 // the snapshots' XDMF side-car (written as a hidden part, then renamed).
 inline constexpr const char* kCheckpoint = "checkpoint";

@@ -52,6 +52,7 @@ StateHeader Restart::header(const RunState& state, const char* kind) {
   h.slots = history_slots(state.laws);
   h.config = config.resolved_text;
   h.materials = material_table_text(config.materials);
+  h.run_id = config.run_id;
   h.box_width0 = state.box0.width;
   h.box_height0 = state.box0.height;
   h.ledger = Reports(state).global_ledger();

@@ -9,8 +9,10 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <random>
 
 #include "app/OutputNames.hpp"
 #include "core/Errors.hpp"
@@ -147,11 +149,13 @@ void RunFiles::take_lock(const fs::path& dir) {
     std::string owner_host;
     std::ifstream(path) >> pid >> owner_host;
     const bool alive = owner_host == host && process_runs(pid);
-    if (alive || (pid > 0 && owner_host != host) || attempt > 0)
+    const bool elsewhere = pid > 0 && owner_host != host;
+    if (alive || (elsewhere && !config_.take_lock) || attempt > 0)
       throw ConfigError("run.output = '" + config_.output + "' is in use by another run (process " +
                         std::to_string(pid) + " on " + (owner_host.empty() ? std::string("?") : owner_host) +
-                        ", lock file '" + path.string() +
-                        "'); wait for it to end, or remove the lock file if no run uses the directory");
+                        ", lock file '" + path.string() + "'); wait for it to end" +
+                        (elsewhere ? ", or, if that run is gone (its node failed), rerun with --run.take_lock=true"
+                                   : ", or remove the lock file if no run uses the directory"));
     std::error_code ec;
     fs::remove(path, ec);  // stale: its process is gone
   }
@@ -167,7 +171,9 @@ void RunFiles::open_files(bool resuming, std::int64_t step) {
     cut_table(dir / output::kMeasures, step);
   }
   std::ofstream config(dir / output::kConfig);
-  config << "# resolved configuration of this run (every key, defaults included)\n" << config_.resolved_text;
+  config << "# resolved configuration of this run (every key, defaults included)\n"
+         << output::kRunIdComment << config_.run_id << '\n'
+         << config_.resolved_text;
   close_checked(config, dir / output::kConfig);
   log_.open(dir / output::kLog, resuming ? std::ios::app : std::ios::trunc);
   check_stream(log_, dir / output::kLog);
@@ -176,6 +182,18 @@ void RunFiles::open_files(bool resuming, std::int64_t step) {
   measures_.open(dir / output::kMeasures, resuming ? std::ios::app : std::ios::trunc);
   if (!measures_existed) measures_ << MeasuresRow::header() << '\n';
   check_stream(measures_, dir / output::kMeasures);
+}
+
+std::string RunFiles::new_run_id(const Communicator& comm) {
+  std::vector<char> id;
+  if (comm.root()) {
+    std::random_device device;
+    char text[40];
+    std::snprintf(text, sizeof text, "%08x%08x%08x%08x", device(), device(), device(), device());
+    id.assign(text, text + 32);
+  }
+  if (comm.size() > 1) comm.broadcast(id);
+  return std::string(id.begin(), id.end());
 }
 
 std::string RunFiles::write_failure(const fs::path& path) {
@@ -264,9 +282,11 @@ void RunFiles::write_results(const std::string& summary, const std::string& json
   close_checked(summary_txt, dir / output::kSummaryText);
   // The directory's files once summary.json is there too (checkpoints and snapshots included).
   std::vector<std::string> names{output::kSummaryJson};
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.is_regular_file() && e.path().filename() != output::kSummaryJson && e.path().filename() != output::kLock)
+  for (const auto& e : fs::directory_iterator(dir)) {
+    std::error_code ec;  // a symbolic link that loops is no file of the run, not an error
+    if (e.is_regular_file(ec) && e.path().filename() != output::kSummaryJson && e.path().filename() != output::kLock)
       names.push_back(e.path().filename().string());
+  }
   std::sort(names.begin(), names.end());
   std::string files;
   for (const auto& n : names) files += (files.empty() ? "\"" : ", \"") + n + "\"";

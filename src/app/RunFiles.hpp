@@ -35,6 +35,9 @@ class RunFiles {
   // them). Rank 0's row writers below throw IoError when a file cannot be written: call them inside an
   // agreement (parallel/Agreement.hpp).
   void prepare(const std::string& checkpoint, std::int64_t step);
+  // Collective: a new run's id, 128 random bits in hexadecimal drawn on rank 0 (metadata: never an input of
+  // the physics), the same on every rank.
+  static std::string new_run_id(const Communicator& comm);
   // True once prepare() has opened an output directory.
   bool has_directory() const { return checkpoints_ != nullptr; }
   // Rank 0: to the terminal (when the run writes files) and to log.txt.

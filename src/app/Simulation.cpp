@@ -1,10 +1,12 @@
 #include "app/Simulation.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
+#include <thread>
 
 #include "app/OutputNames.hpp"
 #include "app/Reports.hpp"
@@ -13,8 +15,10 @@
 #include "app/StartChecks.hpp"
 #include "core/Errors.hpp"
 #include "core/ExactSum.hpp"
+#include "core/FaultInjection.hpp"
 #include "core/Format.hpp"
 #include "core/SceneBuilder.hpp"
+#include "core/StopSignal.hpp"
 #include "core/WallKinds.hpp"
 #include "parallel/Agreement.hpp"
 #include "physics/NormalLinear.hpp"
@@ -49,6 +53,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
     load_checkpoint(restart_file);
     keep_rough_walls(restart_file);
   } else {
+    config_.run_id = RunFiles::new_run_id(comm_);
     build_discs();
     agree(comm_, [&] {
       resolve_time_step();
@@ -57,7 +62,10 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
     distribute_discs();
   }
   setup_boundaries();
-  if (write_files_) files_.prepare(restart_file, step_);
+  if (write_files_) {
+    stop_if_signalled(restart_file);
+    files_.prepare(restart_file, step_);
+  }
   phases_.restart();
   rebuild();
   if (restart) {
@@ -318,11 +326,29 @@ void Simulation::check_initial_state() {
                      " between " + where + " (from " + start_checks::scene_keys(config_) + ")");
 }
 
+void Simulation::stop_if_signalled(const std::string& restart_file) const {
+  // RONDEL_FAULT=setup_pause: set-up waits here (at most a minute) for the signal that a test sends.
+  if (injected_fault(FaultSite::setup_pause, comm_.rank()))
+    for (int k = 0; k < 6000 && StopSignal::received() == 0; ++k)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  const auto signal = static_cast<int>(comm_.max(static_cast<std::int64_t>(StopSignal::received())));
+  agree(comm_, [&] {
+    if (signal == 0) return;
+    throw StoppedInSetup(std::string("stopped by ") + StopSignal::name(signal) +
+                         " during set-up, before anything was written to '" + config_.output + "': " +
+                         (restart_file.empty() ? std::string("run the same command again to start the run")
+                                               : "resume with --resume " + fs::path(restart_file).parent_path().string() +
+                                                     " (the checkpoint '" + restart_file + "' is as it was)"));
+  });
+}
+
 void Simulation::load_checkpoint(const std::string& path) {
   // Each read is agreed: a rank's block of the file may be the only one that is short or damaged.
   std::unique_ptr<Restart> file;
   agree(comm_, [&] { file = std::make_unique<Restart>(path, config_, laws_, comm_); });
   const StateHeader& h = file->file_header();
+  // The run continues under its id (a file from before the ids starts one).
+  config_.run_id = h.run_id.empty() ? RunFiles::new_run_id(comm_) : h.run_id;
   agree(comm_, [&] { file->read_discs(discs_); });
   agree(comm_, [&] { file->read_walls(walls_); });
   box0_.width = h.box_width0;

@@ -140,6 +140,9 @@ class Simulation final : public RunTarget {
   void distribute_discs();
   void make_decomposition(bool replicated);
   void load_checkpoint(const std::string& path);
+  // Collective, before the first file is written: a stop signal received during set-up (by any rank) ends it
+  // here, every rank alike (StoppedInSetup, exit 10), the output directory as it was.
+  void stop_if_signalled(const std::string& restart_file) const;
   // A wall that carries glued discs in the checkpoint stays rough.
   void keep_rough_walls(const std::string& path);
   void resolve_time_step();

@@ -11,6 +11,7 @@
 #include "core/ConfigSchema.hpp"
 #include "core/DiscStore.hpp"
 #include "core/Errors.hpp"
+#include "core/InputFile.hpp"
 
 namespace rondel {
 
@@ -107,9 +108,8 @@ Config build(const LawCatalog& laws, const DynamicSections& dynamic, const po::v
 }
 
 std::string read_text(const std::string& file) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec))
-    throw ConfigError("the configuration file '" + file + "' is a directory, not an INI file");
+  const std::string problem = input_file_problem(file, "the configuration file", kMaxIniBytes);
+  if (!problem.empty()) throw ConfigError(problem);
   std::ifstream in(file);
   if (!in) throw ConfigError("cannot read the configuration file '" + file + "'");
   std::ostringstream s;

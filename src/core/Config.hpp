@@ -72,6 +72,8 @@ struct Config {
   bool force_dt = false;
   std::string output;
   bool overwrite = false;
+  bool take_lock = false;  // take over a lock file of another host (its run is gone: a node that failed)
+  std::string run_id;      // not a key: the run's identity (Simulation), in config.ini and every checkpoint
   bool progress = false;
   double max_overlap = 0.0;
   double max_residual = 0.0;

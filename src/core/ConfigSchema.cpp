@@ -71,6 +71,9 @@ void add_run_sections(po::options_description& all, std::vector<KeySpec>& keys, 
       .flag("run.force_dt", at(&Config::force_dt), false, "accept a run.dt above the critical step")
       .text("run.output", at(&Config::output), "rondel-output", "path", "output directory (must not exist unless run.overwrite)")
       .flag("run.overwrite", at(&Config::overwrite), false, "reuse an existing output directory")
+      .flag("run.take_lock", at(&Config::take_lock), false,
+            "take over the output directory's lock file when it names another host (whose run is gone, e.g. a "
+            "failed node); a live run on this host is never taken over")
       .flag("run.progress", at(&Config::progress), true, "progress line on rank 0")
       .number("run.max_overlap", at(&Config::max_overlap), 0.1, "-", kPositive, "stop when an overlap exceeds this fraction of the smaller radius")
       .flag("run.reset_history", at(&Config::reset_history), false, "start from a file whose laws differ: drop its contact history")

@@ -25,7 +25,19 @@ struct IoError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// An allocation failed (std::bad_alloc) after the checks before work: the run needs more memory than this
+// process may have. Its own exit code; the files written before it stay complete.
+struct MemoryError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A stop signal arrived during set-up, before the output directory was written (core/StopSignal.hpp): every rank
+// ends with the exit code of a stopped run (10); a rerun of the same command (or --resume) starts again.
+struct StoppedInSetup : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 // What an error is, for the agreement of the ranks (parallel/Agreement.hpp) and the exit code (core/ExitCodes.hpp).
-enum class ErrorKind : int { none = 0, config = 1, input = 2, instability = 3, io = 4, help = 5, internal = 6 };
+enum class ErrorKind : int { none = 0, config = 1, input = 2, instability = 3, io = 4, help = 5, internal = 6, memory = 7, stopped = 8 };
 
 }  // namespace rondel

@@ -16,7 +16,7 @@
 
 namespace rondel {
 
-enum class FaultSite { hdf5_write, hdf5_close, reserve, text };
+enum class FaultSite { hdf5_write, hdf5_close, reserve, text, alloc, setup_pause };
 
 struct FaultSiteInfo {
   FaultSite site;
@@ -30,6 +30,10 @@ inline constexpr FaultSiteInfo kFaultSites[] = {
     {FaultSite::hdf5_close, "hdf5_close", true, "the metadata flush before an HDF5 file is closed"},
     {FaultSite::reserve, "reserve", false, "the space reservation of an HDF5 file (rank 0), as a full disk would"},
     {FaultSite::text, "text:", false, "text:NAME, the text file NAME of the output directory"},
+    {FaultSite::alloc, "alloc", false,
+     "an allocation (std::bad_alloc) where final.csv is formatted, as an exhausted memory would"},
+    {FaultSite::setup_pause, "setup_pause", false,
+     "no failure: set-up waits (at most a minute) for a stop signal before the first file is written"},
 };
 
 // Whether the fault at `site` fires now on this process's rank `rank` (counts one visit of the site); `file`:

@@ -1,6 +1,7 @@
-// scene.type = csv: the discs of scene.file, rows 'id,x,y,radius[,vx,vy,omega][,material]' (decimal or C99
-// hexadecimal floats, as final.csv writes them; '#' comments; one header line), optionally replicated
-// scene.replicate_x x scene.replicate_y times over the periodic box and then numbered in rows.
+// scene.type = csv: the discs of scene.file, rows 'id,x,y,radius[,vx,vy,omega][,material]' or the columns a
+// header line names (decimal or C99 hexadecimal floats, as final.csv writes them, so a final.csv is a scene; '#'
+// comments), optionally replicated scene.replicate_x x scene.replicate_y times over the periodic box and then
+// numbered in rows.
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -10,6 +11,7 @@
 #include "core/ConfigRead.hpp"
 #include "core/DiscStore.hpp"
 #include "core/Errors.hpp"
+#include "core/InputFile.hpp"
 #include "core/MemoryLimit.hpp"
 #include "core/SceneTypes.hpp"
 
@@ -27,76 +29,181 @@ std::string csv_keys(const SceneConfig& s) {
 }
 std::string file_radius(const SceneConfig& s) { return "the radii of scene.file '" + s.file + "'"; }
 
-// The numbers of one CSV row (file, line): an integer id in [0, 2^53), a finite position, a finite radius
-// > 0, a finite velocity below the speed of light and a finite angular velocity.
-void check_row(const std::string& file, std::size_t lineno, const std::vector<std::string>& tokens,
-               const std::vector<double>& v) {
-  static const char* const kColumns[7] = {"id", "x", "y", "radius", "vx", "vy", "omega"};
-  auto refuse = [&](std::size_t col, const std::string& allowed) {
-    throw InputError("scene.file '" + file + "' line " + std::to_string(lineno) + ": " + kColumns[col] + " = '" +
-                     tokens[col] + "' is not allowed: " + allowed);
-  };
-  if (!(v[0] >= 0.0 && v[0] < static_cast<double>(kMaxGid) && v[0] == std::floor(v[0])))
-    refuse(0, "an integer from 0 to 2^53 - 1");
-  for (std::size_t col : {1, 2})
-    if (!std::isfinite(v[col])) refuse(col, "a finite number");
-  if (!(v[3] > 0.0 && std::isfinite(v[3]))) refuse(3, "radius must be > 0 and finite");
-  for (std::size_t col = 4; col < v.size(); ++col)
-    if (!std::isfinite(v[col]) || (col < 6 && std::fabs(v[col]) > config::kLightSpeed))
-      refuse(col, col < 6 ? "a finite speed below the speed of light" : "a finite number");
+// The columns of a CSV scene. With a header line, columns are found by name (any order; `gid` for `id`, so
+// that a final.csv is a scene; `theta` is read and not used: a scene starts at angle 0); without one, by
+// position: id,x,y,radius[,vx,vy,omega][,material].
+enum Column : int { kId, kX, kY, kRadius, kVx, kVy, kOmega, kMaterial, kTheta, kColumns };
+constexpr const char* kColumnNames[kColumns] = {"id", "x", "y", "radius", "vx", "vy", "omega", "material", "theta"};
+constexpr const char* kAllowed = "id (or gid), x, y, radius, vx, vy, omega, material, theta";
+
+// One line of the file cut into fields: at commas when the file's first line has one (spaces and tabs around a
+// field are dropped), else at runs of spaces and tabs.
+std::vector<std::string> fields_of(const std::string& line, bool commas) {
+  if (!commas) return config::split_words(line);
+  std::vector<std::string> out;
+  std::size_t at = 0;
+  for (;;) {
+    const std::size_t comma = line.find(',', at);
+    std::string f = line.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
+    const std::size_t b = f.find_first_not_of(" \t"), e = f.find_last_not_of(" \t");
+    out.push_back(b == std::string::npos ? std::string() : f.substr(b, e - b + 1));
+    if (comma == std::string::npos) return out;
+    at = comma + 1;
+  }
 }
 
-// One data row as a disc (its tokens, a material name already taken off).
-SceneDisc row_disc(const SceneConfig& s, std::size_t lineno, const std::vector<std::string>& tokens,
-                   const std::vector<double>& v, const std::string& material) {
-  check_row(s.file, lineno, tokens, v);
-  SceneDisc d{static_cast<std::int64_t>(v[0]), {v[1], v[2]}, v[3], s.velocity, s.omega};
-  const std::string where = "scene.file '" + s.file + "' line " + std::to_string(lineno);
-  if (!material.empty()) {
-    const auto it = std::find(s.material_names.begin(), s.material_names.end(), material);
-    if (it == s.material_names.end())
-      throw InputError(where + ": material '" + material + "' is not defined ([material.NAME])");
-    d.material = static_cast<int>(it - s.material_names.begin());
-  }
-  if (v.size() == 7) d.v += Vec2{v[4], v[5]}, d.omega += v[6];
-  if (!std::isfinite(d.v.x) || !std::isfinite(d.v.y) || !std::isfinite(d.omega))
-    throw InputError(where + ": the velocity plus scene.vx, scene.vy, scene.omega is not finite");
-  return d;
+bool is_number(const std::string& f, double& v) {
+  // strtod reads decimal and hexadecimal floats (final.csv is written in hexadecimal, bit-exact).
+  char* end = nullptr;
+  v = std::strtod(f.c_str(), &end);
+  return !f.empty() && end == f.c_str() + f.size();
 }
+
+// The reader of one file: the column of each field, then its rows as discs.
+class CsvReader {
+ public:
+  CsvReader(const SceneConfig& s) : s_(s) {}
+
+  void line(const std::string& text, std::size_t lineno) {
+    lineno_ = lineno;
+    if (first_) commas_ = text.find(',') != std::string::npos;
+    const std::vector<std::string> f = fields_of(text, commas_);
+    double v = 0.0;
+    if (first_ && f.size() > 1 && !is_number(f[0], v)) return header(f);  // names, not an id
+    if (first_) positional(f.size());
+    first_ = false;
+    row(f);
+  }
+
+  std::vector<SceneDisc>& discs() { return discs_; }
+  void check_ids() const {
+    std::vector<std::pair<std::int64_t, std::size_t>> ids(discs_.size());
+    for (std::size_t k = 0; k < discs_.size(); ++k) ids[k] = {discs_[k].gid, lines_[k]};
+    std::sort(ids.begin(), ids.end());
+    for (std::size_t k = 1; k < ids.size(); ++k)
+      if (ids[k].first == ids[k - 1].first)
+        throw InputError("scene.file '" + s_.file + "' lines " + std::to_string(ids[k - 1].second) + " and " +
+                         std::to_string(ids[k].second) + ": disc id " + std::to_string(ids[k].first) +
+                         " appears twice (every disc has an id of its own)");
+  }
+
+ private:
+  [[noreturn]] void refuse(const std::string& what) const {
+    throw InputError("scene.file '" + s_.file + "' line " + std::to_string(lineno_) + ": " + what);
+  }
+
+  void header(const std::vector<std::string>& f) {
+    first_ = false;
+    for (std::size_t k = 0; k < f.size(); ++k) {
+      std::string name = f[k];
+      if (name == "gid") name = "id";  // final.csv's name of the id: a final.csv is a scene
+      const auto it = std::find(std::begin(kColumnNames), std::end(kColumnNames), name);
+      if (f[k].empty()) refuse("column " + std::to_string(k + 1) + " of the header has no name (a trailing comma?)");
+      if (it == std::end(kColumnNames))
+        refuse("the header names a column '" + f[k] + "', which a CSV scene does not have (allowed: " + kAllowed + ")");
+      const int c = static_cast<int>(it - std::begin(kColumnNames));
+      if (std::find(columns_.begin(), columns_.end(), c) != columns_.end())
+        refuse("the header names the column '" + f[k] + "' twice");
+      columns_.push_back(c);
+    }
+    for (int c : {kId, kX, kY, kRadius})
+      if (std::find(columns_.begin(), columns_.end(), c) == columns_.end())
+        refuse(std::string("the header has no column '") + kColumnNames[c] + "' (required: id, x, y, radius; allowed: " +
+               kAllowed + ")");
+  }
+
+  void positional(std::size_t n) {
+    static const std::vector<int> kFour{kId, kX, kY, kRadius}, kSeven{kId, kX, kY, kRadius, kVx, kVy, kOmega};
+    columns_ = n == 4 || n == 5 ? kFour : kSeven;
+    if (n == 5 || n == 8) columns_.push_back(kMaterial);
+    if (n != 4 && n != 5 && n != 7 && n != 8)
+      refuse("expected 'id,x,y,radius' or 'id,x,y,radius,vx,vy,omega', each optionally with a last column material, "
+             "or a header line naming the columns (" +
+             std::string(kAllowed) + ")");
+  }
+
+  void row(const std::vector<std::string>& f) {
+    if (f.size() != columns_.size())
+      refuse(std::to_string(f.size()) + " fields, but the file has " + std::to_string(columns_.size()) +
+             " columns (a missing or extra field, a trailing comma, or a number with a space in it?)");
+    std::string material;
+    double value[kColumns] = {};
+    bool given[kColumns] = {};
+    std::string raw[kColumns];
+    for (std::size_t k = 0; k < f.size(); ++k) {
+      const int c = columns_[k];
+      given[c] = true;
+      raw[c] = f[k];
+      if (c == kMaterial) {
+        material = f[k];
+        if (material.empty()) refuse("the material field is empty");
+        continue;
+      }
+      if (!is_number(f[k], value[c]))
+        refuse(std::string(kColumnNames[c]) + " = '" + f[k] + "' is not a number" +
+               (f[k].empty() ? " (an empty field)" : ""));
+    }
+    const auto check = [&](int c, bool ok, const char* allowed) {
+      if (given[c] && !ok) refuse(std::string(kColumnNames[c]) + " = '" + raw[c] + "' is not allowed: " + allowed);
+    };
+    const double id = value[kId];
+    check(kId, id >= 0.0 && id < static_cast<double>(kMaxGid) && id == std::floor(id), "an integer from 0 to 2^53 - 1");
+    for (int c : {kX, kY, kOmega, kTheta}) check(c, std::isfinite(value[c]), "a finite number");
+    check(kRadius, value[kRadius] > 0.0 && std::isfinite(value[kRadius]), "radius must be > 0 and finite");
+    for (int c : {kVx, kVy})
+      check(c, std::isfinite(value[c]) && std::fabs(value[c]) <= config::kLightSpeed,
+            "a finite speed below the speed of light");
+    SceneDisc d{static_cast<std::int64_t>(id), {value[kX], value[kY]}, value[kRadius], s_.velocity, s_.omega};
+    if (!material.empty()) {
+      const auto it = std::find(s_.material_names.begin(), s_.material_names.end(), material);
+      if (it == s_.material_names.end()) refuse("material '" + material + "' is not defined ([material.NAME])");
+      d.material = static_cast<int>(it - s_.material_names.begin());
+    }
+    // Only the columns given are added (adding 0 could turn a -0.0 of scene.vx into +0.0).
+    if (given[kVx]) d.v.x += value[kVx];
+    if (given[kVy]) d.v.y += value[kVy];
+    if (given[kOmega]) d.omega += value[kOmega];
+    if (!std::isfinite(d.v.x) || !std::isfinite(d.v.y) || !std::isfinite(d.omega))
+      refuse("the velocity plus scene.vx, scene.vy, scene.omega is not finite");
+    discs_.push_back(d);
+    lines_.push_back(lineno_);
+  }
+
+  const SceneConfig& s_;
+  std::vector<int> columns_;
+  std::vector<SceneDisc> discs_;
+  std::vector<std::size_t> lines_;
+  std::size_t lineno_ = 0;
+  bool first_ = true, commas_ = true;
+};
 
 std::vector<SceneDisc> read_rows(const SceneConfig& s, const std::string& path) {
-  std::ifstream in(path);
+  if (const std::string why = input_file_problem(path, "scene.file", memory_bound().bytes); !why.empty())
+    throw InputError(why);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("scene.file '" + s.file + "' cannot be read");
-  std::vector<SceneDisc> base;
-  std::string line;
+  CsvReader reader(s);
+  std::string chunk;
   std::size_t lineno = 0;
-  bool header_seen = false;
-  while (std::getline(in, line)) {
-    ++lineno;
-    if (line.empty() || line[0] == '#') continue;
-    // strtod reads decimal and hexadecimal floats (final.csv is written in hexadecimal, bit-exact).
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::vector<std::string> tokens = config::split_words(line);
-    std::string material;  // a last column after radius or omega: the material's name
-    if (tokens.size() == 5 || tokens.size() == 8) material = tokens.back(), tokens.pop_back();
-    std::vector<double> v;
-    bool numeric = true;
-    for (const std::string& tok : tokens) {
-      char* end = nullptr;
-      v.push_back(std::strtod(tok.c_str(), &end));
-      if (end != tok.c_str() + tok.size()) numeric = false;
+  // Lines end in LF, CR LF or a lone CR (old Mac files): a chunk up to LF is split at CRs. A UTF-8 byte order
+  // mark at the start is dropped; blank lines and lines starting with '#' are skipped.
+  while (std::getline(in, chunk)) {
+    if (lineno == 0 && chunk.rfind("\xEF\xBB\xBF", 0) == 0) chunk.erase(0, 3);
+    if (!chunk.empty() && chunk.back() == '\r') chunk.pop_back();
+    std::size_t at = 0;
+    for (;;) {
+      const std::size_t cr = chunk.find('\r', at);
+      const std::string line = chunk.substr(at, cr == std::string::npos ? std::string::npos : cr - at);
+      ++lineno;
+      if (line.find_first_not_of(" \t") != std::string::npos && line[line.find_first_not_of(" \t")] != '#')
+        reader.line(line, lineno);
+      if (cr == std::string::npos) break;
+      at = cr + 1;
     }
-    if (!numeric && base.empty() && !header_seen) {  // one header line before the data
-      header_seen = true;
-      continue;
-    }
-    if (!numeric || (v.size() != 4 && v.size() != 7))
-      throw InputError("scene.file '" + s.file + "' line " + std::to_string(lineno) +
-                       ": expected 'id,x,y,radius' or 'id,x,y,radius,vx,vy,omega', each optionally with a last "
-                       "column material");
-    base.push_back(row_disc(s, lineno, tokens, v, material));
   }
-  return base;
+  if (in.bad()) throw InputError("scene.file '" + s.file + "' cannot be read (an I/O error)");
+  reader.check_ids();
+  return std::move(reader.discs());
 }
 
 // The copies, numbered anew in rows across the whole box: numbered one after the other, every row of the file
@@ -107,12 +214,6 @@ std::vector<SceneDisc> replicate(const SceneConfig& s, const Domain& domain, con
                "scene.replicate_x x scene.replicate_y copies of the " + std::to_string(base.size()) + " discs of '" +
                    s.file + "'");
   const double px = domain.length_x() / s.replicate_x, py = domain.length_y() / s.replicate_y;
-  std::vector<std::int64_t> ids(base.size());
-  for (std::size_t k = 0; k < base.size(); ++k) ids[k] = base[k].gid;
-  std::sort(ids.begin(), ids.end());
-  const auto twice = std::adjacent_find(ids.begin(), ids.end());
-  if (twice != ids.end())
-    throw InputError("scene.file '" + s.file + "': disc id " + std::to_string(*twice) + " appears twice");
   std::vector<SceneDisc> out;
   out.reserve(base.size() * static_cast<std::size_t>(s.replicate_x) * static_cast<std::size_t>(s.replicate_y));
   for (int cy = 0; cy < s.replicate_y; ++cy)

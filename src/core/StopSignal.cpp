@@ -8,7 +8,6 @@ extern "C" void record_signal(int signal) { g_received = signal; }
 }  // namespace
 
 void StopSignal::install() {
-  g_received = 0;
   std::signal(SIGTERM, record_signal);
   std::signal(SIGINT, record_signal);
   std::signal(SIGUSR1, record_signal);

@@ -1,11 +1,13 @@
 #include "parallel/Agreement.hpp"
 
 #include <chrono>
+#include <new>
 #include <thread>
 #include <vector>
 
 #include "core/Config.hpp"
 #include "core/Errors.hpp"
+#include "core/MemoryLimit.hpp"
 
 namespace rondel {
 
@@ -35,6 +37,10 @@ template <template <class> class As>
       throw As<InstabilityError>(message);
     case ErrorKind::io:
       throw As<IoError>(message);
+    case ErrorKind::memory:
+      throw As<MemoryError>(message);
+    case ErrorKind::stopped:
+      throw As<StoppedInSetup>(message);
     case ErrorKind::none:
     case ErrorKind::internal:
       break;
@@ -77,6 +83,9 @@ std::string error_message(const std::exception_ptr& error) {
     std::rethrow_exception(error);
   } catch (const HelpRequested& h) {
     return h.text;
+  } catch (const std::bad_alloc&) {
+    return "an allocation failed (std::bad_alloc): the run needs more memory than " + memory_bound().source +
+           " allows; the files written before stay complete (use more ranks or nodes, or a smaller scene)";
   } catch (const std::exception& e) {
     return e.what();
   } catch (...) {
@@ -98,6 +107,12 @@ ErrorKind error_kind(const std::exception_ptr& error) {
     return ErrorKind::instability;
   } catch (const IoError&) {
     return ErrorKind::io;
+  } catch (const MemoryError&) {
+    return ErrorKind::memory;
+  } catch (const StoppedInSetup&) {
+    return ErrorKind::stopped;
+  } catch (const std::bad_alloc&) {
+    return ErrorKind::memory;
   } catch (...) {
     return ErrorKind::internal;
   }

@@ -9,6 +9,7 @@
 
 #include "core/ContactTable.hpp"
 #include "core/Errors.hpp"
+#include "core/InputFile.hpp"
 #include "core/FaultInjection.hpp"
 #include "core/FileSpace.hpp"
 #include "core/Vec2.hpp"
@@ -132,6 +133,9 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode, const Communicator& comm,
       error = std::make_exception_ptr(IoError("not enough space to write '" + path + "': " + why));
     }
   }
+  // A FIFO or a device would block the open or be read without end: only a regular file is opened to read.
+  if (!writing_ && file_kind(path) != FileKind::regular && file_kind(path) != FileKind::missing)
+    error = std::make_exception_ptr(InputError(input_file_problem(path, "the HDF5 file")));
   settle(comm_, error);
   Handle fapl{H5Pcreate(H5P_FILE_ACCESS), H5Pclose};
   H5Pset_fapl_mpio(fapl.id, comm.comm(), MPI_INFO_NULL);

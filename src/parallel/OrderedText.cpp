@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <new>
 
 #include "core/Errors.hpp"
 #include "core/FaultInjection.hpp"
@@ -37,6 +38,7 @@ void write_ordered_text(const std::string& path, const std::string& header, cons
                         const std::function<void(std::size_t, std::string&)>& line, const Communicator& comm) {
   std::string text;
   agree(comm, [&] {
+    if (injected_fault(FaultSite::alloc, comm.rank())) throw std::bad_alloc();
     text = comm.root() ? header : std::string();
     for (std::size_t k = 0; k < order.count(); ++k) line(k, text);
   });

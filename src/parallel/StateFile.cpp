@@ -77,6 +77,7 @@ void write_header(Hdf5File& f, const StateHeader& h) {
   f.write_attribute("/", "rolling_law", h.rolling_law);
   f.write_attribute("/", "history_slots", join(h.slots));
   f.write_attribute("/", "config", h.config);
+  f.write_attribute("/", "run_id", h.run_id);
   f.create_group("/materials");
   f.write_attribute("/materials", "table", h.materials);
 }

@@ -36,6 +36,7 @@ struct StateHeader {
   LedgerTerms ledger;                          // the run's ledger (terms missing from a file read as zero)
   double box_width0 = 0.0, box_height0 = 0.0;  // the box walls' separation at the start (strain reference)
   std::string materials;  // the material table (core/Material.hpp material_table_text); "" in older files
+  std::string run_id;     // the run that wrote the file (RunFiles: also in its config.ini); "" in older files
 };
 
 // Writes checkpoints and snapshots (collective). `fields` selects the disc datasets of a snapshot (empty:
