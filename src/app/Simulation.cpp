@@ -336,9 +336,10 @@ void Simulation::stop_if_signalled(const std::string& restart_file) const {
     if (signal == 0) return;
     throw StoppedInSetup(std::string("stopped by ") + StopSignal::name(signal) +
                          " during set-up, before anything was written to '" + config_.output + "': " +
-                         (restart_file.empty() ? std::string("run the same command again to start the run")
-                                               : "resume with --resume " + fs::path(restart_file).parent_path().string() +
-                                                     " (the checkpoint '" + restart_file + "' is as it was)"));
+                         (restart_file.empty()
+                              ? std::string("run the same command again to start the run")
+                              : "resume with --resume " + fs::path(restart_file).parent_path().string() +
+                                    " (the checkpoint '" + restart_file + "' is as it was)"));
   });
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 #include "core/Errors.hpp"
@@ -99,13 +100,36 @@ void check_masses(const Config& c, const std::vector<MaterialInfo>& materials) {
   }
 }
 
+// The keys of a "key = value, ..." list whose values lie far outside what double precision can combine
+// (magnitude above 1e100 or below 1e-100): the ones that made a derived quantity overflow or vanish.
+std::string extreme_keys(const std::string& list) {
+  std::string out;
+  std::size_t at = 0;
+  while (at < list.size()) {
+    std::size_t end = list.find(", ", at);
+    if (end == std::string::npos) end = list.size();
+    const std::string item = list.substr(at, end - at);
+    const std::size_t eq = item.find(" = ");
+    const double v = eq == std::string::npos ? 0.0 : std::strtod(item.c_str() + eq + 3, nullptr);
+    if (v != 0.0 && (std::fabs(v) > 1e100 || std::fabs(v) < 1e-100)) out += (out.empty() ? "" : ", ") + item;
+    at = end + 2;
+  }
+  return out;
+}
+
 void check_time_step(const Config& c, const CriticalStep& critical, double dt, double R_min) {
-  if (!normal_positive(critical.dt))
+  if (!normal_positive(critical.dt)) {
+    const std::string keys = critical_keys(c), culprits = extreme_keys(keys);
     throw ConfigError("the critical time step is " + fmt(critical.dt) + " s" +
                       (critical.mode.empty() ? std::string() : " (" + critical.mode + " mode, " + critical.pair + ")") +
-                      ", not a positive finite step: the stiffness, damping, density or radius is too large or too "
-                      "small for double precision; the keys that set it: " +
-                      critical_keys(c));
+                      ", not a positive finite step: " +
+                      (culprits.empty() ? std::string("the stiffness, damping, density or radius is too large or too "
+                                                      "small for double precision")
+                                        : "made so by " + culprits +
+                                              " (beyond 1e100 or below 1e-100: too large or too small for double "
+                                              "precision; lower run.dt cannot help)") +
+                      "; the keys that set it: " + keys);
+  }
   if (!normal_positive(dt))
     throw ConfigError("the time step is " + fmt(dt) + " s (run.dt = " + fmt(c.dt) + ", run.safety = " + fmt(c.safety) +
                       " x the critical step " + fmt(critical.dt) + " s), not a positive finite step");

@@ -183,15 +183,21 @@ po::variables_map parse(const LawCatalog& laws, const std::vector<std::string>& 
     po::store(po::command_line_parser(args).options(cli).positional(pos).style(kCommandLineStyle).run(), vm);
     if (vm.count("help")) throw HelpRequested{config_help(laws)};
     refuse_empty_flags(specs, args, ini_text ? *ini_text : file_text);
-    if (ini_text) {
-      std::istringstream in(*ini_text);
+    // The INI on its own first: Boost keeps the command line's value of a key and would never parse the
+    // INI's (a repeated key, or a value that is not a number, would pass unseen when the command line sets it).
+    const auto store_ini = [&](const std::string& text) {
+      std::istringstream alone(text), in(text);
+      po::variables_map check;
+      po::store(po::parse_config_file(alone, schema, false), check);
       po::store(po::parse_config_file(in, schema, false), vm);
+    };
+    if (ini_text) {
+      store_ini(*ini_text);
     } else if (vm.count("config")) {
       const std::string file = vm["config"].as<std::string>();
-      std::istringstream in(file_text.empty() ? read_text(file) : file_text);
       *file_out = file;
       try {
-        po::store(po::parse_config_file(in, schema, false), vm);
+        store_ini(file_text.empty() ? read_text(file) : file_text);
       } catch (const po::error& e) {
         throw ConfigError("in '" + file + "': " + parse_message(e, specs) + " (rondel --help lists every key)");
       }

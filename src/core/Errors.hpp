@@ -38,6 +38,16 @@ struct StoppedInSetup : std::runtime_error {
 };
 
 // What an error is, for the agreement of the ranks (parallel/Agreement.hpp) and the exit code (core/ExitCodes.hpp).
-enum class ErrorKind : int { none = 0, config = 1, input = 2, instability = 3, io = 4, help = 5, internal = 6, memory = 7, stopped = 8 };
+enum class ErrorKind : int {
+  none = 0,
+  config = 1,
+  input = 2,
+  instability = 3,
+  io = 4,
+  help = 5,
+  internal = 6,
+  memory = 7,
+  stopped = 8
+};
 
 }  // namespace rondel

@@ -16,10 +16,12 @@ inline constexpr ExitCode kExitInput{1, "configuration or input error, before an
 inline constexpr ExitCode kExitUnstable{3, "the run became unstable"};
 inline constexpr ExitCode kExitInternal{4, "internal error"};
 inline constexpr ExitCode kExitIo{5, "I/O error: a file could not be written or read"};
-inline constexpr ExitCode kExitMemory{6, "out of memory: an allocation failed (the files written before stay complete)"};
+inline constexpr ExitCode kExitMemory{6,
+                                      "out of memory: an allocation failed (the files written before stay complete)"};
 inline constexpr ExitCode kExitStopped{
     10, "stopped by SIGTERM, SIGINT or SIGUSR1 after writing a checkpoint, or during set-up before writing anything"};
-inline constexpr ExitCode kExitCodes[] = {kExitDone, kExitInput, kExitUnstable, kExitInternal, kExitIo, kExitMemory, kExitStopped};
+inline constexpr ExitCode kExitCodes[] = {kExitDone, kExitInput,  kExitUnstable, kExitInternal,
+                                          kExitIo,   kExitMemory, kExitStopped};
 
 // The exit code of an error of each kind, and the label of its message ("rondel: configuration error: ...").
 struct ErrorExit {

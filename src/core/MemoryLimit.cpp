@@ -59,9 +59,9 @@ MemoryBound cgroup_bound() {
     if (limit == 0) continue;
     if (limit >= (std::uint64_t{1} << 60)) return {};  // v1's "no limit" is a page-rounded 2^63
     const std::uint64_t used = number_in(p.dir + "/" + p.usage);
-    return {limit > used ? limit - used : 1,
-            "the cgroup memory limit of " + gigabytes(static_cast<double>(limit)) + " (" + p.dir + "/" + p.limit +
-                ", less " + gigabytes(static_cast<double>(used)) + " in use)"};
+    return {limit > used ? limit - used : 1, "the cgroup memory limit of " + gigabytes(static_cast<double>(limit)) +
+                                                 " (" + p.dir + "/" + p.limit + ", less " +
+                                                 gigabytes(static_cast<double>(used)) + " in use)"};
   }
   return {};
 }

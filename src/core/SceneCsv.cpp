@@ -108,8 +108,8 @@ class CsvReader {
     }
     for (int c : {kId, kX, kY, kRadius})
       if (std::find(columns_.begin(), columns_.end(), c) == columns_.end())
-        refuse(std::string("the header has no column '") + kColumnNames[c] + "' (required: id, x, y, radius; allowed: " +
-               kAllowed + ")");
+        refuse(std::string("the header has no column '") + kColumnNames[c] +
+               "' (required: id, x, y, radius; allowed: " + kAllowed + ")");
   }
 
   void positional(std::size_t n) {
@@ -117,9 +117,10 @@ class CsvReader {
     columns_ = n == 4 || n == 5 ? kFour : kSeven;
     if (n == 5 || n == 8) columns_.push_back(kMaterial);
     if (n != 4 && n != 5 && n != 7 && n != 8)
-      refuse("expected 'id,x,y,radius' or 'id,x,y,radius,vx,vy,omega', each optionally with a last column material, "
-             "or a header line naming the columns (" +
-             std::string(kAllowed) + ")");
+      refuse(
+          "expected 'id,x,y,radius' or 'id,x,y,radius,vx,vy,omega', each optionally with a last column material, "
+          "or a header line naming the columns (" +
+          std::string(kAllowed) + ")");
   }
 
   void row(const std::vector<std::string>& f) {

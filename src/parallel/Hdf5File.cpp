@@ -9,9 +9,9 @@
 
 #include "core/ContactTable.hpp"
 #include "core/Errors.hpp"
-#include "core/InputFile.hpp"
 #include "core/FaultInjection.hpp"
 #include "core/FileSpace.hpp"
+#include "core/InputFile.hpp"
 #include "core/Vec2.hpp"
 #include "parallel/Agreement.hpp"
 #include "parallel/CanonicalOrder.hpp"

@@ -130,8 +130,7 @@ TEST_F(LyingFiles, ANegativeOrTooLargeIdInACheckpointIsRefused) {
 TEST_F(LyingFiles, ARadiusOrVelocityThatIsNotANumberIsRefusedNamingTheRow) {
   const fs::path nan = edited_run("nan", [](const fs::path& f) { set_value<double>(f, "/discs/radius", 7, NAN); });
   expect_resume_refused(nan, 2, "/discs/radius row 7 (disc 7) is nan: a radius is finite and > 0");
-  const fs::path fast =
-      edited_run("fast", [](const fs::path& f) { set_value<double>(f, "/discs/velocity", 64, 1e9); });
+  const fs::path fast = edited_run("fast", [](const fs::path& f) { set_value<double>(f, "/discs/velocity", 64, 1e9); });
   expect_resume_refused(fast, 1, "/discs/velocity row 64 (disc 64) is (1e+09, ");
   const fs::path mass = edited_run("mass", [](const fs::path& f) { set_value<double>(f, "/discs/mass", 0, 0.0); });
   expect_resume_refused(mass, 3, "/discs/mass row 0 (disc 0) is 0: a mass is finite and > 0");
@@ -141,9 +140,10 @@ TEST_F(LyingFiles, AsAScene) {
   // The same file as scene.type = file: refused before the output directory exists.
   const fs::path run = edited_run("scene", [](const fs::path& f) { set_value<std::int64_t>(f, "/discs/gid", 9, 2); });
   for (int ranks : {1, 2}) {
-    const Outcome o = mpirun_rondel(*dir_, ranks,
-                                    "box.ini --scene.type=file --scene.file=" + quoted(run / "checkpoint_0000000020.h5") +
-                                        " --run.output=out_scene --run.steps=5");
+    const Outcome o =
+        mpirun_rondel(*dir_, ranks,
+                      "box.ini --scene.type=file --scene.file=" + quoted(run / "checkpoint_0000000020.h5") +
+                          " --run.output=out_scene --run.steps=5");
     EXPECT_EQ(o.exit_code, 1) << o.err;
     EXPECT_EQ(occurrences(o.err, "disc id 2 occurs more than once in /discs/gid"), 1u) << o.err;
     EXPECT_FALSE(fs::exists(*dir_ / "out_scene"));

@@ -54,7 +54,8 @@ type = csv
   return mpirun_rondel(dir, ranks, "scene.ini --scene.file=" + out + ".csv --run.output=" + out + extra);
 }
 
-// The refusal of a CSV scene on each of `rank_counts`: exit 1, the message once, naming `what`, and no output directory.
+// The refusal of a CSV scene on each of `rank_counts`: exit 1, the message once, naming `what`, and no output
+// directory.
 void expect_csv_refused(const TempDir& dir, const std::string& csv, const std::string& name, const std::string& what,
                         std::initializer_list<int> rank_counts = {1}) {
   for (int ranks : rank_counts) {
@@ -79,11 +80,13 @@ TEST(LyingInputs, CsvColumnsAreReadByTheirHeaderNames) {
   ASSERT_EQ(run_csv(dir, kRows, "bare").exit_code, 0);
   EXPECT_EQ(read_file(dir / "bare" / "final.csv"), read_file(dir / "plain" / "final.csv"));
   // CR-only and CR LF line ends, a byte order mark, spaces around the fields: the same discs.
-  const Outcome cr = run_csv(dir, "id,x,y,radius,vx,vy,omega\r0,0.02,0.03,0.005,1,0,0\r1,0.06,0.07,0.004,0,-1,2\r", "cr");
+  const Outcome cr =
+      run_csv(dir, "id,x,y,radius,vx,vy,omega\r0,0.02,0.03,0.005,1,0,0\r1,0.06,0.07,0.004,0,-1,2\r", "cr");
   ASSERT_EQ(cr.exit_code, 0) << cr.err;
   EXPECT_EQ(read_file(dir / "cr" / "final.csv"), read_file(dir / "plain" / "final.csv"));
   const Outcome bom = run_csv(
-      dir, "\xEF\xBB\xBFid, x, y, radius, vx, vy, omega\r\n0, 0.02, 0.03, 0.005, 1, 0, 0\r\n1,0.06,0.07,0.004,0,-1,2\r\n",
+      dir,
+      "\xEF\xBB\xBFid, x, y, radius, vx, vy, omega\r\n0, 0.02, 0.03, 0.005, 1, 0, 0\r\n1,0.06,0.07,0.004,0,-1,2\r\n",
       "bom");
   ASSERT_EQ(bom.exit_code, 0) << bom.err;
   EXPECT_EQ(read_file(dir / "bom" / "final.csv"), read_file(dir / "plain" / "final.csv"));
@@ -101,7 +104,8 @@ TEST(LyingInputs, CsvColumnsAreReadByTheirHeaderNames) {
     }
     return out;
   };
-  EXPECT_EQ(without_theta(read_file(dir / "again" / "final.csv")), without_theta(read_file(dir / "plain" / "final.csv")));
+  EXPECT_EQ(without_theta(read_file(dir / "again" / "final.csv")),
+            without_theta(read_file(dir / "plain" / "final.csv")));
 }
 
 TEST(LyingInputs, CsvHeadersThatDoNotNameTheColumnsAreRefused) {
@@ -115,7 +119,8 @@ TEST(LyingInputs, CsvHeadersThatDoNotNameTheColumnsAreRefused) {
   expect_csv_refused(dir, "id,x,radius\n0,0.02,0.005\n", "missing", "line 1: the header has no column 'y'");
   expect_csv_refused(dir, "id,x,y,radius,\n0,0.02,0.03,0.005,\n", "trailing",
                      "line 1: column 5 of the header has no name (a trailing comma?)");
-  expect_csv_refused(dir, "id,x,y,radius\n0,0.02,0.03,0.005,\n", "trailing_row", "line 2: 5 fields, but the file has 4");
+  expect_csv_refused(dir, "id,x,y,radius\n0,0.02,0.03,0.005,\n", "trailing_row",
+                     "line 2: 5 fields, but the file has 4");
   expect_csv_refused(dir, "id,x,y,radius\n0,0.0 05,0.03,0.005\n", "space", "line 2: x = '0.0 05' is not a number");
   expect_csv_refused(dir, "id,x,y,radius\n# a comment\n4,0.02,0.03,0.005\n1,0.06,0.07,0.004\n4,0.02,0.08,0.005\n",
                      "repeated", "lines 3 and 5: disc id 4 appears twice", {1, 2});
@@ -157,13 +162,12 @@ TEST(LyingInputs, ThingsNamedLikeANewerCheckpointArePassedOverAndNeverPruned) {
   ASSERT_EQ(mkfifo((run / "checkpoint_0000009500.h5").c_str(), 0600), 0);
   fs::create_directory(run / "checkpoint_0000009900.h5");
   for (int ranks : {1, 2}) {
-    const Outcome o = mpirun_rondel(dir, ranks,
-                                    "--resume run --run.steps=" + std::to_string(30 + 10 * ranks) +
-                                        " --output.checkpoint_keep=1",
-                                    "", 60);
+    const Outcome o = mpirun_rondel(
+        dir, ranks, "--resume run --run.steps=" + std::to_string(30 + 10 * ranks) + " --output.checkpoint_keep=1", "",
+        60);
     EXPECT_EQ(o.exit_code, 0) << ranks << " ranks: " << o.err;
-    EXPECT_EQ(occurrences(o.err, "skipping run/checkpoint_0000009000.h5: a symbolic link, not a file that Rondel wrote"),
-              1u)
+    EXPECT_EQ(
+        occurrences(o.err, "skipping run/checkpoint_0000009000.h5: a symbolic link, not a file that Rondel wrote"), 1u)
         << o.err;
     EXPECT_EQ(occurrences(o.err, "skipping run/checkpoint_0000009500.h5: a FIFO (named pipe)"), 1u) << o.err;
     EXPECT_EQ(occurrences(o.err, "skipping run/checkpoint_0000009900.h5: a directory"), 1u) << o.err;

@@ -32,8 +32,9 @@ TEST(MemoryLimits, AProcessLimitBelowTheSceneIsFoundBeforeWork) {
   const std::string scene =
       " box.ini --scene.type=lattice_square --scene.nx=2000 --scene.ny=1000 --scene.radius=1e-5 "
       "--scene.spacing=2.1e-5 --scene.x0=1e-5 --scene.y0=1e-5 --run.output=big --run.steps=1";
-  const Outcome o = test::run_in(dir, test::without_mpi_launch(true),
-                                 "sh -c 'ulimit -v 900000 && exec " + test::quoted(test::rondel_executable()) + scene + "'");
+  const Outcome o =
+      test::run_in(dir, test::without_mpi_launch(true),
+                   "sh -c 'ulimit -v 900000 && exec " + test::quoted(test::rondel_executable()) + scene + "'");
   EXPECT_EQ(o.exit_code, kExitInput.code) << o.err;
   EXPECT_EQ(occurrences(o.err, "scene.nx x scene.ny: 2e+06 discs need about 1.2 GB"), 1u) << o.err;
   EXPECT_EQ(occurrences(o.err, "the process limit ulimit -v (RLIMIT_AS) of 0.922 GB"), 1u) << o.err;

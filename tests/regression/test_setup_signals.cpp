@@ -39,8 +39,7 @@ Outcome signalled_in_setup(const TempDir& dir, int ranks, const std::string& sig
     env += " OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1";
     launch = "mpirun -n " + std::to_string(ranks) + " --oversubscribe " + launch;
   }
-  return test::run_in(dir, env,
-                      "sh -c \"" + launch + " & p=\\$!; sleep 1.5; kill -" + signal + " \\$p; wait \\$p\"");
+  return test::run_in(dir, env, "sh -c \"" + launch + " & p=\\$!; sleep 1.5; kill -" + signal + " \\$p; wait \\$p\"");
 }
 
 TEST(SetupSignals, AFreshRunStoppedInSetUpWritesNothingAndRunsAgain) {
@@ -69,8 +68,9 @@ TEST(SetupSignals, AResumeStoppedInSetUpLeavesItsDirectoryAsItWas) {
   const auto before = tree(dir / "run");
   const Outcome o = signalled_in_setup(dir, 2, "USR1", "--resume run --run.steps=40");
   EXPECT_EQ(o.exit_code, kExitStopped.code) << o.err;
-  EXPECT_EQ(occurrences(o.err, "rondel: stopped by SIGUSR1 during set-up, before anything was written to 'run': resume "
-                               "with --resume run (the checkpoint 'run/checkpoint_0000000020.h5' is as it was)"),
+  EXPECT_EQ(occurrences(o.err,
+                        "rondel: stopped by SIGUSR1 during set-up, before anything was written to 'run': resume "
+                        "with --resume run (the checkpoint 'run/checkpoint_0000000020.h5' is as it was)"),
             1u)
       << o.err;
   EXPECT_TRUE(tree(dir / "run") == before) << "the run directory changed";
