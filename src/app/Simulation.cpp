@@ -328,9 +328,11 @@ void Simulation::check_initial_state() {
 
 void Simulation::stop_if_signalled(const std::string& restart_file) const {
   // RONDEL_FAULT=setup_pause: set-up waits here (at most a minute) for the signal that a test sends.
-  if (injected_fault(FaultSite::setup_pause, comm_.rank()))
+  if (injected_fault(FaultSite::setup_pause, comm_.rank())) {
+    if (comm_.root()) std::cerr << "rondel: set-up paused (RONDEL_FAULT=setup_pause): waiting for a stop signal\n";
     for (int k = 0; k < 6000 && StopSignal::received() == 0; ++k)
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
   const auto signal = static_cast<int>(comm_.max(static_cast<std::int64_t>(StopSignal::received())));
   agree(comm_, [&] {
     if (signal == 0) return;

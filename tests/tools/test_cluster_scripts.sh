@@ -41,6 +41,10 @@ case $FAKE_MODE in
   complete) summary complete; exit 0 ;;
   fail) exit 1 ;;
   signal) trap 'stop 10' USR1; touch "$out/trap-set"; for _ in $(seq 200); do sleep 0.05; done; exit 7 ;;
+  hang)  # checkpoints and says "stopped" on SIGUSR1, then never ends (the launcher fault of Open MPI)
+    trap 'touch "$out/checkpoint_0000000010.h5"; summary stopped; touch "$out/stopped"' USR1
+    touch "$out/trap-set"
+    while :; do sleep 0.05; done ;;
 esac
 FAKE
 chmod +x "$work/bin/"*
@@ -113,6 +117,23 @@ check "SIGUSR1: forwarded to the rank" grep -q "SIGUSR1" "$case_dir/job.out"
 check "SIGUSR1: the rank's exit 10 is seen" grep -q "rondel exited with 10" "$case_dir/job.out"
 check "SIGUSR1: job 2 is submitted" sbatched "^RONDEL_JOB=2 "
 
+# A launcher that never ends after SIGUSR1: killed after RONDEL_STOP_GRACE, and summary.json decides.
+case_dir=$work/hang
+mkdir -p "$case_dir"
+(cd "$case_dir" && exec env -u RONDEL_JOB PATH="$work/bin:$PATH" RONDEL="$work/bin/rondel" RONDEL_SCRIPT="$job" \
+   FAKE_MODE=hang FAKE_LOG="$case_dir/rondel.log" FAKE_OUT="$case_dir/out" SLURM_SUBMIT_DIR="$case_dir" \
+   RONDEL_STOP_GRACE=1 bash "$job" in.ini out > "$case_dir/job.out" 2>&1) &
+shell=$!
+for _ in $(seq 400); do [ -f "$case_dir/out/trap-set" ] && break; sleep 0.05; done
+kill -USR1 "$shell"
+for _ in $(seq 400); do kill -0 "$shell" 2> /dev/null || break; sleep 0.05; done  # at most 20 s, not forever
+kill -0 "$shell" 2> /dev/null && kill -KILL "$shell"
+wait "$shell"
+rc=$?
+check "a launcher that hangs after SIGUSR1: the job ends well" eq "$rc" 0
+check "a launcher that hangs: killed after RONDEL_STOP_GRACE" grep -q "still runs 1 s after SIGUSR1" "$case_dir/job.out"
+check "a launcher that hangs: summary.json 'stopped' resubmits" sbatched "^RONDEL_JOB=2 "
+
 run_case stop RONDEL_JOB=3 RONDEL_MAX_JOBS=3
 check "at RONDEL_MAX_JOBS: exit 10" eq "$rc" 10
 check "at RONDEL_MAX_JOBS: nothing submitted" no_sbatch
@@ -147,7 +168,22 @@ if [ -n "$real" ] && command -v mpirun > /dev/null; then
   last=$(ls "$case_dir"/out/checkpoint_*.h5 2> /dev/null | tail -n 1)
   step=$(basename "$last" .h5 | sed 's/^checkpoint_0*//')
   check "real run: a checkpoint was written" test -n "$step"
-  (cd "$case_dir" && exec "${real_env[@]}" RONDEL_JOB=2 bash "$job" in.ini out --run.steps=$((step + 100)) \
+  # The follow-up job gets SIGUSR1 while it reads the checkpoint (held there by RONDEL_FAULT=setup_pause): it
+  # stops before writing anything, with 10, and job 3 is submitted.
+  before=$(cd "$case_dir/out" && ls -l --time-style=+%s.%N | md5sum)
+  (cd "$case_dir" && exec "${real_env[@]}" RONDEL_JOB=2 RONDEL_FAULT=setup_pause bash "$job" in.ini out \
+     --run.steps=$((step + 100)) "${quiet[@]}" >> job.out 2>&1) &
+  shell=$!
+  for _ in $(seq 600); do grep -q "set-up paused" "$case_dir/job.out" && break; sleep 0.05; done
+  kill -USR1 "$shell"
+  wait "$shell"
+  rc=$?
+  check "real run: SIGUSR1 in the follow-up's set-up: the job ends well" eq "$rc" 0
+  check "real run: the set-up stopped before writing" grep -q "stopped by SIGUSR1 during set-up" "$case_dir/job.out"
+  check "real run: the set-up's stop exits 10" grep -q "rondel exited with 10" "$case_dir/job.out"
+  check "real run: job 3 is submitted" sbatched "^RONDEL_JOB=3 "
+  check "real run: the directory is as it was" eq "$before" "$(cd "$case_dir/out" && ls -l --time-style=+%s.%N | md5sum)"
+  (cd "$case_dir" && exec "${real_env[@]}" RONDEL_JOB=3 bash "$job" in.ini out --run.steps=$((step + 100)) \
      "${quiet[@]}" >> job.out 2>&1)
   rc=$?
   check "real run: the follow-up job resumes and completes" eq "$rc" 0

@@ -34,11 +34,16 @@ rondel_wait() {
 # SIGUSR1 to this shell goes on to the launcher: srun passes it to every task, Open MPI's mpirun to every rank
 # (SIGUSR1 and SIGUSR2 only: a SIGTERM or SIGINT makes mpirun end the ranks itself). The trap is set before
 # the launch, so that a signal in between is not lost (the shell would die of it without one).
+#
+# A launcher that does not end within RONDEL_STOP_GRACE seconds (default 240, inside the 300 s of warning)
+# after the signal is killed: Open MPI's mpirun was seen to hang after a signal early in the ranks' start-up
+# (2 of 11 trials, the ranks long gone). The exit code and summary.json then decide as always.
 rondel_launch() {  # EXECUTABLE ARGS...
   RONDEL_PID=
   RONDEL_SIGNALLED=0
+  RONDEL_WATCHDOG=
   trap 'echo "rondel chain: SIGUSR1 (the time limit is near): the ranks write a checkpoint and stop"
-        RONDEL_SIGNALLED=1; [ -n "$RONDEL_PID" ] && kill -USR1 "$RONDEL_PID" 2> /dev/null' USR1
+        RONDEL_SIGNALLED=1; [ -n "$RONDEL_PID" ] && kill -USR1 "$RONDEL_PID" 2> /dev/null && rondel_watchdog' USR1
   case ${RONDEL_LAUNCH:-srun} in
     srun) srun "$@" & ;;
     mpirun) mpirun "$@" & ;;
@@ -50,9 +55,28 @@ rondel_launch() {  # EXECUTABLE ARGS...
       ;;
   esac
   RONDEL_PID=$!
-  [ "$RONDEL_SIGNALLED" -eq 1 ] && kill -USR1 "$RONDEL_PID" 2> /dev/null
+  [ "$RONDEL_SIGNALLED" -eq 1 ] && kill -USR1 "$RONDEL_PID" 2> /dev/null && rondel_watchdog
   rondel_wait "$RONDEL_PID"
   trap - USR1
+  if [ -n "$RONDEL_WATCHDOG" ]; then  # its sleep first (a killed subshell leaves its child running)
+    pkill -P "$RONDEL_WATCHDOG" 2> /dev/null
+    kill "$RONDEL_WATCHDOG" 2> /dev/null
+  fi
+  return 0
+}
+
+# Kills the launcher if it still runs RONDEL_STOP_GRACE seconds from now (once per launch).
+rondel_watchdog() {
+  [ -n "$RONDEL_WATCHDOG" ] && return 0
+  local grace=${RONDEL_STOP_GRACE:-240} pid=$RONDEL_PID
+  (
+    sleep "$grace"
+    if kill -0 "$pid" 2> /dev/null; then
+      echo "rondel chain: the launcher still runs $grace s after SIGUSR1 (RONDEL_STOP_GRACE): killed; summary.json decides"
+      kill -KILL "$pid" 2> /dev/null
+    fi
+  ) &
+  RONDEL_WATCHDOG=$!
 }
 
 rondel_chain() {  # INPUT.ini OUTPUT_DIR [overrides...]
