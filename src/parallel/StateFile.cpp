@@ -77,7 +77,6 @@ void write_header(Hdf5File& f, const StateHeader& h) {
   f.write_attribute("/", "rolling_law", h.rolling_law);
   f.write_attribute("/", "history_slots", join(h.slots));
   f.write_attribute("/", "config", h.config);
-  f.write_attribute("/", "run_id", h.run_id);
   f.create_group("/materials");
   f.write_attribute("/materials", "table", h.materials);
 }
@@ -247,6 +246,7 @@ void StateWriter::write(const std::string& path, const StateHeader& h, DiscStore
     f.write_attribute("/run_metadata", "wall_seconds", comm.max(comm.root() ? wall_seconds : 0.0));
     f.write_attribute("/run_metadata", "rondel_version", std::string(kRondelVersion));
     f.write_attribute("/run_metadata", "rondel_commit", std::string(kRondelCommit));
+    f.write_attribute("/run_metadata", "run_id", h.run_id);
     // Over every attribute written above (the datasets' checksums included), as stored; in a group of its
     // own, which a comparison of two files leaves out with the run metadata and the ledger it covers.
     const std::uint64_t digest = f.attribute_digest();

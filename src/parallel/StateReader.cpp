@@ -65,7 +65,7 @@ StateHeader read_header(const Hdf5File& f, const std::string& path) {
   h.rolling_law = f.read_string_attribute("/", "rolling_law");
   h.slots = split(f.read_string_attribute("/", "history_slots"));
   h.config = f.read_string_attribute("/", "config");
-  if (f.has_attribute("/", "run_id")) h.run_id = f.read_string_attribute("/", "run_id");
+  if (f.has_attribute("/run_metadata", "run_id")) h.run_id = f.read_string_attribute("/run_metadata", "run_id");
   if (f.has_attribute("/materials", "table")) h.materials = f.read_string_attribute("/materials", "table");
   h.box_width0 = f.read_double_attribute("/walls", "box_width0");
   h.box_height0 = f.read_double_attribute("/walls", "box_height0");
