@@ -62,7 +62,7 @@ bool is_number(const std::string& f, double& v) {
 // The reader of one file: the column of each field, then its rows as discs.
 class CsvReader {
  public:
-  CsvReader(const SceneConfig& s) : s_(s) {}
+  explicit CsvReader(const SceneConfig& s) : s_(s) {}
 
   void line(const std::string& text, std::size_t lineno) {
     lineno_ = lineno;

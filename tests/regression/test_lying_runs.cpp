@@ -34,11 +34,12 @@ std::string run_id(const fs::path& run) {
 TEST(LyingRuns, ACheckpointOfAnotherRunIsPassedOver) {
   const TempDir dir("rondel-foreign");
   write_file(dir / "box.ini", test::moving_wall_box_ini("wang"));
-  ASSERT_EQ(mpirun_rondel(dir, 1, "box.ini --run.output=mine --run.steps=20 --output.checkpoint_every=10").exit_code, 0);
-  ASSERT_EQ(mpirun_rondel(dir, 1,
-                          "box.ini --run.output=other --run.steps=30 --output.checkpoint_every=30 --scene.seed=99")
-                .exit_code,
+  ASSERT_EQ(mpirun_rondel(dir, 1, "box.ini --run.output=mine --run.steps=20 --output.checkpoint_every=10").exit_code,
             0);
+  ASSERT_EQ(
+      mpirun_rondel(dir, 1, "box.ini --run.output=other --run.steps=30 --output.checkpoint_every=30 --scene.seed=99")
+          .exit_code,
+      0);
   const std::string mine = run_id(dir / "mine"), other = run_id(dir / "other");
   ASSERT_EQ(mine.size(), 32u);
   ASSERT_NE(mine, other);
@@ -64,7 +65,8 @@ TEST(LyingRuns, ALockOfAnotherHostIsTakenOnlyWhenAskedTo) {
   write_file(dir / "run" / "rondel.lock", "4242 a-node-that-failed\n");
   const Outcome refused = mpirun_rondel(dir, 2, "--resume run --run.steps=20");
   EXPECT_EQ(refused.exit_code, kExitInput.code);
-  EXPECT_EQ(occurrences(refused.err, "is in use by another run (process 4242 on a-node-that-failed"), 1u) << refused.err;
+  EXPECT_EQ(occurrences(refused.err, "is in use by another run (process 4242 on a-node-that-failed"), 1u)
+      << refused.err;
   EXPECT_EQ(occurrences(refused.err, "or, if that run is gone (its node failed), rerun with --run.take_lock=true"), 1u)
       << refused.err;
   const Outcome taken = mpirun_rondel(dir, 2, "--resume run --run.steps=20 --run.take_lock=true");
@@ -99,7 +101,8 @@ TEST(LyingRuns, AParameterThatOverflowsTheCriticalStepIsNamed) {
   write_file(dir / "box.ini", test::moving_wall_box_ini("wang"));
   const Outcome o = mpirun_rondel(dir, 1, "box.ini --linear.k_n=1e308 --run.output=out");
   EXPECT_EQ(o.exit_code, kExitInput.code) << o.err;
-  EXPECT_EQ(occurrences(o.err, "not a positive finite step: made so by linear.k_n = 1e+308 (beyond 1e100"), 1u) << o.err;
+  EXPECT_EQ(occurrences(o.err, "not a positive finite step: made so by linear.k_n = 1e+308 (beyond 1e100"), 1u)
+      << o.err;
   EXPECT_EQ(occurrences(o.err, "lower run.dt cannot help"), 1u) << o.err;
 }
 

@@ -1,12 +1,17 @@
 // Memory that is not there: a scene too large for the process limit (ulimit -v) is refused before work,
-// naming the limit, although the machine's physical memory would hold it; an allocation that fails during the
+// naming the limit, although the machine's physical memory would hold it (and the share of a restart's discs
+// against a process limit set in-process); an allocation that fails during the
 // run (injected: RONDEL_FAULT=alloc, where final.csv is formatted) ends every rank with exit code 6 and one
 // message, and the files written before it (the checkpoint, diagnostics.csv) stay complete.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 
+#include "core/Errors.hpp"
 #include "core/ExitCodes.hpp"
 #include "core/MemoryLimit.hpp"
 #include "support/Command.hpp"
@@ -47,6 +52,39 @@ TEST(MemoryLimits, TheBoundIsTheTightestLimit) {
   ASSERT_GT(b.bytes, 0u);
   EXPECT_LE(b.bytes, physical_memory());
   EXPECT_FALSE(b.source.empty());
+  // This process under a soft RLIMIT_AS of what it has mapped plus 100 MB (restored after): 1e6 discs (600 MB by
+  // the estimate) are refused naming the limit, 1e5 (60 MB) pass. The check a restart makes with its share.
+  rlimit old{};
+  ASSERT_EQ(getrlimit(RLIMIT_AS, &old), 0);
+  const auto mapped = static_cast<rlim_t>(sysconf(_SC_PAGE_SIZE)) * [] {
+    std::ifstream statm("/proc/self/statm");
+    rlim_t pages = 0;
+    statm >> pages;
+    return pages;
+  }();
+  rlimit tight = old;
+  tight.rlim_cur = mapped + (rlim_t{100} << 20);
+  if (old.rlim_max != RLIM_INFINITY && tight.rlim_cur > old.rlim_max) GTEST_SKIP() << "a hard limit below the test's";
+  ASSERT_EQ(setrlimit(RLIMIT_AS, &tight), 0);
+  std::string refused;
+  try {
+    check_memory(1e6, 0.0, 0.0, "the discs of 'x.h5' over 1 rank(s), per rank");
+  } catch (const ConfigError& e) {
+    refused = e.what();
+  }
+  bool small_passes = true;
+  try {
+    check_memory(1e5, 0.0, 0.0, "a tenth");
+  } catch (const ConfigError&) {
+    small_passes = false;
+  }
+  const MemoryBound under = memory_bound();
+  ASSERT_EQ(setrlimit(RLIMIT_AS, &old), 0);
+  EXPECT_EQ(occurrences(refused, "the discs of 'x.h5' over 1 rank(s), per rank: 1e+06 discs need about 0.6 GB"), 1u)
+      << refused;
+  EXPECT_EQ(occurrences(refused, "but the process limit ulimit -v (RLIMIT_AS) of "), 1u) << refused;
+  EXPECT_TRUE(small_passes);
+  EXPECT_LT(under.bytes, std::uint64_t{110} << 20);
 }
 
 TEST(MemoryLimits, AnAllocationThatFailsEndsEveryRankWithItsOwnCode) {
