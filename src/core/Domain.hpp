@@ -1,22 +1,86 @@
 #pragma once
+// The simulation box: a periodic cell that may deform (docs/physics.md section 10). Its vectors are a = (L_x, 0)
+// and b = (tilt, L_y) from the corner x0 = (xlo, ylo); images of a disc are at x + i a + j b. A box that does not
+// deform is this cell with tilt 0 and no rates: one type. Periodic directions wrap positions and use the minimum
+// image; the others only bound the cell grid (walls keep the discs in). The type owns the minimum image (with the
+// image's velocity in a moving cell), the wrap of a position (with the matching shift of its velocity), the widths
+// across its sides, the deformation and the flip. No key sets a rate yet: a run's cell stands still.
+#include <cmath>
+#include <stdexcept>
+
 #include "core/Vec2.hpp"
 
 namespace rondel {
 
-// The simulation box. Periodic directions wrap positions and use the minimum image; the others only
-// bound the cell grid (walls keep the discs in).
+// The cell's velocity gradient L (dh/dt = L h), components xx, xy, yy [1/s].
+struct CellGradient {
+  double xx = 0.0, xy = 0.0, yy = 0.0;
+  bool any() const { return xx != 0.0 || xy != 0.0 || yy != 0.0; }
+  // L v
+  Vec2 of(Vec2 v) const { return {xx * v.x + xy * v.y, yy * v.y}; }
+};
+
 struct Domain {
   double xlo = 0.0, xhi = 1.0, ylo = 0.0, yhi = 1.0;
   bool periodic_x = false;
   bool periodic_y = false;
+  double tilt = 0.0;  // h_xy, the x component of b [m]; |tilt| <= L_x/2 (flip)
+  CellGradient L{};   // the cell's velocity gradient now
+  Vec2 va{}, vb{};    // da/dt and db/dt = L a, L b (rates())
+  bool moving = false;
 
   double length_x() const { return xhi - xlo; }
   double length_y() const { return yhi - ylo; }
+  Vec2 corner() const { return {xlo, ylo}; }
+  double area() const { return length_x() * length_y(); }  // det h
+  // The distance between the cell's sides along a (L_x L_y/|b|) and along b (L_y): the interaction range must stay
+  // below half of each (the minimum image), and the cell grid keeps its cells' widths above it.
+  double width_x() const {
+    return tilt == 0.0 ? length_x() : length_x() * length_y() / std::sqrt(tilt * tilt + length_y() * length_y());
+  }
+  double width_y() const { return length_y(); }
+  // The x offset of the cell's left side at height y (0 for a cell without tilt).
+  double shear_shift(double y) const { return tilt == 0.0 ? 0.0 : (y - ylo) / length_y() * tilt; }
+  // The mean flow's velocity at x, L (x - x0).
+  Vec2 flow(Vec2 x) const { return L.of(x - corner()); }
 
-  // d = x2 - x1 with the minimum-image correction, formed the same way on every rank (MinimumImage).
+  // d = x2 - x1 with the minimum-image correction, formed the same way on every rank (MinimumImage, ShearedImage).
   Vec2 separation(Vec2 x1, Vec2 x2) const;
 
+  // A position back into the cell (one lattice vector at most: a disc moves less than a cell per step), and in a
+  // moving cell its velocity by the cell's, v -= i da/dt + j db/dt (Lees-Edwards). y first, then x.
+  void wrap(Vec2& x, Vec2& v) const {
+    if (standing()) return wrap_standing(x);
+    if (periodic_y) {
+      if (x.y >= yhi) {
+        x.y -= length_y();
+        if (tilt != 0.0) x.x -= tilt;
+        if (moving) v -= vb;
+      } else if (x.y < ylo) {
+        x.y += length_y();
+        if (tilt != 0.0) x.x += tilt;
+        if (moving) v += vb;
+      }
+    }
+    if (periodic_x) {
+      const double shift = shear_shift(x.y);
+      if (x.x - shift >= xhi) {
+        x.x -= length_x();
+        if (moving) v -= va;
+      } else if (x.x - shift < xlo) {
+        x.x += length_x();
+        if (moving) v += va;
+      }
+    }
+  }
+  // The same without a velocity (a cell that does not move, or a position alone).
   void wrap(Vec2& x) const {
+    Vec2 v;
+    wrap(x, v);
+  }
+  // A cell that neither tilts nor moves: its x and y wrap apart, and no velocity changes.
+  bool standing() const { return tilt == 0.0 && !moving; }
+  void wrap_standing(Vec2& x) const {
     if (periodic_x) {
       if (x.x >= xhi)
         x.x -= length_x();
@@ -31,12 +95,46 @@ struct Domain {
     }
   }
 
-  bool contains(Vec2 x) const { return x.x >= xlo && x.x <= xhi && x.y >= ylo && x.y <= yhi; }
+  // x inside the cell (its sides included).
+  bool contains(Vec2 x) const {
+    const double sx = x.x - shear_shift(x.y);
+    return sx >= xlo && sx <= xhi && x.y >= ylo && x.y <= yhi;
+  }
+
+  // da/dt and db/dt from the gradient and the present h.
+  void rates() {
+    va = {L.xx * length_x(), 0.0};
+    vb = {L.xx * tilt + L.xy * length_y(), L.yy * length_y()};
+    moving = L.any();
+  }
+  // h += dt L h, the corner fixed (the same arithmetic on every rank).
+  void deform(double dt) {
+    if (!moving) return;
+    xhi += dt * va.x;
+    tilt += dt * vb.x;
+    yhi += dt * vb.y;
+    rates();
+  }
+  // b -= sign(tilt) a when |tilt| passes L_x/2: the same lattice (the same contacts and forces), other labels of
+  // the images. Returns whether it flipped.
+  bool flip() {
+    const double half = 0.5 * length_x();
+    if (tilt > half)
+      tilt -= length_x();
+    else if (tilt < -half)
+      tilt += length_x();
+    else
+      return false;
+    rates();
+    return true;
+  }
 };
 
-// The minimum-image separation of a domain with its lengths computed once, for loops over many pairs (the
-// contact kernel): d = x2 - x1, then in a periodic direction of length L, d -= L when d > L/2 and d += L
-// when d < -L/2. Domain::separation is this, so every caller forms the same bits.
+// The minimum-image separation of a cell that neither tilts nor moves, its lengths computed once, for loops over
+// many pairs (the contact kernel, the neighbour search): d = x2 - x1, then d_x -= L_x when d_x > L_x/2 and
+// d_x += L_x when d_x < -L_x/2 in a periodic x, the same in y. The standing box pays for nothing else; a cell
+// that tilts or moves has ShearedImage (the same bits when tilt = 0 and nothing moves: the corrections of x and
+// y are then independent). Constructing one from a tilted or moving cell is a programming error.
 struct MinimumImage {
   double Lx, Ly, half_x, half_y;
   bool periodic_x, periodic_y;
@@ -46,7 +144,9 @@ struct MinimumImage {
         half_x(0.5 * Lx),
         half_y(0.5 * Ly),
         periodic_x(d.periodic_x),
-        periodic_y(d.periodic_y) {}
+        periodic_y(d.periodic_y) {
+    if (!d.standing()) throw std::logic_error("MinimumImage of a tilted or moving cell: use ShearedImage");
+  }
   Vec2 separation(Vec2 x1, Vec2 x2) const {
     Vec2 d = x2 - x1;
     if (periodic_x) {
@@ -65,7 +165,58 @@ struct MinimumImage {
   }
 };
 
-inline Vec2 Domain::separation(Vec2 x1, Vec2 x2) const { return MinimumImage(*this).separation(x1, x2); }
+// The minimum image of the deforming cell (docs/physics.md section 10): d = x2 - x1, then in a periodic y d -= b
+// when d_y > L_y/2 and d += b when d_y < -L_y/2, then in a periodic x d_x -= L_x when d_x > L_x/2 and d_x += L_x
+// when d_x < -L_x/2; one lattice vector each way suffices for positions in the cell with |tilt| <= L_x/2. With
+// the velocity `v2` of disc 2 it also gives its image's, v2 + j db/dt + i da/dt, in a moving cell (Lees-Edwards).
+struct ShearedImage {
+  double Lx, Ly, half_x, half_y, tilt;
+  Vec2 va, vb;
+  bool periodic_x, periodic_y, moving;
+  explicit ShearedImage(const Domain& d)
+      : Lx(d.length_x()),
+        Ly(d.length_y()),
+        half_x(0.5 * Lx),
+        half_y(0.5 * Ly),
+        tilt(d.tilt),
+        va(d.va),
+        vb(d.vb),
+        periodic_x(d.periodic_x),
+        periodic_y(d.periodic_y),
+        moving(d.moving) {}
+  Vec2 separation(Vec2 x1, Vec2 x2, Vec2& v2) const {
+    Vec2 d = x2 - x1;
+    if (periodic_y) {
+      if (d.y > half_y) {
+        d.y -= Ly;
+        d.x -= tilt;
+        if (moving) v2 -= vb;
+      } else if (d.y < -half_y) {
+        d.y += Ly;
+        d.x += tilt;
+        if (moving) v2 += vb;
+      }
+    }
+    if (periodic_x) {
+      if (d.x > half_x) {
+        d.x -= Lx;
+        if (moving) v2 -= va;
+      } else if (d.x < -half_x) {
+        d.x += Lx;
+        if (moving) v2 += va;
+      }
+    }
+    return d;
+  }
+  Vec2 separation(Vec2 x1, Vec2 x2) const {
+    Vec2 v2;
+    return separation(x1, x2, v2);
+  }
+};
+
+inline Vec2 Domain::separation(Vec2 x1, Vec2 x2) const {
+  return standing() ? MinimumImage(*this).separation(x1, x2) : ShearedImage(*this).separation(x1, x2);
+}
 
 // |x - x0|^2 by the minimum image: the squared displacement of a disc from x0 to x.
 inline double squared_displacement(const MinimumImage& image, Vec2 x0, Vec2 x) {

@@ -43,6 +43,7 @@ Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, 
   const std::size_t n = discs.n_owned();
   // Local copies and plain pointers: a store to a disc cannot make the compiler reload them.
   const Domain box = domain;
+  const bool standing = box.standing();  // the plain wrap, decided once for the pass
   const Vec2 gravity = body.gravity;
   const std::uint32_t* const flags = discs.flags.data();
   const double *const mass = discs.mass.data(), *const inertia = discs.inertia.data();
@@ -69,7 +70,10 @@ Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, 
       step2 = std::max(step2, dot(dx, dx));
       position[i] += dx;
       theta[i] += dt * omega[i];
-      box.wrap(position[i]);
+      if (standing)
+        box.wrap_standing(position[i]);
+      else
+        box.wrap(position[i], v);  // a moving cell shifts the velocity too (Lees-Edwards)
       W_g += m * dot(gravity, dx);
       force[i] = body.on(m, flags[i]);
       torque[i] = 0.0;

@@ -46,6 +46,7 @@ std::vector<NeighbourList::Candidate> NeighbourList::candidates(const DiscStore&
   std::vector<Candidate> found;
   found.reserve(expected + expected / 16 + 64);
   const std::size_t n_owned = discs.n_owned();
+  const MinimumImage image(domain);  // a standing cell (the deforming one has no neighbour search yet)
   std::vector<std::size_t> around;
   for (std::size_t c = 0; c + 1 < cell_start_.size(); ++c) {
     if (cell_start_[c] == cell_start_[c + 1]) continue;
@@ -64,7 +65,7 @@ std::vector<NeighbourList::Candidate> NeighbourList::candidates(const DiscStore&
           if (discs.gid[j] <= discs.gid[i]) continue;  // each pair once, from its lower gid
           if (i >= n_owned && j >= n_owned) continue;
           if (same_rigid_body(discs.flags[i], discs.flags[j])) continue;
-          const Vec2 d = domain.separation(discs.position[i], discs.position[j]);
+          const Vec2 d = image.separation(discs.position[i], discs.position[j]);
           const double reach = discs.radius[i] + discs.radius[j] + skin_;
           if (dot(d, d) < reach * reach)
             found.emplace_back(ContactKey{discs.gid[i], discs.gid[j]}, static_cast<std::int32_t>(i),
