@@ -4,6 +4,7 @@
 // numbered in rows.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -179,7 +180,9 @@ class CsvReader {
 };
 
 std::vector<SceneDisc> read_rows(const SceneConfig& s, const std::string& path) {
-  if (const std::string why = input_file_problem(path, "scene.file", memory_bound().bytes); !why.empty())
+  // A file larger than the memory this process may use cannot become a scene (0: no bound known).
+  const std::uint64_t bound = memory_bound().bytes;
+  if (const std::string why = input_file_problem(path, "scene.file", bound > 0 ? bound : UINT64_MAX); !why.empty())
     throw InputError(why);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("scene.file '" + s.file + "' cannot be read");
