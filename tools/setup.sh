@@ -2,9 +2,11 @@
 # Sets up Rondel on a Debian machine: installs the Debian packages that are missing (as root, with apt-get),
 # then configures (Release) and builds in build/: every target, or only the TARGETs given. Safe to run again:
 # it installs nothing that is already there and rebuilds only what changed.
-#   bash tools/setup.sh [--no-tests] [TARGET ...]
+#   bash tools/setup.sh [--no-tests] [--paraview] [TARGET ...]
 #     TARGET      make targets to build (rondel, rondel_bench, rondel_serial_tests, ...); default: all
 #     --no-tests  configure with -DBUILD_TESTING=OFF: no test suite, GoogleTest and Eigen not needed
+#     --paraview  also ParaView and xvfb (about 440 MB), so that the test tools.paraview runs instead of being
+#                 skipped; implied when CI=true
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -14,15 +16,18 @@ fail() {
 }
 
 testing=ON
+paraview=OFF
+[ "${CI:-}" = true ] && paraview=ON
 targets=()
 for arg in "$@"; do
   case "$arg" in
     --no-tests) testing=OFF ;;
+    --paraview) paraview=ON ;;
     -h | --help)
-      sed -n '2,7s/^# \{0,1\}//p' "${BASH_SOURCE[0]}"
+      sed -n '2,9s/^# \{0,1\}//p' "${BASH_SOURCE[0]}"
       exit 0
       ;;
-    -*) fail "unknown option '$arg' (options: --no-tests, then make targets)" ;;
+    -*) fail "unknown option '$arg' (options: --no-tests, --paraview, then make targets)" ;;
     *) targets+=("$arg") ;;
   esac
 done
@@ -35,9 +40,10 @@ PACKAGES=(
   libboost-program-options-dev
   python3-h5py python3-numpy python3-matplotlib
 )
-# Needed by the test suite only.
+# Needed by the test suite only; ParaView for its ParaView test (tests/tools/test_paraview.py).
 if [ "$testing" = ON ]; then
   PACKAGES+=(libeigen3-dev libgtest-dev)
+  [ "$paraview" = ON ] && PACKAGES+=(paraview python3-paraview xvfb)
 fi
 
 command -v dpkg >/dev/null 2>&1 ||

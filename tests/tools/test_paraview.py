@@ -5,7 +5,8 @@ and tools/paraview_frames.py renders a frame whose disc pixels cover the discs' 
 
     test_paraview.py RONDEL_BINARY
 
-Exit 0 pass, 1 fail, 77 skipped (no pvpython or xvfb-run: ctest SKIP_RETURN_CODE).
+Exit 0 pass, 1 fail, 77 skipped (no pvpython or xvfb-run: ctest SKIP_RETURN_CODE; with CI=true, where
+tools/setup.sh installs them, their absence fails).
 """
 
 import os
@@ -108,6 +109,10 @@ def main():
         print("usage: test_paraview.py RONDEL_BINARY")
         return 1
     missing = [t for t in ("pvpython", "xvfb-run") if shutil.which(t) is None]
+    if missing and os.environ.get("CI") == "true":  # CI installs them (tools/setup.sh): missing is a failure
+        print("FAIL: %s not installed although CI=true (tools/setup.sh installs paraview python3-paraview xvfb)"
+              % " and ".join(missing))
+        return 1
     if missing:
         print("SKIP: %s not installed (Debian: paraview python3-paraview xvfb); the ParaView test needs them"
               % " and ".join(missing))
