@@ -40,6 +40,7 @@
 #include "parallel/StateFile.hpp"
 #include "support/Assertions.hpp"
 #include "support/Quiet.hpp"
+#include "support/Restamp.hpp"
 #include "support/Scenes.hpp"
 #include "support/TempDir.hpp"
 
@@ -173,16 +174,6 @@ struct H5 {
     return n;
   }
 };
-
-// After an edit that stands for what a writer meant (not a corruption): the attributes' checksum made to fit.
-void restamp(const fs::path& file) {
-  std::uint64_t digest = 0;
-  {
-    const Hdf5File f(file.string(), Hdf5File::Mode::read, Communicator(MPI_COMM_SELF));
-    digest = f.attribute_digest();
-  }
-  H5(file).set_int("/integrity", "attributes_checksum", static_cast<std::int64_t>(digest));
-}
 
 // A fixture with one valid checkpoint (step 1500, Wang rolling), made once for the suite.
 class CheckpointErrors : public ::testing::Test {
@@ -377,7 +368,7 @@ TEST_F(CheckpointErrors, LawsOrHistorySlotsDiffer) {
   // Same laws, but the file's history slots are not the kernel's.
   const fs::path slots = copy("slots.h5");
   H5(slots).set_string("/", "history_slots", "xi,x_r,extra");
-  restamp(slots);
+  test::restamp(slots);
   const std::string s = restart_refusal<InputError>(slots, out("slots"));
   EXPECT_TRUE(test::names(s, slots.string()));
   EXPECT_TRUE(test::names(s, "xi,x_r,extra"));

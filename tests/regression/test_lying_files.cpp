@@ -8,13 +8,13 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
-#include <map>
 #include <string>
 #include <vector>
 
 #include "parallel/Communicator.hpp"
 #include "parallel/Hdf5File.hpp"
 #include "support/Command.hpp"
+#include "support/Restamp.hpp"
 #include "support/Scenes.hpp"
 #include "support/TempDir.hpp"
 
@@ -28,14 +28,6 @@ using test::Outcome;
 using test::quoted;
 using test::read_file;
 using test::TempDir;
-
-// Every file of a directory tree and its bytes.
-std::map<std::string, std::string> tree(const fs::path& dir) {
-  std::map<std::string, std::string> files;
-  for (const auto& e : fs::recursive_directory_iterator(dir))
-    if (e.is_regular_file()) files[fs::relative(e.path(), dir).string()] = read_file(e.path());
-  return files;
-}
 
 // Sets one value (component 0 of row `row`) of the dataset `name` of a closed Rondel file, and makes its
 // checksum and the attributes' checksum fit: a file that another program wrote, not a damaged one.
@@ -62,19 +54,7 @@ void set_value(const fs::path& file, const char* name, std::size_t row, T value)
     H5Dclose(d);
     H5Fclose(f);
   }
-  std::uint64_t digest = 0;
-  {
-    const Hdf5File f(file.string(), Hdf5File::Mode::read, Communicator(MPI_COMM_SELF));
-    digest = f.attribute_digest();
-  }
-  const hid_t f = H5Fopen(file.string().c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-  const hid_t o = H5Oopen(f, "/integrity", H5P_DEFAULT);
-  const hid_t a = H5Aopen(o, "attributes_checksum", H5P_DEFAULT);
-  const auto stamp = static_cast<std::int64_t>(digest);
-  H5Awrite(a, H5T_NATIVE_INT64, &stamp);
-  H5Aclose(a);
-  H5Oclose(o);
-  H5Fclose(f);
+  test::restamp(file);
 }
 
 // A run of the moving-wall box (130 discs) to step 20, checkpoints at 10 and 20, made once for the suite.
@@ -99,12 +79,12 @@ class LyingFiles : public ::testing::Test {
   // `--resume` of `run` on `ranks` ranks: refused with exit 1 and `message` printed once on stderr, and every
   // file of the run as it was.
   static void expect_resume_refused(const fs::path& run, int ranks, const std::string& message) {
-    const auto before = tree(run);
+    const auto before = test::read_tree(run);
     const Outcome o = mpirun_rondel(*dir_, ranks, "--resume " + quoted(run) + " --run.steps=40");
     EXPECT_EQ(o.exit_code, 1) << ranks << " ranks: " << o.err;
     EXPECT_EQ(occurrences(o.err, message), 1u) << ranks << " ranks: " << o.err;
     EXPECT_EQ(occurrences(o.err, "rondel: "), 1u) << o.err;
-    EXPECT_TRUE(tree(run) == before) << ranks << " ranks: the run directory changed";
+    EXPECT_TRUE(test::read_tree(run) == before) << ranks << " ranks: the run directory changed";
   }
   static TempDir* dir_;
 };

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <map>
 #include <string>
 
 #include "core/ExitCodes.hpp"
@@ -22,13 +21,6 @@ using test::Outcome;
 using test::quoted;
 using test::read_file;
 using test::TempDir;
-
-std::map<std::string, std::string> tree(const fs::path& dir) {
-  std::map<std::string, std::string> files;
-  for (const auto& e : fs::recursive_directory_iterator(dir))
-    if (e.is_regular_file()) files[fs::relative(e.path(), dir).string()] = read_file(e.path());
-  return files;
-}
 
 // `rondel ARGS` held in set-up (RONDEL_FAULT=setup_pause), sent `signal` after a second: under mpirun on
 // `ranks` ranks (the launcher passes SIGUSR1 on), or as a singleton when `ranks` is 0.
@@ -65,7 +57,7 @@ TEST(SetupSignals, AResumeStoppedInSetUpLeavesItsDirectoryAsItWas) {
   ASSERT_EQ(test::mpirun_rondel(dir, 2, "box.ini --run.output=whole --run.steps=40").exit_code, 0);
   ASSERT_EQ(
       test::mpirun_rondel(dir, 2, "box.ini --run.output=run --run.steps=20 --output.checkpoint_every=10").exit_code, 0);
-  const auto before = tree(dir / "run");
+  const auto before = test::read_tree(dir / "run");
   const Outcome o = signalled_in_setup(dir, 2, "USR1", "--resume run --run.steps=40");
   EXPECT_EQ(o.exit_code, kExitStopped.code) << o.err;
   EXPECT_EQ(occurrences(o.err,
@@ -73,7 +65,7 @@ TEST(SetupSignals, AResumeStoppedInSetUpLeavesItsDirectoryAsItWas) {
                         "with --resume run (the checkpoint 'run/checkpoint_0000000020.h5' is as it was)"),
             1u)
       << o.err;
-  EXPECT_TRUE(tree(dir / "run") == before) << "the run directory changed";
+  EXPECT_TRUE(test::read_tree(dir / "run") == before) << "the run directory changed";
   const Outcome resumed = test::mpirun_rondel(dir, 2, "--resume run --run.steps=40");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   EXPECT_EQ(read_file(dir / "run" / "final.csv"), read_file(dir / "whole" / "final.csv"));

@@ -1,10 +1,11 @@
 #pragma once
-// Test support: a unique scratch directory, removed with its contents when the test ends, and whole-file
-// read and write.
+// Test support: a unique scratch directory, removed with its contents when the test ends, whole-file
+// read and write, and the files of a directory tree with their bytes.
 #include <stdlib.h>
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -38,6 +39,14 @@ inline std::string read_file(const std::filesystem::path& p) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+// Every regular file below `dir` (its path relative to `dir`) and its bytes: a directory compared before and after.
+inline std::map<std::string, std::string> read_tree(const std::filesystem::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) files[std::filesystem::relative(e.path(), dir).string()] = read_file(e.path());
+  return files;
 }
 
 }  // namespace rondel::test
