@@ -32,8 +32,7 @@ std::vector<fs::path> h5_files(const fs::path& dir, const char* kind, std::vecto
   std::vector<fs::path> found;
   for (const auto& e : fs::directory_iterator(dir)) {
     if (!state_file_of(e.path(), kind)) continue;
-    std::error_code ec;
-    if (fs::symlink_status(e.path(), ec).type() == fs::file_type::regular)
+    if (file_kind(e.path().string(), false) == FileKind::regular)
       found.push_back(e.path());
     else if (others)
       others->push_back(e.path());

@@ -17,7 +17,6 @@
 #include "core/ExactSum.hpp"
 #include "core/FaultInjection.hpp"
 #include "core/Format.hpp"
-#include "core/MemoryLimit.hpp"
 #include "core/SceneBuilder.hpp"
 #include "core/StopSignal.hpp"
 #include "core/WallKinds.hpp"
@@ -353,12 +352,6 @@ void Simulation::load_checkpoint(const std::string& path) {
   const StateHeader& h = file->file_header();
   // The run continues under its id (a file from before the ids starts one).
   config_.run_id = h.run_id.empty() ? RunFiles::new_run_id(comm_) : h.run_id;
-  // Each rank reads a block and then holds its share: the share against the memory this process may use.
-  const auto n = static_cast<double>(state_file_discs(path, comm_));
-  agree(comm_, [&] {
-    check_memory(n / comm_.size(), 0.0, 0.0,
-                 "the discs of '" + path + "' over " + std::to_string(comm_.size()) + " rank(s), per rank");
-  });
   agree(comm_, [&] { file->read_discs(discs_); });
   agree(comm_, [&] { file->read_walls(walls_); });
   box0_.width = h.box_width0;

@@ -3,8 +3,8 @@
 // and b = (tilt, L_y) from the corner x0 = (xlo, ylo); images of a disc are at x + i a + j b. A box that does not
 // deform is this cell with tilt 0 and no rates: one type. Periodic directions wrap positions and use the minimum
 // image; the others only bound the cell grid (walls keep the discs in). The type owns the minimum image (with the
-// image's velocity in a moving cell), the wrap of a position (with the matching shift of its velocity), the widths
-// across its sides, the deformation and the flip. No key sets a rate yet: a run's cell stands still.
+// image's velocity in a moving cell), the wrap of a position (with the matching shift of its velocity), the
+// deformation and the flip. No key sets a rate yet: a run's cell stands still.
 #include <cmath>
 #include <stdexcept>
 
@@ -32,13 +32,6 @@ struct Domain {
   double length_x() const { return xhi - xlo; }
   double length_y() const { return yhi - ylo; }
   Vec2 corner() const { return {xlo, ylo}; }
-  double area() const { return length_x() * length_y(); }  // det h
-  // The distance between the cell's sides along a (L_x L_y/|b|) and along b (L_y): the interaction range must stay
-  // below half of each (the minimum image), and the cell grid keeps its cells' widths above it.
-  double width_x() const {
-    return tilt == 0.0 ? length_x() : length_x() * length_y() / std::sqrt(tilt * tilt + length_y() * length_y());
-  }
-  double width_y() const { return length_y(); }
   // The x offset of the cell's left side at height y (0 for a cell without tilt).
   double shear_shift(double y) const { return tilt == 0.0 ? 0.0 : (y - ylo) / length_y() * tilt; }
   // The mean flow's velocity at x, L (x - x0).

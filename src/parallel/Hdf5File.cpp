@@ -134,7 +134,8 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode, const Communicator& comm,
     }
   }
   // A FIFO or a device would block the open or be read without end: only a regular file is opened to read.
-  if (!writing_ && file_kind(path) != FileKind::regular && file_kind(path) != FileKind::missing)
+  const FileKind kind = writing_ ? FileKind::regular : file_kind(path);
+  if (kind != FileKind::regular && kind != FileKind::missing)
     error = std::make_exception_ptr(InputError(input_file_problem(path, "the HDF5 file")));
   settle(comm_, error);
   Handle fapl{H5Pcreate(H5P_FILE_ACCESS), H5Pclose};

@@ -10,6 +10,7 @@
 #include "core/ConfigRead.hpp"
 #include "core/Errors.hpp"
 #include "core/Format.hpp"
+#include "core/MemoryLimit.hpp"
 #include "core/WallKinds.hpp"
 #include "parallel/Agreement.hpp"
 #include "parallel/CanonicalOrder.hpp"
@@ -158,6 +159,12 @@ void read_state_discs(const std::string& path, DiscStore& discs, const Communica
   const std::uint64_t total = f.rows("/discs/gid");
   const std::uint64_t begin = block_begin(total, comm.rank(), comm.size());
   const std::uint64_t count = block_begin(total, comm.rank() + 1, comm.size()) - begin;
+  // This rank's block against the memory this process may use, before it is read (a restart's share; all of a
+  // scene file's discs where every rank reads them).
+  agree(comm, [&] {
+    check_memory(static_cast<double>(count), 0.0, 0.0,
+                 "the discs of '" + path + "' over " + std::to_string(comm.size()) + " rank(s), per rank");
+  });
   discs.clear();
   f.run([&] {
     discs.for_each_field([&](const char* name, unsigned uses, auto& field) {

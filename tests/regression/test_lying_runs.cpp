@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "app/Checkpointing.hpp"
 #include "core/ExitCodes.hpp"
 #include "support/Command.hpp"
 #include "support/Scenes.hpp"
@@ -24,12 +25,7 @@ using test::read_file;
 using test::TempDir;
 using test::write_file;
 
-// The run id that config.ini names.
-std::string run_id(const fs::path& run) {
-  const std::string text = read_file(run / "config.ini");
-  const std::size_t at = text.find("# run id: ");
-  return at == std::string::npos ? "" : text.substr(at + 10, text.find('\n', at) - at - 10);
-}
+std::string run_id(const fs::path& run) { return Checkpointing::run_id_of(run.string()); }
 
 TEST(LyingRuns, ACheckpointOfAnotherRunIsPassedOver) {
   const TempDir dir("rondel-foreign");
