@@ -12,7 +12,8 @@ namespace rondel {
 
 std::string MeasuresRow::header() {
   return "step,time,width,height,wall_sxx,wall_syy,sxx,syy,sxy,s1,s3,eps_axial,eps_lateral,eps_vol,void_ratio,"
-         "coordination,rotation_mean,rotation_std,sliding_fraction,rolling_yield_fraction,wall_tau,shear_disp";
+         "coordination,rotation_mean,rotation_std,sliding_fraction,rolling_yield_fraction,wall_tau,shear_disp,"
+         "cell_lx,cell_ly,cell_tilt,shear_strain,kxx,kyy,kxy,pressure,tau,mu,inertial,phi";
 }
 
 std::string MeasuresRow::csv() const {
@@ -41,7 +42,19 @@ std::string MeasuresRow::csv() const {
                    sliding_fraction,
                    rolling_yield_fraction,
                    wall_tau,
-                   shear_disp})
+                   shear_disp,
+                   cell_lx,
+                   cell_ly,
+                   cell_tilt,
+                   shear_strain,
+                   kxx,
+                   kyy,
+                   kxy,
+                   pressure,
+                   tau,
+                   mu,
+                   inertial,
+                   phi})
     s << ',' << v;
   return s.str();
 }
@@ -62,7 +75,32 @@ MeasuresRow Measures::row(std::int64_t step, double time, const DiscStore& discs
   m.eps_lateral = box0.width > 0.0 ? (box0.width - g.width) / box0.width : 0.0;
   m.eps_vol = 1.0 - (g.width * g.height) / (box0.width * box0.height);
   disc_statistics(m, discs, area, contacts);
+  cell_measures(m, discs, area);
   return m;
+}
+
+void Measures::cell_measures(MeasuresRow& m, const DiscStore& discs, double area) const {
+  const Domain& d = domain_;
+  m.cell_lx = d.length_x(), m.cell_ly = d.length_y(), m.cell_tilt = d.tilt;
+  m.shear_strain = (d.tilt + static_cast<double>(flips_) * d.length_x()) / d.length_y();
+  ExactSum xx, yy, xy, mass, solid, diameter;
+  for (std::size_t i = 0; i < discs.n_owned(); ++i) {
+    const double mi = discs.mass[i];
+    const Vec2 u = discs.velocity[i] - d.flow(discs.position[i]);
+    xx += mi * u.x * u.x, yy += mi * u.y * u.y, xy += mi * u.x * u.y;
+    mass += mi, solid += std::numbers::pi * discs.radius[i] * discs.radius[i], diameter += 2.0 * discs.radius[i];
+  }
+  const double scale = 1.0 / (area * thickness_);
+  m.kxx = scale * comm_.exact_sum(xx), m.kyy = scale * comm_.exact_sum(yy), m.kxy = scale * comm_.exact_sum(xy);
+  m.pressure = 0.5 * (m.sxx + m.syy + m.kxx + m.kyy);
+  m.tau = -(m.sxy + m.kxy);
+  m.mu = m.pressure > 0.0 ? m.tau / m.pressure : 0.0;
+  const double a_solid = comm_.exact_sum(solid);
+  const double n = static_cast<double>(comm_.sum(static_cast<std::int64_t>(discs.n_owned())));
+  const double rho = comm_.exact_sum(mass) / (a_solid * thickness_);
+  const double d_mean = n > 0.0 ? comm_.exact_sum(diameter) / n : 0.0;
+  m.inertial = m.pressure > 0.0 ? std::fabs(d.L.xy) * d_mean / std::sqrt(m.pressure / rho) : 0.0;
+  m.phi = a_solid / area;
 }
 
 void Measures::box_stresses(MeasuresRow& m, const WallSet& walls, const BoxGeometry& g) const {

@@ -55,6 +55,9 @@ StateHeader Restart::header(const RunState& state, const char* kind) {
   h.run_id = config.run_id;
   h.box_width0 = state.box0.width;
   h.box_height0 = state.box0.height;
+  h.cell = config.domain;
+  h.has_cell = true;
+  h.flips = state.flips;
   h.ledger = Reports(state).global_ledger();
   return h;
 }

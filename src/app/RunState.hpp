@@ -31,6 +31,7 @@ struct RunState {
   double imbalance = 1.0;    // max over mean work per rank at the last balance check
   std::size_t ghosts = 0;    // ghost discs this rank holds
   std::size_t migrated = 0;  // discs this rank has sent to others so far
+  std::int64_t flips = 0;    // of the periodic cell since the run began (config.domain is the cell now)
 };
 
 }  // namespace rondel

@@ -57,6 +57,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
     build_discs();
     agree(comm_, [&] {
       resolve_time_step();
+      start_checks::check_cell(config_, cell_sizing(), neighbours_.range(R_max_), dt_);
       check_initial_state();
     });
     distribute_discs();
@@ -128,7 +129,9 @@ void Simulation::add_scene_discs() {
                        ") lies outside the domain [" + fmt(config_.domain.xlo) + ", " + fmt(config_.domain.xhi) +
                        "] x [" + fmt(config_.domain.ylo) + ", " + fmt(config_.domain.yhi) + "] (from " +
                        start_checks::scene_keys(config_) + ")");
-    discs_.add(d.gid, d.material, d.radius, config_.materials[static_cast<std::size_t>(d.material)], x, d.v, d.omega);
+    // In a moving cell the discs start with the mean flow's velocity added (cell.flow_start).
+    const Vec2 v = config_.cell_flow_start && config_.domain.moving ? d.v + config_.domain.flow(x) : d.v;
+    discs_.add(d.gid, d.material, d.radius, config_.materials[static_cast<std::size_t>(d.material)], x, v, d.omega);
   }
 }
 
@@ -206,9 +209,23 @@ void Simulation::distribute_discs() {
   discs_.remove_owned(elsewhere);
 }
 
+Domain Simulation::cell_sizing() const {
+  Domain s = config_.domain;
+  if (!s.moving) return s;
+  // Constant rates: each length changes by the factor (1 + dt L_ii) a step; the smallest is at one end.
+  const double n = static_cast<double>(std::max<std::int64_t>(config_.steps, 0));
+  const auto smallest = [&](double length, double rate) {
+    return std::min(length, length * std::pow(1.0 + dt_ * rate, n));
+  };
+  s.xhi = s.xlo + smallest(s.length_x(), s.L.xx);
+  s.yhi = s.ylo + smallest(s.length_y(), s.L.yy);
+  if (s.L.xy != 0.0 || s.tilt != 0.0) s.tilt = 0.5 * s.length_x();
+  return s;
+}
+
 void Simulation::make_decomposition(bool replicated) {
-  decomposition_ =
-      std::make_unique<Decomposition>(config_.domain, neighbours_.range(R_max_), config_.partitioner, comm_);
+  decomposition_ = std::make_unique<Decomposition>(config_.domain, neighbours_.range(R_max_), config_.partitioner,
+                                                   comm_, cell_sizing());
   decomposition_->initial_partition(discs_, replicated);
   if (decomposition_->empty_ranks() > 0 && comm_.root())
     std::cerr << "rondel: warning: " << decomposition_->empty_ranks() << " of " << comm_.size()
@@ -352,6 +369,7 @@ void Simulation::load_checkpoint(const std::string& path) {
   const StateHeader& h = file->file_header();
   // The run continues under its id (a file from before the ids starts one).
   config_.run_id = h.run_id.empty() ? RunFiles::new_run_id(comm_) : h.run_id;
+  resume_cell(h, path);
   agree(comm_, [&] { file->read_discs(discs_); });
   agree(comm_, [&] { file->read_walls(walls_); });
   box0_.width = h.box_width0;
@@ -361,6 +379,7 @@ void Simulation::load_checkpoint(const std::string& path) {
   agree(comm_, [&] {
     resolve_time_step();
     resume_time_step(h.dt, path);
+    start_checks::check_cell(config_, cell_sizing(), neighbours_.range(R_max_), dt_);
   });
   step_ = h.step;
   time_ = h.time;
@@ -375,6 +394,22 @@ void Simulation::load_checkpoint(const std::string& path) {
   }
   agree(comm_, [&] { file->read_rows(pairs_, wall_rows_, discs_); });
   agree(comm_, [&] { file->read_ledger(core_.ledger()); });
+}
+
+void Simulation::resume_cell(const StateHeader& h, const std::string& path) {
+  // A cell that has deformed goes on from the file's shape (the configuration's box is where it started) with
+  // this configuration's rates; a box that stood still is the configuration's, as before.
+  if (!h.has_cell || (h.cell.tilt == 0.0 && !h.cell.L.any())) return;
+  Domain& cell = config_.domain;
+  agree(comm_, [&] {
+    if (!(cell.periodic_x && cell.periodic_y))
+      throw ConfigError("'" + path + "' holds a cell that has deformed (tilt " + fmt(h.cell.tilt) +
+                        "): resume it with domain.periodic_x = true and domain.periodic_y = true");
+  });
+  cell.xlo = h.cell.xlo, cell.xhi = h.cell.xhi, cell.ylo = h.cell.ylo, cell.yhi = h.cell.yhi;
+  cell.tilt = h.cell.tilt;
+  cell.rates();
+  flips_ = h.flips;
 }
 
 std::string Simulation::write_checkpoint() {
@@ -405,7 +440,8 @@ RunState Simulation::state() const {
                   dt_,
                   reduction_.imbalance(),
                   exchange_.ghost_count(),
-                  migrated_};
+                  migrated_,
+                  flips_};
 }
 
 EnergyLedger Simulation::global_ledger() const { return Reports(state()).global_ledger(); }
@@ -420,7 +456,7 @@ DiagnosticsRow Simulation::diagnostics() {
 
 MeasuresRow Simulation::measures(const ContactSummary& contacts) {
   boundaries_.measure(walls_, discs_, config_.domain, pairs_, wall_rows_, comm_);
-  return Measures(config_.domain, config_.thickness, comm_)
+  return Measures(config_.domain, config_.thickness, comm_, flips_)
       .row(step_, time_, discs_, pairs_, wall_rows_, walls_, box0_, contacts);
 }
 

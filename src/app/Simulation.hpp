@@ -140,6 +140,8 @@ class Simulation final : public RunTarget {
   void distribute_discs();
   void make_decomposition(bool replicated);
   void load_checkpoint(const std::string& path);
+  // The deformed cell of a checkpoint (its shape and flips; the rates are this configuration's).
+  void resume_cell(const StateHeader& h, const std::string& path);
   // Collective, before the first file is written: a stop signal received during set-up (by any rank) ends it
   // here, every rank alike (StoppedInSetup, exit 10), the output directory as it was.
   void stop_if_signalled(const std::string& restart_file) const;
@@ -151,6 +153,12 @@ class Simulation final : public RunTarget {
   void resume_time_step(double file_dt, const std::string& path);
   void check_initial_state();
   void rebuild();
+  // A deforming cell: its step h += dt L h and its flip (SimulationStep.cpp); its shape into the decomposition's
+  // grid at a rebuild, refused when the cell has become too small for it.
+  void deform_cell();
+  void follow_cell();
+  // The smallest and most tilted cell of the run (a decomposition grid's counts serve it all).
+  Domain cell_sizing() const;
   // The inputs of the step's serial core (StepCore); `bounds`: the drift measures the motion bound.
   StepInputs step_inputs(bool bounds);
   // step() with `close`; without it the closing kick and the step's ledger booking wait for the next step's
@@ -193,6 +201,9 @@ class Simulation final : public RunTarget {
   StepReduction reduction_;     // the step's one reduction (docs/scaling.md)
   WallLoads loads_;             // this rank's part of the controlled walls' loads, of the last step
   bool repartitioned_ = false;  // the last step migrated the discs to a new map
+  bool cell_rebuild_ = false;   // the cell flipped: this step builds a new list
+  double cell_step_ = 0.0;      // a deforming cell's growth of the displacement bound per step
+  std::int64_t flips_ = 0;      // of the cell since the run began, with their sign (Domain::flip)
   std::int64_t steps_taken_ = 0;
   CommStats step_comm_;
 };

@@ -29,7 +29,10 @@ StepInputs Simulation::step_inputs(bool bounds) {
 
 void Simulation::rebuild() {
   // Discs go to their cell owners with their contact rows; the rows (local and received) then serve as
-  // the history source of the new neighbour list.
+  // the history source of the new neighbour list. A deforming cell's decomposition grid takes its shape now.
+  if (!config_.domain.standing()) follow_cell();
+  cell_rebuild_ = false;
+  neighbours_.set_time_step(dt_);
   const DiscExchange::Counts moved = exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_);
   decomposition_->migrated();
   // Received discs come last: back into gid order, the kernel's order (the arithmetic does not depend on it).
@@ -60,6 +63,7 @@ struct Simulation::StepHooks {
 void Simulation::advance_step(bool close) {
   phases_.restart();
   const CommStats before = comm_.stats();
+  if (config_.domain.moving) deform_cell();
   core_.advance(step_inputs(reduction_.measures_bounds()), close, StepHooks{*this});
   ++step_;
   time_ += dt_;
@@ -74,8 +78,39 @@ void Simulation::advance_step(bool close) {
   phases_.lap(PhaseTimes::other);
 }
 
+void Simulation::deform_cell() {
+  // The cell's h(t + dt) before the drift, which wraps into it. Past |tilt| = L_x / 2 the cell flips: every disc
+  // is wrapped into the new cell (its image relabelled, the same lattice) and this step builds a new list.
+  Domain& cell = config_.domain;
+  cell.deform(dt_);
+  // The growth per step of the displacement bound's cell terms (NeighbourList::displacement and strain_term:
+  // |L| dt (skin / 2 + |F| range / 2), |F| <= 2 before a rebuild).
+  const CellGradient& L = cell.L;
+  const double range = neighbours_.range(R_max_);
+  cell_step_ = std::sqrt(L.xx * L.xx + L.xy * L.xy + L.yy * L.yy) * dt_ * (0.5 * neighbours_.skin() + range);
+  const int flipped = cell.flip();
+  if (flipped == 0) return;
+  flips_ += flipped;
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) cell.wrap(discs_.position[i], discs_.velocity[i]);
+  cell_rebuild_ = true;
+}
+
+void Simulation::follow_cell() {
+  const Domain& cell = config_.domain;
+  const double range = neighbours_.range(R_max_);
+  const CellGrid& grid = decomposition_->grid();
+  if (grid.column_width(cell) < range || grid.row_height(cell) < range || cell.length_x() < 2.0 * range ||
+      cell.length_y() < 2.0 * range)
+    throw InstabilityError("step " + std::to_string(step_) + ": the cell (L_x = " + fmt(cell.length_x()) +
+                           ", L_y = " + fmt(cell.length_y()) + ", tilt = " + fmt(cell.tilt) +
+                           ") has become too small for the interaction range " + fmt(range) +
+                           " (its lengths below twice the range, or its decomposition's cells below the range): "
+                           "lower cell.rate_xx or cell.rate_yy, or run fewer steps");
+  decomposition_->follow(cell);
+}
+
 void Simulation::walls_and_neighbours(const Integrator::Drift& drift) {
-  reduction_.start_step(drift, dt_);
+  reduction_.start_step(drift, dt_, cell_step_);
   // The drift's largest step bounds the displacement since the last neighbour build (NeighbourList::displacement).
   // A position gone NaN or inf is this rank's error, agreed at the next reduction (always before a rebuild could
   // migrate the disc); the reduction sees it as an infinite displacement.
@@ -99,14 +134,14 @@ void Simulation::walls_and_neighbours(const Integrator::Drift& drift) {
   phases_.lap(PhaseTimes::integrate);
   if (!reduced && neighbours_.needs_rebuild(reduction_.predicted() / 0.9, walls_)) reduce();
   // Without a reduction, this rank's own discs (with the walls' motion) must not need a new list: if the motion
-  // bound was wrong, that is an error rather than a missed contact.
-  if (!reduced && !reduction_.failed() && neighbours_.needs_rebuild(moved, walls_))
+  // bound was wrong, that is an error rather than a missed contact. A flip of the cell builds a new list anyway.
+  if (!reduced && !reduction_.failed() && !cell_rebuild_ && neighbours_.needs_rebuild(moved, walls_))
     reduction_.keep(motion_error(moved));
   phases_.lap(PhaseTimes::communication);
   // 3. A new neighbour list when a disc (global max) has moved more than half the skin, or a repartition is due;
   //    otherwise the ghosts' update.
   repartitioned_ = reduction_.rebalance_due();
-  if (repartitioned_ || (reduced && neighbours_.needs_rebuild(disp, walls_))) {
+  if (repartitioned_ || cell_rebuild_ || (reduced && neighbours_.needs_rebuild(disp, walls_))) {
     rebuild();
   } else {
     exchange_.update_ghosts(discs_, comm_);

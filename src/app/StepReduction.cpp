@@ -17,8 +17,9 @@ void StepReduction::settle() {
   if (comm_.size() > 1) rondel::settle(comm_, error_);
 }
 
-void StepReduction::start_step(const Integrator::Drift& drift, double dt) {
+void StepReduction::start_step(const Integrator::Drift& drift, double dt, double cell_step) {
   stop_agreed_ = 0;
+  cell_step_ = cell_step;
   drift_speed_ = drift.max_speed, drift_accel_ = drift.max_accel, dt_ = dt;
 }
 
@@ -29,8 +30,9 @@ bool StepReduction::due_before_walls() {
   ++since_reduction_;
   const double j = static_cast<double>(since_reduction_);
   // The largest displacement since the last build can grow per step by at most the speed times dt plus
-  // the acceleration's share; both are bounded with a factor two over their values at the last reduction.
-  predicted_ = base_disp_ + 2.0 * j * v_step_ + 2.0 * j * (j + 1.0) * a_step_;
+  // the acceleration's share; both are bounded with a factor two over their values at the last reduction. A
+  // deforming cell adds its terms' growth (known on every rank), with the same factor.
+  predicted_ = base_disp_ + 2.0 * j * v_step_ + 2.0 * j * (j + 1.0) * a_step_ + 2.0 * j * cell_step_;
   return since_reduction_ >= config_.check_every;
 }
 

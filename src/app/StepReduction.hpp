@@ -42,8 +42,9 @@ class StepReduction {
 
   // Whether the drift measures the motion bound (several ranks, no controlled walls, spaced checks).
   bool measures_bounds() const { return bounds_; }
-  // A new step: its drift's largest |v| and |F/m| of the free discs (with measures_bounds()).
-  void start_step(const Integrator::Drift& drift, double dt);
+  // A new step: its drift's largest |v| and |F/m| of the free discs (with measures_bounds()), and in a deforming
+  // cell the growth per step of the displacement bound's cell terms (the same on every rank).
+  void start_step(const Integrator::Drift& drift, double dt, double cell_step = 0.0);
   // Whether this step must reduce before the walls move: with controlled walls every step, else when the bound or
   // the interval asks for it (it counts the steps without a reduction).
   bool due_before_walls();
@@ -78,6 +79,7 @@ class StepReduction {
   std::int64_t since_reduction_ = 0;
   double base_disp_ = 0.0, predicted_ = 0.0;      // largest displacement at the last reduction; its bound now
   double v_step_ = 0.0, a_step_ = 0.0;            // largest |v| dt and |F/m| dt^2 at the last reduction
+  double cell_step_ = 0.0;                        // the cell's share of the bound's growth per step
   double drift_speed_ = 0.0, drift_accel_ = 0.0;  // this rank's largest |v| and |F/m| of this step's drift
   double dt_ = 0.0;
   bool bounds_known_ = false;  // the first step (and a restart's) reduces

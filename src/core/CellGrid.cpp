@@ -10,6 +10,11 @@ int cell_count(double length, double range) {
   const double n = std::floor(length / range);
   return n < 1.0 ? 1 : static_cast<int>(std::min(n, 1.0e5));
 }
+// Columns of a tilted cell: each at least `range` across its slanted sides, L_x / n * L_y / |b| >= range.
+int column_count(const Domain& d, double range) {
+  if (d.tilt == 0.0) return cell_count(d.length_x(), range);
+  return cell_count(d.length_x() * d.length_y() / std::hypot(d.length_y(), d.tilt), range);
+}
 int clamp_index(double coord, double lo, double side, int n) {
   const double c = std::floor((coord - lo) / side);
   if (!(c >= 0.0)) return 0;  // also catches NaN
@@ -18,16 +23,23 @@ int clamp_index(double coord, double lo, double side, int n) {
 }
 }  // namespace
 
-CellGrid::CellGrid(const Domain& domain, double range)
-    : domain_(domain), nx_(cell_count(domain.length_x(), range)), ny_(cell_count(domain.length_y(), range)) {
+CellGrid::CellGrid(const Domain& domain, double range, const Domain& sizing)
+    : nx_(column_count(sizing, range)), ny_(cell_count(sizing.length_y(), range)) {
+  follow(domain);
+}
+
+void CellGrid::follow(const Domain& domain) {
+  domain_ = domain;
   side_x_ = domain.length_x() / nx_;
   side_y_ = domain.length_y() / ny_;
 }
 
-int CellGrid::column_of(double x) const { return clamp_index(x, domain_.xlo, side_x_, nx_); }
-int CellGrid::row_of(double y) const { return clamp_index(y, domain_.ylo, side_y_, ny_); }
+double CellGrid::column_width(const Domain& d) const {
+  return d.length_x() / nx_ * (d.tilt == 0.0 ? 1.0 : d.length_y() / std::hypot(d.length_y(), d.tilt));
+}
 
-std::size_t CellGrid::cell_of(Vec2 x) const { return index(column_of(x.x), row_of(x.y)); }
+int CellGrid::column_of(Vec2 x) const { return clamp_index(x.x - domain_.shear_shift(x.y), domain_.xlo, side_x_, nx_); }
+int CellGrid::row_of(double y) const { return clamp_index(y, domain_.ylo, side_y_, ny_); }
 
 std::vector<std::size_t> CellGrid::stencil(std::size_t cell) const {
   const int cx = static_cast<int>(cell % nx_), cy = static_cast<int>(cell / nx_);

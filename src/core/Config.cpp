@@ -76,6 +76,12 @@ void read_run(const Reader&, Config& c) {
         num(d.xhi) + " - " + num(d.xlo));
   check(std::isfinite(d.length_y()), "domain.yhi", "domain.yhi - domain.ylo must be a finite length",
         num(d.yhi) + " - " + num(d.ylo));
+  const std::pair<const char*, double> rates[] = {
+      {"cell.rate_xx", d.L.xx}, {"cell.rate_xy", d.L.xy}, {"cell.rate_yy", d.L.yy}};
+  for (const auto& [key, value] : rates)
+    check(value == 0.0 || (d.periodic_x && d.periodic_y), key,
+          "0 unless the cell is periodic in x and y (domain.periodic_x = true, domain.periodic_y = true)", num(value));
+  c.domain.rates();
 }
 
 }  // namespace config

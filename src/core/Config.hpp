@@ -95,7 +95,8 @@ struct Config {
   // [diagnostics]
   std::int64_t diag_every = 0;
   // [domain], [gravity], [material] or [material.NAME]
-  Domain domain;
+  Domain domain;  // the cell as given; a running Simulation's is the cell now (it deforms with cell.rate_*)
+  bool cell_flow_start = true;  // cell.flow_start
   Vec2 gravity;
   double thickness = 1.0;           // every material's (the thickness stresses are per)
   std::vector<Material> materials;  // one ([material]) or several ([material.NAME], ordered by name)

@@ -109,8 +109,8 @@ void add_run_sections(po::options_description& all, std::vector<KeySpec>& keys, 
 }
 
 void add_body_sections(po::options_description& all, std::vector<KeySpec>& keys, Readers* readers) {
-  po::options_description domain("[domain]"), grav("[gravity]"),
-      mat("[material] the one material of a run (several: [material.NAME], below)");
+  po::options_description domain("[domain]"), cell("[cell] a periodic cell that deforms (docs/physics.md section 10)"),
+      grav("[gravity]"), mat("[material] the one material of a run (several: [material.NAME], below)");
   const std::string box = " (the simulation box)";
   // clang-format off
   Keys(domain, keys, readers)
@@ -120,12 +120,18 @@ void add_body_sections(po::options_description& all, std::vector<KeySpec>& keys,
       .number_without_default("domain.yhi", at(&Config::domain, &Domain::yhi), "m", kFinite, "box upper y, > domain.ylo", true, box)
       .flag("domain.periodic_x", at(&Config::domain, &Domain::periodic_x), false, "periodic in x")
       .flag("domain.periodic_y", at(&Config::domain, &Domain::periodic_y), false, "periodic in y");
+  const std::string rate = " of the cell's velocity gradient (dh/dt = L h); needs domain.periodic_x and periodic_y";
+  Keys(cell, keys, readers)
+      .number("cell.rate_xx", at(&Config::domain, &Domain::L, &CellGradient::xx), 0.0, "1/s", kFinite, "L_xx: stretching in x" + rate)
+      .number("cell.rate_xy", at(&Config::domain, &Domain::L, &CellGradient::xy), 0.0, "1/s", kFinite, "L_xy: the shear rate d(v_x)/dy, Lees-Edwards" + rate)
+      .number("cell.rate_yy", at(&Config::domain, &Domain::L, &CellGradient::yy), 0.0, "1/s", kFinite, "L_yy: stretching in y" + rate)
+      .flag("cell.flow_start", at(&Config::cell_flow_start), true, "a new run's discs start with the mean flow's velocity L (x - x0) added");
   Keys(grav, keys, readers)
       .number("gravity.x", at(&Config::gravity, &Vec2::x), 0.0, "m/s^2", kGravity, "gravity x")
       .number("gravity.y", at(&Config::gravity, &Vec2::y), 0.0, "m/s^2", kGravity, "gravity y");
   // clang-format on
   config::declare_material_keys(mat, keys, "material", false);
-  all.add(domain).add(grav).add(mat);
+  all.add(domain).add(cell).add(grav).add(mat);
 }
 
 // The help of one law parameter, "(required)" added (KeyTable adds the unit and range).

@@ -109,17 +109,18 @@ struct Domain {
     rates();
   }
   // b -= sign(tilt) a when |tilt| passes L_x/2: the same lattice (the same contacts and forces), other labels of
-  // the images. Returns whether it flipped.
-  bool flip() {
+  // the images. Returns +1 when the tilt fell by L_x, -1 when it rose, 0 when it did not flip.
+  int flip() {
     const double half = 0.5 * length_x();
+    int sign = 0;
     if (tilt > half)
-      tilt -= length_x();
+      tilt -= length_x(), sign = 1;
     else if (tilt < -half)
-      tilt += length_x();
+      tilt += length_x(), sign = -1;
     else
-      return false;
+      return 0;
     rates();
-    return true;
+    return sign;
   }
 };
 
@@ -156,6 +157,13 @@ struct MinimumImage {
     }
     return d;
   }
+  // The same; a standing cell's images move with their discs (v2 as it is).
+  Vec2 separation(Vec2 x1, Vec2 x2, Vec2& /*v2*/) const { return separation(x1, x2); }
+};
+
+// No image: the wall rows of the contact kernel, whose pass forms no pair separation.
+struct NoImage {
+  explicit NoImage(const Domain&) {}
 };
 
 // The minimum image of the deforming cell (docs/physics.md section 10): d = x2 - x1, then in a periodic y d -= b

@@ -44,6 +44,7 @@ Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, 
   // Local copies and plain pointers: a store to a disc cannot make the compiler reload them.
   const Domain box = domain;
   const bool standing = box.standing();  // the plain wrap, decided once for the pass
+  const bool moving = box.moving;        // the motion bounds relative to the cell's mean flow
   const Vec2 gravity = body.gravity;
   const std::uint32_t* const flags = discs.flags.data();
   const double *const mass = discs.mass.data(), *const inertia = discs.inertia.data();
@@ -65,9 +66,15 @@ Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, 
         a2 = std::max(a2, dot(a, a));
       }
       kick<kDamp>(v, omega[i], force[i], torque[i], m, inertia[i], h, alpha, D);
-      if constexpr (kBounds) v2 = std::max(v2, dot(v, v));
       const Vec2 dx = dt * v;
-      step2 = std::max(step2, dot(dx, dx));
+      if (moving) {  // a deforming cell: the speed and step apart from the mean flow's (NeighbourList)
+        const Vec2 u = v - box.flow(position[i]);
+        if constexpr (kBounds) v2 = std::max(v2, dot(u, u));
+        step2 = std::max(step2, dt * dt * dot(u, u));
+      } else {
+        if constexpr (kBounds) v2 = std::max(v2, dot(v, v));
+        step2 = std::max(step2, dot(dx, dx));
+      }
       position[i] += dx;
       theta[i] += dt * omega[i];
       if (standing)

@@ -20,8 +20,9 @@ namespace rondel {
 struct Integrator {
   struct Drift {
     double W_g = 0.0;        // work of gravity over the drift
-    double max_step = 0.0;   // largest displacement |x_new - x_old| of a free disc in this drift
-    double max_speed = 0.0;  // with `bounds`: largest |v| of a free disc after the half kick
+    double max_step = 0.0;   // largest displacement |x_new - x_old| of a free disc in this drift (in a deforming
+                             // cell apart from the mean flow's: |v - L (x_old - x0)| dt)
+    double max_speed = 0.0;  // with `bounds`: largest |v| of a free disc after the half kick (|v - L (x - x0)|)
     double max_accel = 0.0;  // with `bounds`: largest |F/m| of a free disc, of the (damped) force it used
     double D_damping = 0.0;  // work the local damping took in the half kick (0 without damping)
     double D_close = 0.0;    // with `close_last`: the same for the last step's closing kick

@@ -11,7 +11,7 @@ void NeighbourList::bin(const DiscStore& discs, const Domain& domain, double R_m
   const std::size_t n = discs.size();
   std::vector<int> cx(n), cy(n);
   for (std::size_t i = 0; i < n; ++i)
-    cx[i] = grid_.column_of(discs.position[i].x), cy[i] = grid_.row_of(discs.position[i].y);
+    cx[i] = grid_.column_of(discs.position[i]), cy[i] = grid_.row_of(discs.position[i].y);
   auto distinct = [](std::vector<int> v) {
     std::sort(v.begin(), v.end());
     v.erase(std::unique(v.begin(), v.end()), v.end());
@@ -41,12 +41,18 @@ long NeighbourList::bin_of(int cx, int cy) const {
 
 std::vector<NeighbourList::Candidate> NeighbourList::candidates(const DiscStore& discs, const Domain& domain,
                                                                 std::size_t expected) const {
+  if (domain.standing()) return candidates_by(discs, MinimumImage(domain), expected);
+  return candidates_by(discs, ShearedImage(domain), expected);
+}
+
+template <class Image>
+std::vector<NeighbourList::Candidate> NeighbourList::candidates_by(const DiscStore& discs, const Image& image,
+                                                                   std::size_t expected) const {
   // About as many as the rows held now: reserved so that the list does not double past its size (the rebuild's
   // peak memory is the old rows, the new rows and this list).
   std::vector<Candidate> found;
   found.reserve(expected + expected / 16 + 64);
   const std::size_t n_owned = discs.n_owned();
-  const MinimumImage image(domain);  // a standing cell (the deforming one has no neighbour search yet)
   std::vector<std::size_t> around;
   for (std::size_t c = 0; c + 1 < cell_start_.size(); ++c) {
     if (cell_start_[c] == cell_start_[c + 1]) continue;
@@ -82,6 +88,7 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
                           ContactTable& pairs, ContactTable& wall_rows) {
   double R_max = 0.0;
   for (double R : discs.radius) R_max = std::max(R_max, R);
+  R_max_ = R_max;
   bin(discs, domain, R_max);
   {
     std::vector<Candidate> found = candidates(discs, domain, pairs.size());
@@ -95,6 +102,7 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
   }
   build_wall_rows(discs, walls, params, wall_rows);
   position_at_build_.assign(discs.position.begin(), discs.position.begin() + discs.n_owned());
+  cell_at_build_ = domain;
   bound_ = 0.0;
   for (auto& w : walls) w.displacement_since_build = {}, w.turn_since_build = 0.0;
   ++builds_;
@@ -123,21 +131,50 @@ void NeighbourList::build_wall_rows(const DiscStore& discs, const WallSet& walls
 
 double NeighbourList::max_displacement(const DiscStore& discs, const Domain& domain) const {
   if (position_at_build_.size() != discs.n_owned()) return INFINITY;
-  const MinimumImage image(domain);
   double m2 = 0.0;
-  for (std::size_t i = 0; i < discs.n_owned(); ++i)
-    m2 = std::max(m2, squared_displacement(image, position_at_build_[i], discs.position[i]));
+  if (domain.standing()) {
+    const MinimumImage image(domain);
+    for (std::size_t i = 0; i < discs.n_owned(); ++i)
+      m2 = std::max(m2, squared_displacement(image, position_at_build_[i], discs.position[i]));
+  } else {
+    // Apart from the affine motion since the build: delta = x - x0 - (F - I)(x0 - corner), by the minimum image.
+    const ShearedImage image(domain);
+    const Strain G = strain(domain);
+    const Vec2 corner = domain.corner();
+    for (std::size_t i = 0; i < discs.n_owned(); ++i) {
+      const Vec2 x0 = position_at_build_[i];
+      const Vec2 d = image.separation(x0 + G.of(x0 - corner), discs.position[i]);
+      m2 = std::max(m2, dot(d, d));
+    }
+  }
   return std::sqrt(m2);
+}
+
+NeighbourList::Strain NeighbourList::strain(const Domain& d) const {
+  // F = h h0^-1 with h = [[L_x, tilt], [0, L_y]]; G = F - I.
+  const Domain& d0 = cell_at_build_;
+  const double fx = d.length_x() / d0.length_x();
+  return {fx - 1.0, (d.tilt - fx * d0.tilt) / d0.length_y(), d.length_y() / d0.length_y() - 1.0};
+}
+
+double NeighbourList::strain_term(const Domain& domain) const {
+  if (domain.standing() && cell_at_build_.standing()) return 0.0;
+  const Strain G = strain(domain);
+  return 0.5 * std::sqrt(G.xx * G.xx + G.xy * G.xy + G.yy * G.yy) * range(R_max_);
 }
 
 double NeighbourList::displacement(double max_step, const DiscStore& discs, const Domain& domain,
                                    const WallSet& walls) {
+  // In a deforming cell |d delta / dt| <= |v - L (x - x0)| + |L| |delta| (the Frobenius norm bounds |L|).
+  const CellGradient& L = domain.L;
+  if (domain.moving) bound_ *= 1.0 + dt_ * std::sqrt(L.xx * L.xx + L.xy * L.xy + L.yy * L.yy);
   bound_ += max_step;
-  if (!(bound_ <= 0.5 * skin_)) bound_ = max_displacement(discs, domain);  // also a NaN step or position
+  const double affine = strain_term(domain);
+  if (!(bound_ + affine <= 0.5 * skin_)) bound_ = max_displacement(discs, domain);  // also a NaN step or position
   double glued = 0.0;
   for (const Wall& w : walls)
     if (w.rough) glued = std::max(glued, std::sqrt(dot(w.displacement_since_build, w.displacement_since_build)));
-  return std::max(bound_, glued);
+  return std::max(bound_ + affine, glued);
 }
 
 bool NeighbourList::needs_rebuild(double max_disc_disp, const WallSet& walls) const {

@@ -22,6 +22,7 @@ class NeighbourList {
   explicit NeighbourList(double skin) : skin_(skin) {}
 
   double skin() const { return skin_; }
+  void set_time_step(double dt) { dt_ = dt; }
   // Interaction range for a largest radius: the cell side must be at least this.
   double range(double R_max) const { return 2.0 * R_max + skin_; }
 
@@ -32,7 +33,9 @@ class NeighbourList {
   void build(const DiscStore& discs, const Domain& domain, WallSet& walls, const ContactParamTable& params,
              ContactTable& pairs, ContactTable& wall_rows);
 
-  // Largest displacement of an owned disc since the last build (minimum image); infinite before a build.
+  // Largest displacement of an owned disc since the last build (minimum image); infinite before a build. In a
+  // deforming cell, apart from the mean flow's affine motion (docs/physics.md section 10), and displacement()
+  // adds the strain's share (strain_term) to it.
   double max_displacement(const DiscStore& discs, const Domain& domain) const;
   // The step's displacement check without a pass over the discs: an upper bound of max_displacement, kept
   // by adding each drift's largest step `max_step` of a free disc (a disc's displacement is at most the sum
@@ -62,6 +65,17 @@ class NeighbourList {
   // at least one owned disc, no rigid body with itself; `expected`: about how many (the rows held now).
   using Candidate = std::tuple<ContactKey, std::int32_t, std::int32_t>;
   std::vector<Candidate> candidates(const DiscStore& discs, const Domain& domain, std::size_t expected) const;
+  template <class Image>
+  std::vector<Candidate> candidates_by(const DiscStore& discs, const Image& image, std::size_t expected) const;
+  // A deforming cell's strain since the build, G = F - I with F = h h0^-1 (upper triangular), and half its
+  // Frobenius norm times the interaction range: a pair whose discs moved with the mean flow comes closer by at
+  // most |G| (2 R_max + skin), across the boundary too (F maps the lattice of the build onto today's).
+  struct Strain {
+    double xx, xy, yy;
+    Vec2 of(Vec2 v) const { return {xx * v.x + xy * v.y, yy * v.y}; }
+  };
+  Strain strain(const Domain& domain) const;
+  double strain_term(const Domain& domain) const;
   // The wall rows anew (every owned disc within the range of a wall), history kept by key.
   void build_wall_rows(const DiscStore& discs, const WallSet& walls, const ContactParamTable& params,
                        ContactTable& wall_rows) const;
@@ -71,6 +85,9 @@ class NeighbourList {
   std::vector<int> columns_, rows_;                   // the occupied columns and rows, ascending
   std::vector<std::size_t> cell_start_, cell_items_;  // bin b is column b % columns_.size(), row b / it
   std::vector<Vec2> position_at_build_;
+  Domain cell_at_build_;
+  double R_max_ = 0.0;       // of the discs at the build
+  double dt_ = 0.0;          // the time step (set_time_step): a deforming cell's bound grows with it
   double bound_ = INFINITY;  // the bound of displacement() (infinite before a build)
   std::size_t builds_ = 0;
 };

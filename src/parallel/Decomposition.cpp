@@ -24,8 +24,8 @@ std::unique_ptr<Partition> make_partition(const std::string& name, const Partiti
 }
 
 Decomposition::Decomposition(const Domain& domain, double range, const std::string& partitioner,
-                             const Communicator& comm)
-    : comm_(comm), grid_(domain, range), curve_(grid_.nx(), grid_.ny()), partitioner_(partitioner) {
+                             const Communicator& comm, const Domain& sizing)
+    : comm_(comm), grid_(domain, range, sizing), curve_(grid_.nx(), grid_.ny()), partitioner_(partitioner) {
   if (static_cast<std::size_t>(comm_.size()) > grid_.size())
     throw ConfigError(std::to_string(comm_.size()) + " MPI ranks but the domain has only " +
                       std::to_string(grid_.size()) + (grid_.size() == 1 ? " cell (" : " cells (") +

@@ -25,10 +25,16 @@ namespace rondel {
 // of map, the ranks it sends discs to and receives discs from in the next migration.
 class Decomposition {
  public:
-  // `partitioner`: a word of parallel.partitioner.
-  Decomposition(const Domain& domain, double range, const std::string& partitioner, const Communicator& comm);
+  // `partitioner`: a word of parallel.partitioner; `sizing`: the smallest, most tilted cell of the run (a
+  // deforming cell's grid counts are fixed for the run, CellGrid).
+  Decomposition(const Domain& domain, double range, const std::string& partitioner, const Communicator& comm,
+                const Domain& sizing);
+  Decomposition(const Domain& domain, double range, const std::string& partitioner, const Communicator& comm)
+      : Decomposition(domain, range, partitioner, comm, domain) {}
 
   const CellGrid& grid() const { return grid_; }
+  // A deforming cell's shape now (the cells' counts and owners kept): before a migration.
+  void follow(const Domain& domain) { grid_.follow(domain); }
   int owner(Vec2 x) const { return owner_of_cell(grid_.cell_of(x)); }
   // Any cell's owner: from the table of this rank's neighbourhood, else from the map.
   int owner_of_cell(std::size_t c) const;

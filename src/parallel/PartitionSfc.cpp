@@ -58,7 +58,7 @@ Cells SfcPartition::weighted_cells(const DiscStore& discs, const ContactTable& p
   std::vector<std::uint64_t> keys;
   for_each_work_unit(discs, pairs, [&](std::size_t i) {
     const Vec2 x = discs.position[i];
-    keys.push_back(curve_.key(grid_.column_of(x.x), grid_.row_of(x.y)));
+    keys.push_back(curve_.key(grid_.column_of(x), grid_.row_of(x.y)));
   });
   std::sort(keys.begin(), keys.end());
   Cells out;

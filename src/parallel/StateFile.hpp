@@ -6,6 +6,7 @@
 
 #include "core/ContactTable.hpp"
 #include "core/DiscStore.hpp"
+#include "core/Domain.hpp"
 #include "core/LedgerTerms.hpp"
 #include "core/Wall.hpp"
 #include "parallel/CanonicalOrder.hpp"
@@ -18,12 +19,14 @@ class Hdf5File;
 // The HDF5 layout of checkpoints and snapshots (FORMAT.md). Written collectively by every rank into one
 // file; discs in ascending gid and contact rows in ascending key, so the content does not depend on the rank
 // count (run metadata under /run_metadata and the ledger under /ledger excepted).
-inline constexpr std::int64_t kStateFormatVersion = 4;
+inline constexpr std::int64_t kStateFormatVersion = 5;
 // The oldest version a reader takes: version 2 only dropped datasets of version 1 (a pair's f1, tq1, tq2, and
 // M2 of an objective rolling law), so a version 1 file holds everything a restart reads; version 3 added the
 // circle walls (kind 2) and the rotation of walls (/walls/centre, radius, omega, angle), which a file of an
 // older version does not have (its walls neither rotate nor are circles); version 4 added
-// /integrity:attributes_checksum (over every attribute), which a file of an older version is read without.
+// /integrity:attributes_checksum (over every attribute), which a file of an older version is read without;
+// version 5 added /cell (the periodic cell now: corner, lengths, tilt, rates, flips), without which the cell is
+// the configuration's box standing still.
 inline constexpr std::int64_t kOldestReadableFormatVersion = 1;
 
 struct StateHeader {
@@ -37,6 +40,10 @@ struct StateHeader {
   double box_width0 = 0.0, box_height0 = 0.0;  // the box walls' separation at the start (strain reference)
   std::string materials;  // the material table (core/Material.hpp material_table_text); "" in older files
   std::string run_id;     // the run that wrote the file (RunFiles: also in its config.ini); "" in older files
+  Domain cell;            // the cell now (/cell: corner, lengths, tilt and rates; the periodic flags are the
+                          // configuration's); has_cell false in older files
+  bool has_cell = false;
+  std::int64_t flips = 0;  // of the cell since the run began
 };
 
 // Writes checkpoints and snapshots (collective). `fields` selects the disc datasets of a snapshot (empty:

@@ -70,6 +70,23 @@ StateHeader read_header(const Hdf5File& f, const std::string& path) {
   if (f.has_attribute("/materials", "table")) h.materials = f.read_string_attribute("/materials", "table");
   h.box_width0 = f.read_double_attribute("/walls", "box_width0");
   h.box_height0 = f.read_double_attribute("/walls", "box_height0");
+  if (version >= 5) {
+    h.has_cell = true;
+    Domain& c = h.cell;
+    const std::pair<const char*, double*> cell[] = {{"xlo", &c.xlo},      {"xhi", &c.xhi},     {"ylo", &c.ylo},
+                                                    {"yhi", &c.yhi},      {"tilt", &c.tilt},   {"rate_xx", &c.L.xx},
+                                                    {"rate_xy", &c.L.xy}, {"rate_yy", &c.L.yy}};
+    for (const auto& [name, value] : cell) {
+      *value = f.read_double_attribute("/cell", name);
+      if (!std::isfinite(*value))
+        throw InputError("'" + path + "': /cell " + name + " = " + std::to_string(*value) + " is not finite");
+    }
+    if (!(c.xhi > c.xlo && c.yhi > c.ylo && std::fabs(c.tilt) <= 0.5 * c.length_x() * (1.0 + 1e-12)))
+      throw InputError("'" + path +
+                       "': /cell is not a cell (xhi > xlo, yhi > ylo and |tilt| <= (xhi - xlo) / 2 "
+                       "expected)");
+    h.flips = f.read_int_attribute("/cell", "flips");
+  }
   h.ledger.for_each_term([&f](const LedgerTermInfo& t, double& value) {
     const std::string name(t.name);
     if (f.has_attribute("/ledger", name)) value = f.read_double_attribute("/ledger", name);

@@ -72,9 +72,14 @@ struct ContactKernel {
   static constexpr std::size_t kRSlots = Rolling::slots.size();
   static constexpr int kCouples = couple_columns<Rolling>();
 
+  // The pair rows take the standing box's minimum image or, in a cell that tilts or moves, the sheared one with
+  // the image's velocity (Lees-Edwards): one test per pass, and the standing box's pass as before.
   static void run(const KernelContext& c, ContactTable& pairs, ContactTable& wall_rows, ForceSums sums,
                   LedgerStep& ledger) {
-    run_rows<false>(c, pairs, sums, ledger);
+    if (c.domain.standing())
+      run_rows<false, true, MinimumImage>(c, pairs, sums, ledger);
+    else
+      run_rows<false, true, ShearedImage>(c, pairs, sums, ledger);
     run_rows<true>(c, wall_rows, sums, ledger);
   }
 
@@ -83,13 +88,19 @@ struct ContactKernel {
   // nothing, and no work is booked. The run starts from the history it was given.
   static void initial_forces(const KernelContext& c, ContactTable& pairs, ContactTable& wall_rows, ForceSums sums) {
     LedgerStep unused;
-    run_rows<false, false>(c, pairs, sums, unused);
+    if (c.domain.standing())
+      run_rows<false, false, MinimumImage>(c, pairs, sums, unused);
+    else
+      run_rows<false, false, ShearedImage>(c, pairs, sums, unused);
     run_rows<true, false>(c, wall_rows, sums, unused);
   }
 
   static ContactSummary stored_energy(const KernelContext& c, ContactTable& pairs, ContactTable& wall_rows) {
     ContactSummary e;
-    stored_rows<false>(c, pairs, e);
+    if (c.domain.standing())
+      stored_rows<false, MinimumImage>(c, pairs, e);
+    else
+      stored_rows<false, ShearedImage>(c, pairs, e);
     stored_rows<true>(c, wall_rows, e);
     return e;
   }
@@ -164,8 +175,8 @@ struct ContactKernel {
 
   // Kinematics of row r; `apart` when the discs are apart and the row carries no force (nothing to do),
   // `coincident` when two centres coincide (no normal exists: reported as a failed run).
-  template <bool kWall>
-  [[gnu::always_inline]] static Found kinematics(const DiscView& D, const MinimumImage& image, const WallSet& walls,
+  template <bool kWall, class Image>
+  [[gnu::always_inline]] static Found kinematics(const DiscView& D, const Image& image, const WallSet& walls,
                                                  const ContactTable& tab, std::size_t r, Row& row) {
     const auto i = static_cast<std::size_t>(tab.i1[r]);
     const auto j = static_cast<std::size_t>(tab.i2[r]);
@@ -184,7 +195,8 @@ struct ContactKernel {
       row.k = disc_wall_kinematics(prox.n, prox.dist, D.R[i], D.v[i], row.v_wall, row.w1, row.w2);
       row.b = disc_wall_bodies(D.m[i], D.I[i]);
     } else {
-      const Vec2 d = image.separation(D.x[i], D.x[j]);
+      Vec2 v2 = D.v[j];  // in a moving cell, the velocity of disc 2's image (Lees-Edwards)
+      const Vec2 d = image.separation(D.x[i], D.x[j], v2);
       const double dist2 = dot(d, d);
       const double R1 = D.R[i], R2 = D.R[j];
       const double Rs = R1 + R2;
@@ -192,7 +204,7 @@ struct ContactKernel {
       if (dist2 == 0.0) return Found::coincident;
       row.w1 = D.w[i];
       row.w2 = D.w[j];
-      row.k = disc_disc_kinematics(d, std::sqrt(dist2), R1, R2, D.v[i], D.v[j], row.w1, row.w2);
+      row.k = disc_disc_kinematics(d, std::sqrt(dist2), R1, R2, D.v[i], v2, row.w1, row.w2);
       row.b = disc_disc_bodies(D.m[i], D.m[j], D.I[i], D.I[j]);
     }
     return Found::contact;
@@ -365,10 +377,14 @@ struct ContactKernel {
     }
   }
 
-  template <bool kWall, bool kCommit = true>
+  // The image of a pass: `Image` for pair rows, none for wall rows.
+  template <bool kWall, class Image>
+  using PassImage = std::conditional_t<kWall, NoImage, Image>;
+
+  template <bool kWall, bool kCommit = true, class Image = MinimumImage>
   static void run_rows(const KernelContext& c, ContactTable& tab, ForceSums sums, LedgerStep& ledger) {
     const DiscView D(c.discs);
-    const MinimumImage image(c.domain);
+    const PassImage<kWall, Image> image(c.domain);
     const double dt = c.dt, overlap_limit = c.overlap_limit;
     const Slots h(tab);
     const ContactParams* const params = (kWall ? c.params.walls() : c.params.pairs()).data();
@@ -414,12 +430,12 @@ struct ContactKernel {
     merge(L, ledger);
   }
 
-  template <bool kWall>
+  template <bool kWall, class Image = MinimumImage>
   static void stored_rows(const KernelContext& c, ContactTable& tab, ContactSummary& e) {
     const Slots h(tab);
     const std::vector<ContactParams>& params = kWall ? c.params.walls() : c.params.pairs();
     const DiscView D(c.discs);
-    const MinimumImage image(c.domain);
+    const PassImage<kWall, Image> image(c.domain);
     for (std::size_t r = 0; r < tab.size(); ++r) {
       if (static_cast<std::size_t>(tab.i1[r]) >= c.discs.n_owned()) continue;
       Row row;

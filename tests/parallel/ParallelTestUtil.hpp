@@ -178,6 +178,29 @@ inline std::string write_temp(const std::string& stem, const std::string& conten
   return path.string();
 }
 
+// World ranks 0 .. size-1 as a communicator (the others get none and just wait). Simulation keeps a
+// reference to the Communicator, so this object outlives the simulations built on it.
+class SubComm {
+ public:
+  explicit SubComm(int size) {
+    const int r = world_rank();
+    MPI_Comm_split(MPI_COMM_WORLD, r < size ? 0 : MPI_UNDEFINED, r, &raw_);
+    if (raw_ != MPI_COMM_NULL) comm_ = std::make_unique<Communicator>(raw_);
+  }
+  ~SubComm() {
+    comm_.reset();
+    if (raw_ != MPI_COMM_NULL) MPI_Comm_free(&raw_);
+  }
+  SubComm(const SubComm&) = delete;
+  SubComm& operator=(const SubComm&) = delete;
+  bool member() const { return comm_ != nullptr; }
+  const Communicator& comm() const { return *comm_; }
+
+ private:
+  MPI_Comm raw_ = MPI_COMM_NULL;
+  std::unique_ptr<Communicator> comm_;
+};
+
 // Scene (a): a few hundred polydisperse discs falling into a box (walls bottom, left, right) under gravity,
 // Coulomb friction and the Wang rolling law (history: xi, x_r). 9 x 18 cells.
 inline std::string deposition_ini() {

@@ -55,34 +55,12 @@ constexpr int kHalf = 2500;  // N: the checkpoint step; the runs end at 2N
 
 using partest::broadcast;
 using partest::SharedTempDir;
+using partest::SubComm;
 using partest::world_barrier;
 using partest::world_rank;
 using partest::world_size;
 using test::QuietCout;
 using test::read_file;
-
-// World ranks 0 .. size-1 as a communicator (the others get none and just wait). Simulation keeps a
-// reference to the Communicator, so this object outlives the simulations built on it.
-class SubComm {
- public:
-  explicit SubComm(int size) {
-    const int r = world_rank();
-    MPI_Comm_split(MPI_COMM_WORLD, r < size ? 0 : MPI_UNDEFINED, r, &raw_);
-    if (raw_ != MPI_COMM_NULL) comm_ = std::make_unique<Communicator>(raw_);
-  }
-  ~SubComm() {
-    comm_.reset();
-    if (raw_ != MPI_COMM_NULL) MPI_Comm_free(&raw_);
-  }
-  SubComm(const SubComm&) = delete;
-  SubComm& operator=(const SubComm&) = delete;
-  bool member() const { return comm_ != nullptr; }
-  const Communicator& comm() const { return *comm_; }
-
- private:
-  MPI_Comm raw_ = MPI_COMM_NULL;
-  std::unique_ptr<Communicator> comm_;
-};
 
 // h5diff of two Rondel files without the run metadata and the ledger (FORMAT.md): "" when equal, else the
 // exit status and the first lines of its report. Rank 0 only.

@@ -7,11 +7,11 @@ import numpy as np
 from .config import Config
 from .errors import RondelFileError
 
-FORMAT_VERSION = 4
+FORMAT_VERSION = 5
 # Versions this reader takes: 2 only dropped contact datasets of 1 that the tools do not read; 3 added
 # circle walls (/walls/kind 2) and wall rotation (/walls/centre, radius, omega, angle); 4 the root's
-# /integrity attributes_checksum.
-READABLE_VERSIONS = (1, 2, 3, 4)
+# /integrity attributes_checksum; 5 the periodic cell now (/cell: xlo, xhi, ylo, yhi, tilt, rates, flips).
+READABLE_VERSIONS = (1, 2, 3, 4, 5)
 # The names of the wall kind codes (/walls/kind) of files written before the attribute /walls/kind_names, which
 # newer files carry (the C++ registry, src/core/WallKinds.hpp): StateFile.wall_kinds() reads that attribute.
 WALL_KINDS_BEFORE_NAMES = ("line", "segment", "circle")
@@ -107,6 +107,7 @@ class StateFile:
     decoded), config (Config of the `config` attribute), discs (Group: gid, radius, position (n, 2), ...),
     contacts and wall_contacts (Group with key, param, F_n, ..., history {slot: array}; None in a
     snapshot), walls (Group: kind, p0, p1, normal, velocity, ...; attrs box_width0, box_height0),
+    cell (dict: xlo, xhi, ylo, yhi, tilt, rate_xx, rate_xy, rate_yy, flips; {} before version 5; cell_vectors()),
     ledger (dict of float), run_metadata (dict), checksums {'/discs/gid': stored uint64}."""
 
     def __init__(self, path, allow_incomplete=False, allow_version=False):
@@ -160,6 +161,7 @@ class StateFile:
         self.wall_contacts = self._group(f, h5py, "wall_contacts")
         self.walls = self._group(f, h5py, "walls") or Group("walls")
         self.ledger = {k: float(decode(v)) for k, v in f["ledger"].attrs.items()} if "ledger" in f else {}
+        self.cell = {k: decode(v) for k, v in f["cell"].attrs.items()} if "cell" in f else {}
         self.run_metadata = {k: decode(v) for k, v in f["run_metadata"].attrs.items()} if "run_metadata" in f else {}
 
     def _group(self, f, h5py, name):
@@ -181,6 +183,18 @@ class StateFile:
         return out
 
     # -------------------------------------------------------------------------------------------- access
+
+    def cell_vectors(self):
+        """The periodic cell now as (corner, a, b): numpy 2-vectors, a = (L_x, 0) and b = (tilt, L_y) (docs/physics.md
+        section 10); from the configuration's box, tilt 0, for a file before version 5."""
+        c = self.cell
+        if not c:
+            c = {k: float(self.config.get("domain", k)) for k in ("xlo", "xhi", "ylo", "yhi")}
+            c["tilt"] = 0.0
+        corner = np.array([float(c["xlo"]), float(c["ylo"])])
+        a = np.array([float(c["xhi"]) - float(c["xlo"]), 0.0])
+        b = np.array([float(c["tilt"]), float(c["yhi"]) - float(c["ylo"])])
+        return corner, a, b
 
     def wall_kinds(self):
         """The name of each wall's kind ('line', 'segment', 'circle', ...), decoded with the file's own table

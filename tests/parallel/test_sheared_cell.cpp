@@ -1,0 +1,109 @@
+// The deforming periodic cell across ranks (docs/physics.md section 10, docs/validation.md section 13): the dense
+// periodic packing of RankInvariance sheared at a constant rate (Lees-Edwards) to a shear strain of 3, through
+// three flips of the cell, gives the bits of the 1-rank run on 1 to 4 ranks (states and contact rows, compared in
+// lock step); a checkpoint written after the first flip and resumed on another rank count ends in the same bits.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "ParallelTestUtil.hpp"
+#include "app/Checkpointing.hpp"
+#include "support/Assertions.hpp"
+#include "support/Quiet.hpp"
+
+namespace rondel {
+namespace {
+
+using namespace partest;
+namespace fs = std::filesystem;
+
+const Communicator& self_comm() {
+  static const Communicator self(MPI_COMM_SELF);
+  return self;
+}
+
+constexpr int kSteps = 3000;
+constexpr double kStrain = 3.0;
+
+// The packing sheared at the rate that reaches kStrain in kSteps steps of its time step. Rank 0's text on every
+// rank: its scene file (the same bytes as every rank's) is then the one named in a checkpoint's configuration.
+std::string sheared_ini() {
+  static const std::string ini = [] {
+    const Simulation probe(parse_config_text(periodic_ini(), {}), self_comm(), false);
+    const double rate = kStrain / (kSteps * probe.dt());
+    return broadcast(periodic_ini() + "[cell]\nrate_xy = " + num(rate) + "\n");
+  }();
+  return ini;
+}
+
+TEST(ShearedCellRanks, ShearedToStrainThreeBitwiseOnAnyRankCount) {
+  std::int64_t flips = 0;
+  double strain = 0.0;
+  const LockstepResult r = run_lockstep(sheared_ini(), {}, kSteps, 250, [&](Simulation& par, Simulation*) {
+    flips = par.state().flips;
+    strain = par.measures().shear_strain;
+  });
+  if (world_rank() == 0)
+    std::cout << "[ sheared  ] " << world_size() << " ranks: strain " << strain << ", " << flips << " flips, "
+              << r.builds << " neighbour builds, " << r.migrated << " discs migrated; "
+              << (r.equal ? "bitwise equal" : "DIFFERS") << "\n";
+  EXPECT_TRUE(r.equal) << r.what;
+  EXPECT_GE(flips, 2);
+  EXPECT_NEAR(strain, kStrain, 0.01);
+  if (world_size() > 1) {
+    EXPECT_GT(r.migrated, 0);
+    EXPECT_GE(r.max_copies, 2) << "no contact across a rank border";
+  }
+}
+
+// Written on every rank of the world after the first flip, resumed on another rank count (1 -> 1, else one
+// rank fewer): the 1-rank uninterrupted run's bits.
+TEST(ShearedCellRanks, ARestartAfterAFlipOnAnotherRankCountIsBitwise) {
+  constexpr int kHalf = kSteps / 2;  // past the first flip (strain 0.58)
+  const int W = world_size();
+  const bool root = world_rank() == 0;
+  SharedTempDir tmp("sheared-restart");
+  const fs::path out = tmp.path() / "run";
+  const std::vector<std::string> common{"--run.output=" + out.string(), "--run.overwrite=true",
+                                        "--output.checkpoint_every=" + std::to_string(kHalf), "--run.progress=false"};
+  std::vector<std::string> overrides = common, half = common;
+  overrides.push_back("--run.steps=" + std::to_string(kSteps));
+  half.push_back("--run.steps=" + std::to_string(kHalf));
+  const std::string ini = sheared_ini();
+  std::string reference;
+  if (root) {
+    Simulation ref(parse_config_text(ini, overrides), self_comm(), false);
+    for (int s = 0; s < kSteps; ++s) ref.step();
+    reference = ref.state_text();
+  }
+  world_barrier();
+  {
+    static const Communicator world(MPI_COMM_WORLD);
+    Simulation writer(parse_config_text(ini, half), world, true);
+    test::QuietCout quiet;
+    writer.run();
+    EXPECT_EQ(writer.state().flips, 1) << "the checkpoint should come after the first flip";
+  }
+  world_barrier();
+  const fs::path checkpoint = out / Checkpointing::file_name("checkpoint", kHalf);
+  std::string restarted;
+  {
+    SubComm rc(W == 1 ? 1 : W - 1);
+    if (rc.member()) {
+      Simulation r(parse_config_text(ini, overrides), rc.comm(), true, checkpoint.string());
+      EXPECT_EQ(r.state().flips, 1);
+      test::QuietCout quiet;
+      r.run();
+      restarted = r.state_text();
+    }
+  }
+  world_barrier();
+  if (root) {
+    EXPECT_EQ(test::first_difference(reference, restarted, "expected", "got"), "")
+        << W << " ranks to step " << kHalf << ", resumed on " << (W == 1 ? 1 : W - 1) << " to " << kSteps;
+  }
+}
+
+}  // namespace
+}  // namespace rondel

@@ -1,0 +1,177 @@
+// The deforming periodic cell in whole runs (docs/physics.md section 10, docs/validation.md section 13): a pair of
+// touching discs across the sheared boundary gives the forces, couples and history of the same pair inside the
+// cell (the same relative position and velocities) to round-off, for every rolling law, through a flip of the
+// cell; a lone disc started with the mean flow keeps its velocity and changes it by -gamma_dot L_y at a crossing;
+// the keys of the cell refuse what they cannot do, naming the key.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "app/Simulation.hpp"
+#include "core/Errors.hpp"
+#include "physics/LawRegistry.hpp"
+#include "support/Format.hpp"
+#include "support/Quiet.hpp"
+#include "support/TempDir.hpp"
+
+namespace rondel {
+namespace {
+
+using test::num;
+
+// One rank (Simulation keeps a reference to its communicator).
+const Communicator& self_comm() {
+  static const Communicator self(MPI_COMM_SELF);
+  return self;
+}
+
+constexpr double kR = 0.005;               // the reference disc D5 (docs/developing.md)
+constexpr double kLx = 0.04, kLy = 0.05;   // the cell: more than twice the interaction range both ways
+constexpr double kRate = 2000.0;           // cell.rate_xy [1/s]: the tilt passes L_x / 2 at step 20
+constexpr int kSteps = 400;
+
+// A disc of the scene: its position, velocity and spin.
+struct Disc {
+  Vec2 x, v;
+  double w = 0.0;
+};
+
+// The discs (gids 0, 1, ...) in the sheared cell.
+std::string cell_ini(const std::string& law, const std::vector<Disc>& discs) {
+  std::string csv = "id,x,y,radius,vx,vy,omega\n";
+  for (std::size_t i = 0; i < discs.size(); ++i) {
+    const Disc& d = discs[i];
+    csv += std::to_string(i) + "," + num(d.x.x) + "," + num(d.x.y) + "," + num(kR) + "," + num(d.v.x) + "," +
+           num(d.v.y) + "," + num(d.w) + "\n";
+  }
+  static const test::TempDir dir("rondel-sheared-cell");
+  static int files = 0;
+  const std::filesystem::path file = dir / ("scene" + std::to_string(files++) + ".csv");
+  test::write_file(file, csv);
+  return "[run]\nprogress = false\ndt = 1e-5\n[domain]\nxlo = 0\nxhi = " + num(kLx) + "\nylo = 0\nyhi = " +
+         num(kLy) + "\nperiodic_x = true\nperiodic_y = true\n[cell]\nrate_xy = " + num(kRate) +
+         "\nflow_start = false\n[material]\ndensity = 2650\n[linear]\nk_n = 1e6\nzeta = 0.2\n[coulomb]\n"
+         "k_s = 7.5e5\nmu = 0.5\n[contact]\nrolling = " +
+         law + "\n[scene]\ntype = csv\nfile = " + file.string() + "\nmax_initial_overlap = 0.2\n";
+}
+
+std::vector<std::string> example_options(const std::string& law) {
+  const LawInfo* info = law_catalog().rolling.find(law);
+  return info && info->block ? info->block->example_options() : std::vector<std::string>{};
+}
+
+// The row of the pair (zeros while it has none: an open contact keeps no history) and both discs' forces and
+// torques, in gid order.
+std::vector<double> snapshot(const Simulation& s) {
+  const ContactTable& t = s.pairs();
+  const std::size_t columns = 2 + static_cast<std::size_t>(t.couples()) + t.slot.size();
+  std::vector<double> out(columns, 0.0);
+  for (std::size_t r = 0; r < t.size(); ++r) {
+    if (t.i1[r] >= static_cast<std::int32_t>(s.discs().n_owned())) continue;
+    std::size_t k = 0;
+    out[k++] = t.F_n[r], out[k++] = t.F_t[r];
+    if (t.couples() > 0) out[k++] = t.M1[r];
+    if (t.couples() > 1) out[k++] = t.M2[r];
+    for (const auto& slot : t.slot) out[k++] = slot[r];
+  }
+  const DiscStore& d = s.discs();
+  for (std::int64_t gid : {0, 1})
+    for (std::size_t i = 0; i < d.n_owned(); ++i)
+      if (d.gid[i] == gid) out.insert(out.end(), {d.force[i].x, d.force[i].y, d.torque[i]});
+  return out;
+}
+
+TEST(ShearedCell, APairAcrossTheBoundaryIsThePairInsideForEveryRollingLaw) {
+  const Domain cell = [] {
+    Domain d;
+    d.xhi = kLx, d.yhi = kLy, d.periodic_x = d.periodic_y = true, d.L.xy = kRate;
+    d.rates();
+    return d;
+  }();
+  // Disc 1 and disc 2 at 1.9 R apart, 30 degrees off the vertical, approaching and spinning.
+  const Vec2 d12{0.95 * kR, 1.9 * kR * std::cos(std::asin(0.5))};
+  const Vec2 v1{0.01, -0.02}, v2{-0.03, 0.01};
+  const double w1 = 10.0, w2 = -5.0;
+  // Inside: in the middle. Across: disc 1 just below the top, disc 2's image above it, so disc 2 itself is at the
+  // bottom, one lattice vector b = (tilt 0, L_y) lower, moving slower by db/dt = (gamma_dot L_y, 0).
+  const Vec2 in1{0.02, 0.02}, in2 = in1 + d12;
+  const Vec2 across1{0.02, kLy - 0.4 * kR}, across2 = across1 + d12 - Vec2{0.0, kLy};
+  const Vec2 across_v2 = v2 - cell.vb;
+  int laws = 0;
+  for (const LawInfo& law : law_catalog().rolling.laws) {
+    SCOPED_TRACE(law.keyword);
+    const std::vector<std::string> o = example_options(law.keyword);
+    Simulation inside(parse_config_text(cell_ini(law.keyword, {{in1, v1, w1}, {in2, v2, w2}}), o),
+                      self_comm(), false);
+    Simulation across(parse_config_text(cell_ini(law.keyword, {{across1, v1, w1}, {across2, across_v2, w2}}), o),
+                      self_comm(), false);
+    std::vector<std::vector<double>> a, b;
+    int first_flip = -1;
+    for (int s = 0; s < kSteps; ++s) {
+      inside.step(), across.step();
+      a.push_back(snapshot(inside)), b.push_back(snapshot(across));
+      if (first_flip < 0 && across.state().flips != 0) first_flip = s;
+    }
+    ASSERT_GE(first_flip, 0) << "the cell did not flip within the run";
+    EXPECT_GT(a[static_cast<std::size_t>(first_flip)][0], 0.0) << "the discs were apart at the flip";
+    // Each value against the largest of its kind over the run.
+    const std::size_t n = a.front().size();
+    std::vector<double> scale(n, 0.0);
+    for (const auto& row : a)
+      for (std::size_t k = 0; k < n; ++k) scale[k] = std::max(scale[k], std::fabs(row[k]));
+    std::size_t contact_steps = 0;
+    for (int s = 0; s < kSteps; ++s) {
+      ASSERT_EQ(b[s].size(), n);
+      if (a[s][0] > 0.0) ++contact_steps;
+      for (std::size_t k = 0; k < n; ++k)
+        ASSERT_NEAR(a[s][k], b[s][k], 1e-12 * scale[k] + 1e-300) << "step " << s + 1 << ", value " << k;
+    }
+    EXPECT_GT(contact_steps, 30u) << "the discs were hardly in contact";
+    ++laws;
+  }
+  EXPECT_GE(laws, 9);
+}
+
+// A lone disc started with the mean flow's velocity keeps it (no force acts); each crossing of the sheared
+// boundary changes it by -gamma_dot L_y (upwards) and nothing else.
+TEST(ShearedCell, ALoneDiscKeepsItsVelocityAndChangesItAtACrossing) {
+  const Vec2 x0{0.01, kLy - 0.002};
+  Simulation s(parse_config_text(cell_ini("none", {{x0, {0.0, 0.5}}}), {"--cell.flow_start=true"}),
+               self_comm(), false);
+  const auto disc0 = [] { return std::size_t{0}; };
+  const Vec2 v0 = s.discs().velocity[disc0()];
+  EXPECT_EQ(v0.x, kRate * x0.y);  // the flow's velocity at its height, added
+  for (int k = 0; k < 1000; ++k) s.step();
+  const Vec2 v = s.discs().velocity[disc0()];
+  const double y = s.discs().position[disc0()].y;
+  ASSERT_LT(y, 0.5 * kLy) << "the disc did not cross the top";
+  EXPECT_NEAR(v.x, v0.x - kRate * kLy, 1e-12 * kRate * kLy);
+  EXPECT_EQ(v.y, v0.y);
+}
+
+TEST(ShearedCell, BadCellKeysAreRefusedNamingTheKey) {
+  const std::string base = cell_ini("none", {{{0.01, 0.01}, {}}, {{0.03, 0.03}, {}}});
+  const auto refused = [&](const std::vector<std::string>& o) {
+    try {
+      Simulation s(parse_config_text(base, o), self_comm(), false);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(refused({"--domain.periodic_y=false"}).find("cell.rate_xy"), std::string::npos);
+  EXPECT_NE(refused({"--walls.lines=0 0 1 0"}).find("walls.lines"), std::string::npos);
+  EXPECT_NE(refused({"--cell.rate_xy=1e9"}).find("cell.rate_xy"), std::string::npos);
+  EXPECT_NE(refused({"--cell.rate_xx=-1e5"}).find("cell.rate_xx"), std::string::npos);
+  // A cell that would shrink below twice the interaction range over the run.
+  EXPECT_NE(refused({"--cell.rate_yy=-300", "--run.steps=100000"}).find("cell.rate_yy"), std::string::npos);
+  EXPECT_NE(refused({"--cell.rate_xy=nan"}).find("cell.rate_xy"), std::string::npos);
+  EXPECT_EQ(refused({}), "");
+}
+
+}  // namespace
+}  // namespace rondel
