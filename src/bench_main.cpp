@@ -7,7 +7,7 @@
 // built; --no-stream skips it), the model of the bytes a step moves per disc (traffic_model,
 // BenchSupport.hpp) and the bound on disc-steps per second that the two give.
 //   rondel_bench [--discs 10000 x k] [--steps 5000] [--warmup 1000] [--rolling LAW] [--file PATH] [--no-stream]
-//                [--skin S] [--against LAW [--chunk 100]]
+//                [--skin S] [--against LAW [--chunk 100]] [--shear RATE]
 // Without --file it reads bench/jammed10k.csv of the working directory (a clone's root) and, when that is
 // missing, the one of the source tree it was built from (RONDEL_SOURCE_DIR, set by CMakeLists.txt), so it runs
 // from a build directory as well; the packing is described in bench/README.md. With --file, --discs counts
@@ -20,7 +20,10 @@
 // --against LAW builds a second simulation of the same discs with that rolling law and runs the timed steps of
 // the two in alternating chunks of --chunk steps (A B B A ...), printing the second law's rate and the ratio
 // of the rates per chunk pair (median and range) and of the totals: a comparison of two laws that the
-// neighbours of a shared machine disturb far less than separate runs.
+// neighbours of a shared machine disturb far less than separate runs. --shear RATE shears the first
+// simulation's cell at cell.rate_xy = RATE (Lees-Edwards, docs/physics.md section 10; the discs start with the
+// mean flow) and leaves the second's standing: `--rolling none --against none --shear 0.0067` is the cost of the
+// sheared cell at I = 1e-3 against today's periodic box (docs/benchmarks.md).
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -48,6 +51,7 @@ struct Options {
   std::string rolling = "none";
   std::string skin;     // empty: neighbour.skin's default
   std::string against;  // a second rolling law run beside the first, in alternating chunks (empty: none run)
+  std::string shear;    // cell.rate_xy of the first simulation (empty: its cell stands still)
   long chunk = -1;      // steps per chunk with --against (-1: 100, or --steps when fewer)
   bool no_stream = false;
 };
@@ -63,6 +67,7 @@ Options parse(int argc, char** argv) {
                                {"--no-stream", &o.no_stream},
                                {"--skin", &o.skin},
                                {"--against", &o.against},
+                               {"--shear", &o.shear},
                                {"--chunk", &o.chunk}});
   if (o.steps <= 0)
     throw rondel::ConfigError("rondel_bench: --steps must be at least 1, not " + std::to_string(o.steps));
@@ -341,13 +346,15 @@ int bench(int argc, char** argv, const rondel::Communicator& comm) {
   bool peak_reset = true;
   const double bandwidth = measure_bandwidth(o, comm, peak_reset);
   const std::string ini = bench_ini(o, nx, ny, lo, hi);
-  const auto config_of = [&](const std::string& law, const char* option) {
-    return rondel::parse_config_text(ini + rolling_block(law, option));
+  const auto config_of = [&](const std::string& law, const char* option, bool sheared) {
+    return rondel::parse_config_text(ini + rolling_block(law, option) +
+                                     (sheared && !o.shear.empty() ? "[cell]\nrate_xy = " + o.shear + "\n" : ""));
   };
-  rondel::Simulation sim(config_of(o.rolling, "--rolling"), comm, false);
+  rondel::Simulation sim(config_of(o.rolling, "--rolling", true), comm, false);
   // --against: the second law's simulation of the same discs, held beside the first.
   std::unique_ptr<rondel::Simulation> other;
-  if (!o.against.empty()) other = std::make_unique<rondel::Simulation>(config_of(o.against, "--against"), comm, false);
+  if (!o.against.empty())
+    other = std::make_unique<rondel::Simulation>(config_of(o.against, "--against", false), comm, false);
   // The steps as a run takes them between outputs (Simulation::advance; no stop requests here).
   const auto no_stop = [] { return std::int64_t{0}; };
   sim.advance(o.warmup, no_stop);

@@ -62,14 +62,22 @@ StateHeader Restart::header(const RunState& state, const char* kind) {
   return h;
 }
 
-std::vector<SceneDisc> Restart::scene_from_file(const std::string& file, const Config& config, WallSet& walls_out) {
+std::vector<SceneDisc> Restart::scene_from_file(const std::string& file, const Config& config, WallSet& walls_out,
+                                                Domain& cell) {
   // Every rank reads every disc (the scene is then distributed like any other). A directory means its
   // newest complete checkpoint. Box walls take their positions from the file (a prepared sample keeps its
-  // box); contact history starts afresh, and step, time and strains start at zero: a new test stage.
+  // box), a periodic cell its shape; contact history starts afresh, and step, time and strains start at zero: a
+  // new test stage.
   const Communicator self = Communicator::self();
   std::string path = file;
   if (fs::is_directory(path)) path = Checkpointing::newest_checkpoint(path, self);
-  check_material_table(path, read_state_header(path, self), config);
+  const StateHeader header = read_state_header(path, self);
+  check_material_table(path, header, config);
+  if (header.has_cell && cell.periodic_x && cell.periodic_y) {
+    cell.xlo = header.cell.xlo, cell.xhi = header.cell.xhi, cell.ylo = header.cell.ylo, cell.yhi = header.cell.yhi;
+    cell.tilt = header.cell.tilt;
+    cell.rates();
+  }
   DiscStore d;
   read_state_discs(path, d, self);
   check_disc_materials(path, d, config);

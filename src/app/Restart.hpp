@@ -38,7 +38,10 @@ class Restart {
 
   // scene.type = file: every disc of `path` (a directory: its newest complete checkpoint), read on each rank;
   // box walls take their positions from the file. History, step, time and strains start afresh.
-  static std::vector<SceneDisc> scene_from_file(const std::string& path, const Config& config, WallSet& walls);
+  // A cell periodic in x and y takes the file's shape (lengths and tilt; its rates stay the configuration's) into
+  // `cell`.
+  static std::vector<SceneDisc> scene_from_file(const std::string& path, const Config& config, WallSet& walls,
+                                                Domain& cell);
 
  private:
   void check_laws_match() const;
@@ -51,17 +54,18 @@ class Restart {
   StateHeader header_;
 };
 
-// The reader of scene.type = file (core/SceneTypes.hpp): Restart::scene_from_file into these walls.
+// The reader of scene.type = file (core/SceneTypes.hpp): Restart::scene_from_file into these walls and cell.
 class FileScene final : public SceneFileReader {
  public:
-  FileScene(const Config& config, WallSet& walls) : config_(config), walls_(walls) {}
+  FileScene(const Config& config, WallSet& walls, Domain& cell) : config_(config), walls_(walls), cell_(cell) {}
   std::vector<SceneDisc> discs(const std::string& path) const override {
-    return Restart::scene_from_file(path, config_, walls_);
+    return Restart::scene_from_file(path, config_, walls_, cell_);
   }
 
  private:
   const Config& config_;
   WallSet& walls_;
+  Domain& cell_;
 };
 
 }  // namespace rondel

@@ -34,7 +34,8 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
       write_files_(write_files),
       neighbours_(0.0),
       files_(config_, comm_, write_files),
-      reduction_(comm_, config_, Boundaries::controlled(config_.walls)) {
+      cell_control_(config_),
+      reduction_(comm_, config_, Boundaries::controlled(config_.walls) || cell_control_.active()) {
   // Each set-up phase ends in an agreement (parallel/Agreement.hpp): an error that one rank finds (a disc
   // behind a wall in its block of a checkpoint, a file it cannot read) stops every rank, with one message,
   // before the next collective call. The phases that call collectives agree inside.
@@ -73,6 +74,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
     // Forces, history and ledger come from the file (no recomputation before the first kick); the first
     // step's reduction sums the walls' loads from the rows read, as the interrupted run's step would have.
     if (boundaries_.controlled()) loads_ = Boundaries::local_loads(walls_, discs_, config_.domain, pairs_, wall_rows_);
+    if (cell_control_.active()) cell_sums_ = CellControl::local_sums(discs_, config_.domain, pairs_);
     return;
   }
   // Forces at t = 0 for the first half kick: the kernel at the initial state with a zero increment,
@@ -82,6 +84,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
     boundaries_.measure(walls_, discs_, config_.domain, pairs_, wall_rows_, comm_);
     loads_ = Boundaries::local_loads(walls_, discs_, config_.domain, pairs_, wall_rows_);
   }
+  if (cell_control_.active()) cell_sums_ = CellControl::local_sums(discs_, config_.domain, pairs_);
   core_.ledger().start(kinetic_energy());
 }
 
@@ -113,7 +116,7 @@ void Simulation::build_discs() {
 
 void Simulation::add_scene_discs() {
   const std::string dir = config_.source_file.empty() ? "" : fs::path(config_.source_file).parent_path().string();
-  const FileScene files(config_, walls_);
+  const FileScene files(config_, walls_, config_.domain);
   const auto scene = build_scene(SceneInputs{config_.scene, config_.domain, dir, &files});
   box0_ = Boundaries::box(walls_, config_.domain);  // a file scene may have moved the box walls
   if (scene.empty())
@@ -211,7 +214,7 @@ void Simulation::distribute_discs() {
 
 Domain Simulation::cell_sizing() const {
   Domain s = config_.domain;
-  if (!s.moving) return s;
+  if (!s.moving && !cell_control_.active()) return s;
   // Constant rates: each length changes by the factor (1 + dt L_ii) a step; the smallest is at one end.
   const double n = static_cast<double>(std::max<std::int64_t>(config_.steps, 0));
   const auto smallest = [&](double length, double rate) {
@@ -220,6 +223,10 @@ Domain Simulation::cell_sizing() const {
   s.xhi = s.xlo + smallest(s.length_x(), s.L.xx);
   s.yhi = s.ylo + smallest(s.length_y(), s.L.yy);
   if (s.L.xy != 0.0 || s.tilt != 0.0) s.tilt = 0.5 * s.length_x();
+  // A stress-controlled length is unknown beforehand: its grid holds down to half the length now (a smaller
+  // cell is refused at the rebuild that finds it, Simulation::follow_cell).
+  if (config_.cell_stress_xx > 0.0) s.xhi = s.xlo + 0.5 * s.length_x();
+  if (config_.cell_stress_yy > 0.0) s.yhi = s.ylo + 0.5 * s.length_y();
   return s;
 }
 
@@ -398,7 +405,7 @@ void Simulation::load_checkpoint(const std::string& path) {
 
 void Simulation::resume_cell(const StateHeader& h, const std::string& path) {
   // A cell that has deformed goes on from the file's shape (the configuration's box is where it started) with
-  // this configuration's rates; a box that stood still is the configuration's, as before.
+  // this configuration's rates (a servo's, the file's); a box that stood still is the configuration's, as before.
   if (!h.has_cell || (h.cell.tilt == 0.0 && !h.cell.L.any())) return;
   Domain& cell = config_.domain;
   agree(comm_, [&] {
@@ -408,6 +415,9 @@ void Simulation::resume_cell(const StateHeader& h, const std::string& path) {
   });
   cell.xlo = h.cell.xlo, cell.xhi = h.cell.xhi, cell.ylo = h.cell.ylo, cell.yhi = h.cell.yhi;
   cell.tilt = h.cell.tilt;
+  // A stress-controlled component goes on at the rate its servo set last (the servo's state).
+  if (config_.cell_stress_xx > 0.0) cell.L.xx = h.cell.L.xx;
+  if (config_.cell_stress_yy > 0.0) cell.L.yy = h.cell.L.yy;
   cell.rates();
   flips_ = h.flips;
 }

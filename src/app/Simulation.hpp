@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "app/Boundaries.hpp"
+#include "app/CellControl.hpp"
 #include "app/Measures.hpp"
 #include "app/PhaseTimes.hpp"
 #include "app/RunFiles.hpp"
@@ -198,8 +199,10 @@ class Simulation final : public RunTarget {
   Boundaries boundaries_{0.2, 0.1};
   BoxGeometry box0_;            // the box at the start of the run (reference of the strains)
   ContactSummary summary_;      // of the last diagnostics
+  CellControl cell_control_;    // the servo of a stress-controlled cell
   StepReduction reduction_;     // the step's one reduction (docs/scaling.md)
   WallLoads loads_;             // this rank's part of the controlled walls' loads, of the last step
+  CellStressSums cell_sums_;    // this rank's part of its contact stress, of the last step
   bool repartitioned_ = false;  // the last step migrated the discs to a new map
   bool cell_rebuild_ = false;   // the cell flipped: this step builds a new list
   double cell_step_ = 0.0;      // a deforming cell's growth of the displacement bound per step

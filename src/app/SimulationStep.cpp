@@ -91,7 +91,13 @@ void Simulation::deform_cell() {
   const int flipped = cell.flip();
   if (flipped == 0) return;
   flips_ += flipped;
-  for (std::size_t i = 0; i < discs_.n_owned(); ++i) cell.wrap(discs_.position[i], discs_.velocity[i]);
+  double W_cell = 0.0;  // the kinetic energy of the discs moved by -a (their velocity by -da/dt)
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
+    const Vec2 before = discs_.velocity[i];
+    cell.wrap(discs_.position[i], discs_.velocity[i]);
+    W_cell += 0.5 * discs_.mass[i] * (dot(discs_.velocity[i], discs_.velocity[i]) - dot(before, before));
+  }
+  core_.ledger().W_cell += W_cell;
   cell_rebuild_ = true;
 }
 
@@ -123,7 +129,9 @@ void Simulation::walls_and_neighbours(const Integrator::Drift& drift) {
   bool reduced = false;
   double disp = moved;
   const auto reduce = [&] {
-    disp = reduction_.reduce(moved, walls_, loads_, *decomposition_, discs_, pairs_), reduced = true;
+    disp = reduction_.reduce(moved, walls_, loads_, *decomposition_, discs_, pairs_, config_.domain, cell_control_,
+                             cell_sums_),
+    reduced = true;
   };
   if (reduction_.due_before_walls()) reduce();
   phases_.lap(PhaseTimes::communication);
@@ -158,6 +166,7 @@ void Simulation::after_kernel(LedgerStep& work) {
   if (reduction_.failed() && comm_.size() == 1) std::rethrow_exception(reduction_.error());
   boundaries_.add_glued_work(discs_, dt_, work.W_w);  // the last step's reaction forces and this step's
   if (boundaries_.controlled()) loads_ = Boundaries::local_loads(walls_, discs_, config_.domain, pairs_, wall_rows_);
+  if (cell_control_.active()) cell_sums_ = CellControl::local_sums(discs_, config_.domain, pairs_);
 }
 
 void Simulation::settle_errors() {

@@ -37,7 +37,8 @@ bool StepReduction::due_before_walls() {
 }
 
 double StepReduction::reduce(double moved, WallSet& walls, const WallLoads& loads, Decomposition& decomposition,
-                             const DiscStore& discs, const ContactTable& pairs) {
+                             const DiscStore& discs, const ContactTable& pairs, Domain& cell,
+                             const CellControl& control, const CellStressSums& cell_sums) {
   FusedReduction r;
   // The motion bound: measured by this step's drift over the free discs (the fixed ones are moved by their walls:
   // the walls' term), the speed after the half kick and the acceleration of the force it used.
@@ -46,12 +47,14 @@ double StepReduction::reduce(double moved, WallSet& walls, const WallLoads& load
   const std::size_t s_err = r.max(static_cast<std::int64_t>(error_ ? comm_.size() - comm_.rank() : 0));
   const std::size_t s_stop = r.max(stop_request_);
   const auto wall_slots = controlled_walls_ ? loads.add_to(r) : std::vector<std::array<std::size_t, 4>>{};
+  const std::array<std::size_t, 2> cell_slots = control.active() ? cell_sums.add_to(r) : std::array<std::size_t, 2>{};
   std::size_t s_work_max = 0, s_work_sum = 0;
   if (balance_pending_) s_work_max = r.max(balance_work_), s_work_sum = r.sum(balance_work_);
   r.reduce(comm_);
   if (r.max_int(s_err) > 0) raise_from(comm_, comm_.size() - static_cast<int>(r.max_int(s_err)), error_);
   stop_agreed_ = r.max_int(s_stop);
   if (controlled_walls_) Boundaries::apply(walls, r, wall_slots);
+  if (control.active()) control.apply(cell, r, cell_slots);
   if (balance_pending_) {
     balance_pending_ = false;
     const double mean = static_cast<double>(r.sum_int(s_work_sum)) / comm_.size();

@@ -11,6 +11,7 @@
 #include <exception>
 
 #include "app/Boundaries.hpp"
+#include "app/CellControl.hpp"
 #include "core/Config.hpp"
 #include "core/ContactTable.hpp"
 #include "core/DiscStore.hpp"
@@ -23,6 +24,7 @@ namespace rondel {
 
 class StepReduction {
  public:
+  // `controlled_walls`: controlled walls or a stress-controlled cell (a reduction every step).
   StepReduction(const Communicator& comm, const Config& config, bool controlled_walls);
 
   // This rank's error, kept (the first one) until a reduction or settle() agrees on it: every rank then throws
@@ -53,8 +55,10 @@ class StepReduction {
   // The reduction: returns the largest displacement since the last build over every rank (`moved`: this rank's).
   // Agrees on errors and stop requests, sets the controlled walls' loads from `loads`, and decides a pending
   // balance check (a repartition of `decomposition` from the discs' and rows' work).
+  // With a stress-controlled cell, its exact stress sums too: `cell` takes the servo's rates.
   double reduce(double moved, WallSet& walls, const WallLoads& loads, Decomposition& decomposition,
-                const DiscStore& discs, const ContactTable& pairs);
+                const DiscStore& discs, const ContactTable& pairs, Domain& cell, const CellControl& control,
+                const CellStressSums& cell_sums);
 
   // A balance check in the next reduction: this rank's `work` (Decomposition::rank_work). `remeasure`: the check
   // after a repartition, which measures the new map's imbalance and repartitions nothing.

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include "core/ConfigRead.hpp"
 #include "core/ConfigSchema.hpp"
@@ -81,6 +82,18 @@ void read_run(const Reader&, Config& c) {
   for (const auto& [key, value] : rates)
     check(value == 0.0 || (d.periodic_x && d.periodic_y), key,
           "0 unless the cell is periodic in x and y (domain.periodic_x = true, domain.periodic_y = true)", num(value));
+  const std::tuple<const char*, double, const char*, double> targets[] = {
+      {"cell.stress_xx", c.cell_stress_xx, "cell.rate_xx", d.L.xx},
+      {"cell.stress_yy", c.cell_stress_yy, "cell.rate_yy", d.L.yy}};
+  for (const auto& [key, target, rate_key, rate] : targets) {
+    if (target == 0.0) continue;
+    check(d.periodic_x && d.periodic_y, key,
+          "0 unless the cell is periodic in x and y (domain.periodic_x = true, domain.periodic_y = true)", num(target));
+    check(rate == 0.0, key, std::string("0 when ") + rate_key + " is given (a component has a rate or a target)",
+          num(target));
+    check(c.cell_servo_gain > 0.0, "cell.servo_gain", std::string("> 0 with ") + key + " (the servo that holds it)",
+          num(c.cell_servo_gain));
+  }
   c.domain.rates();
 }
 

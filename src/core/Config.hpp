@@ -96,7 +96,9 @@ struct Config {
   std::int64_t diag_every = 0;
   // [domain], [gravity], [material] or [material.NAME]
   Domain domain;  // the cell as given; a running Simulation's is the cell now (it deforms with cell.rate_*)
-  bool cell_flow_start = true;  // cell.flow_start
+  bool cell_flow_start = true;                              // cell.flow_start
+  double cell_stress_xx = 0.0, cell_stress_yy = 0.0;        // cell.stress_xx, stress_yy (0: no target)
+  double cell_servo_gain = 0.0, cell_servo_max_rate = 1.0;  // cell.servo_gain, servo_max_rate
   Vec2 gravity;
   double thickness = 1.0;           // every material's (the thickness stresses are per)
   std::vector<Material> materials;  // one ([material]) or several ([material.NAME], ordered by name)

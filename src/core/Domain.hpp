@@ -157,8 +157,9 @@ struct MinimumImage {
     }
     return d;
   }
-  // The same; a standing cell's images move with their discs (v2 as it is).
-  Vec2 separation(Vec2 x1, Vec2 x2, Vec2& /*v2*/) const { return separation(x1, x2); }
+  // The same; a standing cell's images move with their discs (no velocity offset).
+  static constexpr bool kMoving = false;
+  Vec2 separation(Vec2 x1, Vec2 x2, Vec2& /*dv*/) const { return separation(x1, x2); }
 };
 
 // No image: the wall rows of the contact kernel, whose pass forms no pair separation.
@@ -185,33 +186,34 @@ struct ShearedImage {
         periodic_x(d.periodic_x),
         periodic_y(d.periodic_y),
         moving(d.moving) {}
-  Vec2 separation(Vec2 x1, Vec2 x2, Vec2& v2) const {
+  static constexpr bool kMoving = true;
+  Vec2 separation(Vec2 x1, Vec2 x2, Vec2& dv) const {
     Vec2 d = x2 - x1;
     if (periodic_y) {
       if (d.y > half_y) {
         d.y -= Ly;
         d.x -= tilt;
-        if (moving) v2 -= vb;
+        if (moving) dv -= vb;
       } else if (d.y < -half_y) {
         d.y += Ly;
         d.x += tilt;
-        if (moving) v2 += vb;
+        if (moving) dv += vb;
       }
     }
     if (periodic_x) {
       if (d.x > half_x) {
         d.x -= Lx;
-        if (moving) v2 -= va;
+        if (moving) dv -= va;
       } else if (d.x < -half_x) {
         d.x += Lx;
-        if (moving) v2 += va;
+        if (moving) dv += va;
       }
     }
     return d;
   }
   Vec2 separation(Vec2 x1, Vec2 x2) const {
-    Vec2 v2;
-    return separation(x1, x2, v2);
+    Vec2 dv;
+    return separation(x1, x2, dv);
   }
 };
 

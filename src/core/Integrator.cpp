@@ -52,7 +52,7 @@ Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, 
   double* const torque = discs.torque.data();
   Vec2 *const position = discs.position.data(), *const velocity = discs.velocity.data();
   double *const omega = discs.omega.data(), *const theta = discs.theta.data();
-  double W_g = 0.0, step2 = 0.0, v2 = 0.0, a2 = 0.0, D = 0.0, D_close = 0.0;
+  double W_g = 0.0, step2 = 0.0, v2 = 0.0, a2 = 0.0, D = 0.0, D_close = 0.0, W_cell = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!(flags[i] & kFlagFixed)) {
       const double m = mass[i];
@@ -77,16 +77,20 @@ Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, 
       }
       position[i] += dx;
       theta[i] += dt * omega[i];
-      if (standing)
+      if (standing) {
         box.wrap_standing(position[i]);
-      else
-        box.wrap(position[i], v);  // a moving cell shifts the velocity too (Lees-Edwards)
+      } else {
+        // A moving cell shifts the velocity too (Lees-Edwards): the kinetic energy that changes is the cell's work.
+        const Vec2 before = v;
+        box.wrap(position[i], v);
+        W_cell += 0.5 * m * (dot(v, v) - dot(before, before));
+      }
       W_g += m * dot(gravity, dx);
       force[i] = body.on(m, flags[i]);
       torque[i] = 0.0;
     }
   }
-  return {W_g, std::sqrt(step2), std::sqrt(v2), std::sqrt(a2), D, D_close};
+  return {W_g, std::sqrt(step2), std::sqrt(v2), std::sqrt(a2), D, D_close, W_cell};
 }
 
 template <bool kClose>

@@ -26,6 +26,7 @@ struct Integrator {
     double max_accel = 0.0;  // with `bounds`: largest |F/m| of a free disc, of the (damped) force it used
     double D_damping = 0.0;  // work the local damping took in the half kick (0 without damping)
     double D_close = 0.0;    // with `close_last`: the same for the last step's closing kick
+    double W_cell = 0.0;     // a moving cell: the kinetic energy its wraps changed (a velocity shifted by da/dt, db/dt)
   };
   // One pass over the owned discs, the first half of the step:
   //  - the half kick and drift of every free disc: v += F/m dt/2; omega += T/I dt/2; x += v dt;

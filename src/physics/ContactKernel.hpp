@@ -166,6 +166,7 @@ struct ContactKernel {
 
   // One row's motion: the kinematics in the canonical frame, the bodies, both spins and the wall's velocity.
   struct Row {
+    Vec2 dv;  // the velocity offset of disc 2's image (a pair across a moving cell's boundary; else 0)
     ContactKinematics k;
     ContactBodies b;
     double w1 = 0.0, w2 = 0.0;
@@ -195,8 +196,8 @@ struct ContactKernel {
       row.k = disc_wall_kinematics(prox.n, prox.dist, D.R[i], D.v[i], row.v_wall, row.w1, row.w2);
       row.b = disc_wall_bodies(D.m[i], D.I[i]);
     } else {
-      Vec2 v2 = D.v[j];  // in a moving cell, the velocity of disc 2's image (Lees-Edwards)
-      const Vec2 d = image.separation(D.x[i], D.x[j], v2);
+      Vec2 dv;  // in a moving cell, the velocity offset of disc 2's image (Lees-Edwards)
+      const Vec2 d = image.separation(D.x[i], D.x[j], dv);
       const double dist2 = dot(d, d);
       const double R1 = D.R[i], R2 = D.R[j];
       const double Rs = R1 + R2;
@@ -204,6 +205,8 @@ struct ContactKernel {
       if (dist2 == 0.0) return Found::coincident;
       row.w1 = D.w[i];
       row.w2 = D.w[j];
+      const Vec2 v2 = Image::kMoving ? D.v[j] + dv : D.v[j];
+      if constexpr (Image::kMoving) row.dv = dv;
       row.k = disc_disc_kinematics(d, std::sqrt(dist2), R1, R2, D.v[i], v2, row.w1, row.w2);
       row.b = disc_disc_bodies(D.m[i], D.m[j], D.I[i], D.I[j]);
     }
@@ -263,11 +266,13 @@ struct ContactKernel {
     Pair roll{0.0, 0.0};  // W_r, D_slip
     Pair loss{0.0, 0.0};  // D_r_plastic, D_r_dashpot
     double W_w = 0.0, E_r_break = 0.0;
+    double W_cell = 0.0;
     // Into this pass's ledger terms, with the works' factor dt/2.
     void book(double dt, LedgerStep& L) const {
       const double half_dt = 0.5 * dt;
       L.W_n += half_dt * work[0], L.W_t += half_dt * work[1], L.W_r += half_dt * roll[0];
       L.W_w += half_dt * W_w;
+      L.W_cell += half_dt * W_cell;
       L.D_slip += roll[1], L.D_r_plastic += loss[0], L.D_r_dashpot += loss[1], L.E_r_break += E_r_break;
     }
   };
@@ -279,6 +284,11 @@ struct ContactKernel {
                                                const TangentialForce& T, const RollingCouple& M, Vec2 f1, PassSums& S) {
     const ContactKinematics& k = row.k;
     S.work += Pair{(tab.F_n[r] + F_n) * k.v_n, (tab.F_t[r] + T.F_t) * k.V_s};
+    // Across a moving cell's boundary the kernel's works are of the motion relative to disc 2's image; the discs
+    // themselves receive dv . (f1' + f1) more: the cell's work (docs/physics.md section 10).
+    if constexpr (!kWall)
+      if (row.dv.x != 0.0 || row.dv.y != 0.0)
+        S.W_cell += (tab.F_t[r] + T.F_t) * dot(row.dv, k.t) - (tab.F_n[r] + F_n) * dot(row.dv, k.n);
     double W_r = 0.0;
     if constexpr (kCouples > 1 && !kWall)
       W_r = (tab.M1[r] + M.M1) * row.w1 + (tab.M2[r] + M.M2) * row.w2;
@@ -326,6 +336,8 @@ struct ContactKernel {
     }
     S.work += Pair{tab.F_n[r] * k.v_n, tab.F_t[r] * k.V_s};
     S.roll += Pair{W_r, 0.0};
+    if constexpr (!kWall)
+      if (row.dv.x != 0.0 || row.dv.y != 0.0) S.W_cell += tab.F_t[r] * dot(row.dv, k.t) - tab.F_n[r] * dot(row.dv, k.n);
     if constexpr (kWall) {
       S.W_w += dot(tab.f1[r], row.v_wall);
       if constexpr (Rolling::kActive)

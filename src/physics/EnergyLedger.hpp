@@ -2,8 +2,9 @@
 // Energy ledger (docs/physics.md section 5): the work of gravity W_g, of moving walls on discs W_w, and of the
 // contact forces and couples W_c = W_n + W_t + W_r on the relative motion (negative when they resist),
 // integrated with the half-step velocities, and D_damping, the work the integrator's local damping takes from
-// the discs (run.local_damping). Residual |KE - KE0 - W_g - W_w - W_c + D_damping| relative to the largest of
-// KE, |W_g| and |W_w| so far is the run's reported integration error.
+// the discs (run.local_damping), and W_cell, the work of a deforming periodic cell on the discs through the pairs
+// across its boundary. Residual |KE - KE0 - W_g - W_w - W_cell - W_c + D_damping| relative to the largest of
+// KE, |W_g|, |W_w| and |W_cell| so far is the run's reported integration error.
 #include <algorithm>
 #include <cmath>
 
@@ -37,10 +38,11 @@ struct EnergyLedger : LedgerTerms {
     return other;
   }
   // D_damping last: with the damping off it adds +0, which leaves every bit of the difference as it was.
-  double absolute_residual(double KE) const { return std::fabs(KE - KE0 - W_g - W_w - W_c() + D_damping); }
+  // W_cell after W_w: in a standing box it subtracts +0, which changes no bit.
+  double absolute_residual(double KE) const { return std::fabs(KE - KE0 - W_g - W_w - W_cell - W_c() + D_damping); }
   // Updates the energy scale with the present state and returns the relative residual.
   double relative_residual(double KE) {
-    scale = std::max({scale, KE, std::fabs(W_g), std::fabs(W_w)});
+    scale = std::max({scale, KE, std::fabs(W_g), std::fabs(W_w), std::fabs(W_cell)});
     return scale > 0.0 ? absolute_residual(KE) / scale : 0.0;
   }
 };

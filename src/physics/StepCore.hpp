@@ -78,6 +78,7 @@ class StepCore {
     work_ = LedgerStep{};
     in.kernel.run(KernelContext{in.discs, in.domain, in.walls, in.params, in.dt, in.overlap_limit}, in.pairs,
                   in.wall_rows, ForceSums::of(in.discs), work_);
+    work_.W_cell += drift.W_cell;  // the drift's wraps in a moving cell (+0 otherwise)
     hooks.lap(StepPhase::force);
     // 6. The sums are complete; the fixed discs are finished; then the hooks (checks, loads).
     in.assembly.finish(in.discs);

@@ -74,12 +74,14 @@ TEST(Cell, ALoneDiscAndItsImageInAShearedCell) {
   const Vec2 top{0.01, d.yhi - 0.001}, bottom{0.012, d.ylo + 0.001};
   const Vec2 v_top{gamma_dot * (top.y - d.ylo), 0.1};
   const Vec2 v_bottom{gamma_dot * (bottom.y - d.ylo), -0.1};
-  Vec2 image_v = v_top;
-  ShearedImage(d).separation(bottom, top, image_v);
+  Vec2 dv;
+  ShearedImage(d).separation(bottom, top, dv);
+  Vec2 image_v = v_top + dv;
   EXPECT_EQ(image_v.x, v_top.x - gamma_dot * Ly);
   EXPECT_EQ(image_v.y, v_top.y);
-  image_v = v_bottom;
-  ShearedImage(d).separation(top, bottom, image_v);
+  dv = {};
+  ShearedImage(d).separation(top, bottom, dv);
+  image_v = v_bottom + dv;
   EXPECT_EQ(image_v.x, v_bottom.x + gamma_dot * Ly);
   EXPECT_EQ(image_v.y, v_bottom.y);
   // Crossing the top: the position goes down by b, the velocity by gamma_dot L_y, nothing else.
@@ -112,8 +114,9 @@ TEST(Cell, APairAcrossTheShearedBoundaryIsThePairInside) {
       Vec2 p2 = x2, v2 = v2_true;
       d.wrap(p2, v2);
       ASSERT_TRUE(d.contains(p2));
-      Vec2 image_v = v2;
-      const Vec2 sep = image.separation(x1, p2, image_v);
+      Vec2 dv;
+      const Vec2 sep = image.separation(x1, p2, dv);
+      const Vec2 image_v = v2 + dv;
       ASSERT_NEAR(sep.x, r.x, 1e-15) << "tilt " << tilt;
       ASSERT_NEAR(sep.y, r.y, 1e-15);
       ASSERT_NEAR(image_v.x, v2_true.x, 1e-12);

@@ -1,7 +1,8 @@
 // The deforming periodic cell across ranks (docs/physics.md section 10, docs/validation.md section 13): the dense
 // periodic packing of RankInvariance sheared at a constant rate (Lees-Edwards) to a shear strain of 3, through
 // three flips of the cell, gives the bits of the 1-rank run on 1 to 4 ranks (states and contact rows, compared in
-// lock step); a checkpoint written after the first flip and resumed on another rank count ends in the same bits.
+// lock step), with or without a servo on the cell's height; a checkpoint written after the first flip and resumed
+// on another rank count ends in the same bits.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -57,9 +58,17 @@ TEST(ShearedCellRanks, ShearedToStrainThreeBitwiseOnAnyRankCount) {
   }
 }
 
+// The same shear with the cell's height servo-controlled to a contact stress S_yy (the exact sums in the step's
+// reduction, every step): the rates the servo sets, and so every bit, are the 1-rank run's.
+TEST(ShearedCellRanks, AStressControlledShearBitwiseOnAnyRankCount) {
+  const LockstepResult r =
+      run_lockstep(sheared_ini() + "stress_yy = 2e4\nservo_gain = 5\nservo_max_rate = 50\n", {}, kSteps / 2, 250);
+  EXPECT_TRUE(r.equal) << r.what;
+}
+
 // Written on every rank of the world after the first flip, resumed on another rank count (1 -> 1, else one
 // rank fewer): the 1-rank uninterrupted run's bits.
-TEST(ShearedCellRanks, ARestartAfterAFlipOnAnotherRankCountIsBitwise) {
+void restart_case(const std::string& ini) {
   constexpr int kHalf = kSteps / 2;  // past the first flip (strain 0.58)
   const int W = world_size();
   const bool root = world_rank() == 0;
@@ -70,7 +79,6 @@ TEST(ShearedCellRanks, ARestartAfterAFlipOnAnotherRankCountIsBitwise) {
   std::vector<std::string> overrides = common, half = common;
   overrides.push_back("--run.steps=" + std::to_string(kSteps));
   half.push_back("--run.steps=" + std::to_string(kHalf));
-  const std::string ini = sheared_ini();
   std::string reference;
   if (root) {
     Simulation ref(parse_config_text(ini, overrides), self_comm(), false);
@@ -103,6 +111,14 @@ TEST(ShearedCellRanks, ARestartAfterAFlipOnAnotherRankCountIsBitwise) {
     EXPECT_EQ(test::first_difference(reference, restarted, "expected", "got"), "")
         << W << " ranks to step " << kHalf << ", resumed on " << (W == 1 ? 1 : W - 1) << " to " << kSteps;
   }
+}
+
+TEST(ShearedCellRanks, ARestartAfterAFlipOnAnotherRankCountIsBitwise) { restart_case(sheared_ini()); }
+
+// With the height held by the servo: its first step after the restart steers with the stress sums formed from the
+// checkpoint's rows, as the uninterrupted run's did after its kernel.
+TEST(ShearedCellRanks, AStressControlledRestartOnAnotherRankCountIsBitwise) {
+  restart_case(sheared_ini() + "stress_yy = 2e4\nservo_gain = 5\nservo_max_rate = 50\n");
 }
 
 }  // namespace

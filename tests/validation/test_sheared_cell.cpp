@@ -29,9 +29,9 @@ const Communicator& self_comm() {
   return self;
 }
 
-constexpr double kR = 0.005;               // the reference disc D5 (docs/developing.md)
-constexpr double kLx = 0.04, kLy = 0.05;   // the cell: more than twice the interaction range both ways
-constexpr double kRate = 2000.0;           // cell.rate_xy [1/s]: the tilt passes L_x / 2 at step 20
+constexpr double kR = 0.005;              // the reference disc D5 (docs/developing.md)
+constexpr double kLx = 0.04, kLy = 0.05;  // the cell: more than twice the interaction range both ways
+constexpr double kRate = 2000.0;          // cell.rate_xy [1/s]: the tilt passes L_x / 2 at step 20
 constexpr int kSteps = 400;
 
 // A disc of the scene: its position, velocity and spin.
@@ -52,8 +52,8 @@ std::string cell_ini(const std::string& law, const std::vector<Disc>& discs) {
   static int files = 0;
   const std::filesystem::path file = dir / ("scene" + std::to_string(files++) + ".csv");
   test::write_file(file, csv);
-  return "[run]\nprogress = false\ndt = 1e-5\n[domain]\nxlo = 0\nxhi = " + num(kLx) + "\nylo = 0\nyhi = " +
-         num(kLy) + "\nperiodic_x = true\nperiodic_y = true\n[cell]\nrate_xy = " + num(kRate) +
+  return "[run]\nprogress = false\ndt = 1e-5\n[domain]\nxlo = 0\nxhi = " + num(kLx) + "\nylo = 0\nyhi = " + num(kLy) +
+         "\nperiodic_x = true\nperiodic_y = true\n[cell]\nrate_xy = " + num(kRate) +
          "\nflow_start = false\n[material]\ndensity = 2650\n[linear]\nk_n = 1e6\nzeta = 0.2\n[coulomb]\n"
          "k_s = 7.5e5\nmu = 0.5\n[contact]\nrolling = " +
          law + "\n[scene]\ntype = csv\nfile = " + file.string() + "\nmax_initial_overlap = 0.2\n";
@@ -105,8 +105,7 @@ TEST(ShearedCell, APairAcrossTheBoundaryIsThePairInsideForEveryRollingLaw) {
   for (const LawInfo& law : law_catalog().rolling.laws) {
     SCOPED_TRACE(law.keyword);
     const std::vector<std::string> o = example_options(law.keyword);
-    Simulation inside(parse_config_text(cell_ini(law.keyword, {{in1, v1, w1}, {in2, v2, w2}}), o),
-                      self_comm(), false);
+    Simulation inside(parse_config_text(cell_ini(law.keyword, {{in1, v1, w1}, {in2, v2, w2}}), o), self_comm(), false);
     Simulation across(parse_config_text(cell_ini(law.keyword, {{across1, v1, w1}, {across2, across_v2, w2}}), o),
                       self_comm(), false);
     std::vector<std::vector<double>> a, b;
@@ -140,8 +139,7 @@ TEST(ShearedCell, APairAcrossTheBoundaryIsThePairInsideForEveryRollingLaw) {
 // boundary changes it by -gamma_dot L_y (upwards) and nothing else.
 TEST(ShearedCell, ALoneDiscKeepsItsVelocityAndChangesItAtACrossing) {
   const Vec2 x0{0.01, kLy - 0.002};
-  Simulation s(parse_config_text(cell_ini("none", {{x0, {0.0, 0.5}}}), {"--cell.flow_start=true"}),
-               self_comm(), false);
+  Simulation s(parse_config_text(cell_ini("none", {{x0, {0.0, 0.5}}}), {"--cell.flow_start=true"}), self_comm(), false);
   const auto disc0 = [] { return std::size_t{0}; };
   const Vec2 v0 = s.discs().velocity[disc0()];
   EXPECT_EQ(v0.x, kRate * x0.y);  // the flow's velocity at its height, added
@@ -151,6 +149,34 @@ TEST(ShearedCell, ALoneDiscKeepsItsVelocityAndChangesItAtACrossing) {
   ASSERT_LT(y, 0.5 * kLy) << "the disc did not cross the top";
   EXPECT_NEAR(v.x, v0.x - kRate * kLy, 1e-12 * kRate * kLy);
   EXPECT_EQ(v.y, v0.y);
+}
+
+// A random gas of 250 discs in a periodic cell, both lengths servo-controlled to a contact stress of 1e5 Pa
+// (cell.stress_xx, stress_yy): compressed until it jams, then held. Then sheared at constant S_yy. The ledger,
+// with the cell's work W_cell (the pairs across the moving boundary and the wraps that shift velocities),
+// balances to the integration error; without W_cell the residual would be of the order of the kinetic energy.
+std::string gas_ini() {
+  return "[run]\nprogress = false\n[domain]\nxlo = 0\nxhi = 0.045\nylo = 0\nyhi = 0.045\nperiodic_x = true\n"
+         "periodic_y = true\n[cell]\nstress_xx = 1e5\nstress_yy = 1e5\nservo_gain = 4\nservo_max_rate = 4\n"
+         "[material]\ndensity = 2650\n[linear]\nk_n = 1e8\ne = 0.3\n[coulomb]\nk_s = 7.5e7\nmu = 0.1\n[scene]\n"
+         "type = random\ncount = 250\nradius_min = 0.0008\nradius_max = 0.0012\nseed = 3\n";
+}
+
+TEST(ShearedCell, AServoHoldsTheCellsStressAndTheLedgerBalances) {
+  Simulation s(parse_config_text(gas_ini(), {}), self_comm(), false);
+  double worst = 0.0;
+  for (int k = 0; k < 130; ++k) {
+    s.advance(1000, [] { return std::int64_t{0}; });
+    worst = std::max(worst, s.diagnostics().residual);
+  }
+  const MeasuresRow m = s.measures();
+  EXPECT_NEAR(m.sxx, 1e5, 1e3);
+  EXPECT_NEAR(m.syy, 1e5, 1e3);
+  EXPECT_GT(m.phi, 0.8);
+  EXPECT_LT(m.cell_lx, 0.035);
+  EXPECT_LT(worst, 1e-3) << "the ledger's largest relative residual while the cell shrank";
+  const EnergyLedger ledger = s.global_ledger();
+  EXPECT_GT(ledger.W_cell, 10.0 * worst * ledger.scale) << "the cell's work is what the balance rests on";
 }
 
 TEST(ShearedCell, BadCellKeysAreRefusedNamingTheKey) {
@@ -170,6 +196,10 @@ TEST(ShearedCell, BadCellKeysAreRefusedNamingTheKey) {
   // A cell that would shrink below twice the interaction range over the run.
   EXPECT_NE(refused({"--cell.rate_yy=-300", "--run.steps=100000"}).find("cell.rate_yy"), std::string::npos);
   EXPECT_NE(refused({"--cell.rate_xy=nan"}).find("cell.rate_xy"), std::string::npos);
+  EXPECT_NE(refused({"--cell.stress_yy=1e5"}).find("cell.servo_gain"), std::string::npos);  // a target, no gain
+  EXPECT_NE(refused({"--cell.stress_xx=1e5", "--cell.servo_gain=1", "--cell.rate_xx=1"}).find("cell.stress_xx"),
+            std::string::npos);
+  EXPECT_NE(refused({"--cell.stress_xx=-1"}).find("cell.stress_xx"), std::string::npos);
   EXPECT_EQ(refused({}), "");
 }
 
