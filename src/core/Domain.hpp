@@ -24,16 +24,17 @@ struct Domain {
   double xlo = 0.0, xhi = 1.0, ylo = 0.0, yhi = 1.0;
   bool periodic_x = false;
   bool periodic_y = false;
-  double tilt = 0.0;  // h_xy, the x component of b [m]; |tilt| <= L_x/2 (flip)
-  CellGradient L{};   // the cell's velocity gradient now
-  Vec2 va{}, vb{};    // da/dt and db/dt = L a, L b (rates())
+  double tilt = 0.0;   // h_xy, the x component of b [m]; |tilt| <= L_x/2 (flip)
+  CellGradient L{};    // the cell's velocity gradient now
+  Vec2 va{}, vb{};     // da/dt and db/dt = L a, L b (rates())
+  double slope = 0.0;  // tilt / L_y (rates(): after any change of the tilt or of L_y)
   bool moving = false;
 
   double length_x() const { return xhi - xlo; }
   double length_y() const { return yhi - ylo; }
   Vec2 corner() const { return {xlo, ylo}; }
   // The x offset of the cell's left side at height y (0 for a cell without tilt).
-  double shear_shift(double y) const { return tilt == 0.0 ? 0.0 : (y - ylo) / length_y() * tilt; }
+  double shear_shift(double y) const { return tilt == 0.0 ? 0.0 : (y - ylo) * slope; }
   // The mean flow's velocity at x, L (x - x0).
   Vec2 flow(Vec2 x) const { return L.of(x - corner()); }
 
@@ -41,30 +42,36 @@ struct Domain {
   Vec2 separation(Vec2 x1, Vec2 x2) const;
 
   // A position back into the cell (one lattice vector at most: a disc moves less than a cell per step), and in a
-  // moving cell its velocity by the cell's, v -= i da/dt + j db/dt (Lees-Edwards). y first, then x.
-  void wrap(Vec2& x, Vec2& v) const {
-    if (standing()) return wrap_standing(x);
+  // moving cell its velocity by the cell's, v -= i da/dt + j db/dt (Lees-Edwards). y first, then x. Returns
+  // whether the velocity changed.
+  [[gnu::always_inline]] bool wrap(Vec2& x, Vec2& v) const {
+    if (standing()) {
+      wrap_standing(x);
+      return false;
+    }
+    bool shifted = false;
     if (periodic_y) {
       if (x.y >= yhi) {
         x.y -= length_y();
         if (tilt != 0.0) x.x -= tilt;
-        if (moving) v -= vb;
+        if (moving) v -= vb, shifted = true;
       } else if (x.y < ylo) {
         x.y += length_y();
         if (tilt != 0.0) x.x += tilt;
-        if (moving) v += vb;
+        if (moving) v += vb, shifted = true;
       }
     }
     if (periodic_x) {
       const double shift = shear_shift(x.y);
       if (x.x - shift >= xhi) {
         x.x -= length_x();
-        if (moving) v -= va;
+        if (moving) v -= va, shifted = true;
       } else if (x.x - shift < xlo) {
         x.x += length_x();
-        if (moving) v += va;
+        if (moving) v += va, shifted = true;
       }
     }
+    return shifted;
   }
   // The same without a velocity (a cell that does not move, or a position alone).
   void wrap(Vec2& x) const {
@@ -98,6 +105,7 @@ struct Domain {
   void rates() {
     va = {L.xx * length_x(), 0.0};
     vb = {L.xx * tilt + L.xy * length_y(), L.yy * length_y()};
+    slope = tilt / length_y();
     moving = L.any();
   }
   // h += dt L h, the corner fixed (the same arithmetic on every rank).
@@ -167,47 +175,38 @@ struct NoImage {
   explicit NoImage(const Domain&) {}
 };
 
-// The minimum image of the deforming cell (docs/physics.md section 10): d = x2 - x1, then in a periodic y d -= b
-// when d_y > L_y/2 and d += b when d_y < -L_y/2, then in a periodic x d_x -= L_x when d_x > L_x/2 and d_x += L_x
-// when d_x < -L_x/2; one lattice vector each way suffices for positions in the cell with |tilt| <= L_x/2. With
-// the velocity `v2` of disc 2 it also gives its image's, v2 + j db/dt + i da/dt, in a moving cell (Lees-Edwards).
+// The minimum image of the deforming cell (docs/physics.md section 10), periodic both ways: d = x2 - x1, then
+// d -= b when d_y > L_y/2 and d += b when d_y < -L_y/2, then d_x -= L_x when d_x > L_x/2 and d_x += L_x when
+// d_x < -L_x/2; one lattice vector each way suffices for positions in the cell with |tilt| <= L_x/2. It also adds
+// to `dv` the velocity offset of disc 2's image, j db/dt + i da/dt (Lees-Edwards): the image moves at v2 + dv.
+// Its fields are few (the contact kernel's loop is short of registers).
 struct ShearedImage {
-  double Lx, Ly, half_x, half_y, tilt;
-  Vec2 va, vb;
-  bool periodic_x, periodic_y, moving;
+  double Lx, Ly, half_x, half_y, tilt, va_x;
+  Vec2 vb;
   explicit ShearedImage(const Domain& d)
-      : Lx(d.length_x()),
-        Ly(d.length_y()),
-        half_x(0.5 * Lx),
-        half_y(0.5 * Ly),
-        tilt(d.tilt),
-        va(d.va),
-        vb(d.vb),
-        periodic_x(d.periodic_x),
-        periodic_y(d.periodic_y),
-        moving(d.moving) {}
+      : Lx(d.length_x()), Ly(d.length_y()), half_x(0.5 * Lx), half_y(0.5 * Ly), tilt(d.tilt), va_x(d.va.x), vb(d.vb) {
+    // A cell that tilts or moves is periodic both ways (the configuration refuses rates otherwise).
+    if (!d.periodic_x || !d.periodic_y) throw std::logic_error("ShearedImage of a cell that is not periodic both ways");
+  }
   static constexpr bool kMoving = true;
-  Vec2 separation(Vec2 x1, Vec2 x2, Vec2& dv) const {
+  // (In a cell that does not move, da/dt and db/dt are zero: dv stays zero.)
+  [[gnu::always_inline]] Vec2 separation(Vec2 x1, Vec2 x2, Vec2& dv) const {
     Vec2 d = x2 - x1;
-    if (periodic_y) {
-      if (d.y > half_y) {
-        d.y -= Ly;
-        d.x -= tilt;
-        if (moving) dv -= vb;
-      } else if (d.y < -half_y) {
-        d.y += Ly;
-        d.x += tilt;
-        if (moving) dv += vb;
-      }
+    if (d.y > half_y) {
+      d.y -= Ly;
+      d.x -= tilt;
+      dv -= vb;
+    } else if (d.y < -half_y) {
+      d.y += Ly;
+      d.x += tilt;
+      dv += vb;
     }
-    if (periodic_x) {
-      if (d.x > half_x) {
-        d.x -= Lx;
-        if (moving) dv -= va;
-      } else if (d.x < -half_x) {
-        d.x += Lx;
-        if (moving) dv += va;
-      }
+    if (d.x > half_x) {
+      d.x -= Lx;
+      dv.x -= va_x;
+    } else if (d.x < -half_x) {
+      d.x += Lx;
+      dv.x += va_x;
     }
     return d;
   }

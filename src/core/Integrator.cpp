@@ -37,14 +37,15 @@ inline void kick(Vec2& v, double& omega, Vec2 force, double torque, double m, do
   }
 }
 
-template <bool kBounds, bool kDamp, bool kClose>
+// kMoving: a moving cell (its wrap shifts velocities; the motion bounds are apart from the mean flow). The
+// standing box's pass is compiled without it.
+template <bool kBounds, bool kDamp, bool kClose, bool kMoving>
 Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, const BodyForce& body, double alpha) {
   const double h = 0.5 * dt;
   const std::size_t n = discs.n_owned();
   // Local copies and plain pointers: a store to a disc cannot make the compiler reload them.
   const Domain box = domain;
   const bool standing = box.standing();  // the plain wrap, decided once for the pass
-  const bool moving = box.moving;        // the motion bounds relative to the cell's mean flow
   const Vec2 gravity = body.gravity;
   const std::uint32_t* const flags = discs.flags.data();
   const double *const mass = discs.mass.data(), *const inertia = discs.inertia.data();
@@ -67,7 +68,7 @@ Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, 
       }
       kick<kDamp>(v, omega[i], force[i], torque[i], m, inertia[i], h, alpha, D);
       const Vec2 dx = dt * v;
-      if (moving) {  // a deforming cell: the speed and step apart from the mean flow's (NeighbourList)
+      if constexpr (kMoving) {  // a deforming cell: the speed and step apart from the mean flow's (NeighbourList)
         const Vec2 u = v - box.flow(position[i]);
         if constexpr (kBounds) v2 = std::max(v2, dot(u, u));
         step2 = std::max(step2, dt * dt * dot(u, u));
@@ -77,13 +78,13 @@ Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, 
       }
       position[i] += dx;
       theta[i] += dt * omega[i];
-      if (standing) {
+      if (!kMoving && standing) {
         box.wrap_standing(position[i]);
       } else {
         // A moving cell shifts the velocity too (Lees-Edwards): the kinetic energy that changes is the cell's work.
         const Vec2 before = v;
-        box.wrap(position[i], v);
-        W_cell += 0.5 * m * (dot(v, v) - dot(before, before));
+        if (box.wrap(position[i], v)) [[unlikely]]
+          W_cell += 0.5 * m * (dot(v, v) - dot(before, before));
       }
       W_g += m * dot(gravity, dx);
       force[i] = body.on(m, flags[i]);
@@ -93,22 +94,25 @@ Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, 
   return {W_g, std::sqrt(step2), std::sqrt(v2), std::sqrt(a2), D, D_close, W_cell};
 }
 
-template <bool kClose>
+template <bool kClose, bool kMoving>
 Integrator::Drift drift_of(DiscStore& discs, const Domain& domain, double dt, const BodyForce& body, bool bounds,
                            double damping) {
   if (damping > 0.0)
-    return bounds ? drift_pass<true, true, kClose>(discs, domain, dt, body, damping)
-                  : drift_pass<false, true, kClose>(discs, domain, dt, body, damping);
-  return bounds ? drift_pass<true, false, kClose>(discs, domain, dt, body, 0.0)
-                : drift_pass<false, false, kClose>(discs, domain, dt, body, 0.0);
+    return bounds ? drift_pass<true, true, kClose, kMoving>(discs, domain, dt, body, damping)
+                  : drift_pass<false, true, kClose, kMoving>(discs, domain, dt, body, damping);
+  return bounds ? drift_pass<true, false, kClose, kMoving>(discs, domain, dt, body, 0.0)
+                : drift_pass<false, false, kClose, kMoving>(discs, domain, dt, body, 0.0);
 }
 
 }  // namespace
 
 Integrator::Drift Integrator::half_kick_drift(DiscStore& discs, const Domain& domain, double dt, const BodyForce& body,
                                               bool bounds, double damping, bool close_last) {
-  return close_last ? drift_of<true>(discs, domain, dt, body, bounds, damping)
-                    : drift_of<false>(discs, domain, dt, body, bounds, damping);
+  if (domain.moving)
+    return close_last ? drift_of<true, true>(discs, domain, dt, body, bounds, damping)
+                      : drift_of<false, true>(discs, domain, dt, body, bounds, damping);
+  return close_last ? drift_of<true, false>(discs, domain, dt, body, bounds, damping)
+                    : drift_of<false, false>(discs, domain, dt, body, bounds, damping);
 }
 
 double Integrator::half_kick(DiscStore& discs, double dt, double damping) {
