@@ -174,7 +174,7 @@ void check_initial_motion(const Config& c, const DiscStore& discs) {
 
 void check_cell(const Config& c, const Domain& sizing, double range, double dt) {
   const Domain& d = c.domain;
-  if (!d.moving) return;
+  if (!d.moving && !(c.cell_stress_xx > 0.0 || c.cell_stress_yy > 0.0)) return;
   const std::string step = " with run.dt = " + fmt(dt) + " s";
   if (!(std::fabs(d.vb.x) * dt < 0.5 * d.length_x()))
     throw ConfigError("cell.rate_xy = " + fmt(d.L.xy) + " 1/s" + step + " tilts the cell by " +
@@ -185,13 +185,16 @@ void check_cell(const Config& c, const Domain& sizing, double range, double dt) 
     if (!(std::fabs(rate) * dt < 0.5))
       throw ConfigError(std::string(key) + " = " + fmt(rate) + " 1/s" + step +
                         " changes the cell's length by half or more in one step: lower the rate");
-  const std::pair<const char*, double> lengths[] = {{"cell.rate_xx", sizing.length_x()},
-                                                    {"cell.rate_yy", sizing.length_y()}};
+  // A stress-controlled length is sized for half its length now (Simulation::cell_sizing).
+  const std::pair<const char*, double> lengths[] = {
+      {c.cell_stress_xx > 0.0 ? "cell.stress_xx" : "cell.rate_xx", sizing.length_x()},
+      {c.cell_stress_yy > 0.0 ? "cell.stress_yy" : "cell.rate_yy", sizing.length_y()}};
   for (const auto& [key, length] : lengths)
     if (!(length >= 2.0 * range))
       throw ConfigError(std::string(key) + ": over run.steps = " + std::to_string(c.steps) + step +
-                        " the cell shrinks to a length of " + fmt(length) + " m, below twice the interaction range " +
-                        fmt(range) + " m (2 x largest radius + neighbour.skin): lower the rate or run fewer steps");
+                        " the cell may shrink to a length of " + fmt(length) +
+                        " m (a stress target: half its length now), below twice the interaction range " + fmt(range) +
+                        " m (2 x largest radius + neighbour.skin): a larger cell, a lower rate or fewer steps");
 }
 
 }  // namespace rondel::start_checks

@@ -27,8 +27,8 @@ void check_time_step(const Config& c, const CriticalStep& critical, double dt, d
 // The cell grid (cells of side >= `range`, as CellGrid makes them) against the machine's memory (the disc
 // count is checked where the scene is built).
 void check_cells(const Config& c, double range);
-// A deforming cell (cell.rate_*) with the time step dt: the tilt changes by less than half the cell a step (a
-// flip a step at most), no length shrinks by half in a step, and `sizing` (the smallest cell of the run,
+// A deforming cell (cell.rate_*, cell.stress_*) with the time step dt: the tilt changes by less than half the cell a
+// step (a flip a step at most), no length shrinks by half in a step, and `sizing` (the smallest cell of the run,
 // Simulation::cell_sizing) is at least twice the interaction range `range` in both lengths.
 void check_cell(const Config& c, const Domain& sizing, double range, double dt);
 // Every disc: a finite kinetic energy and a surface speed |v| + |omega| R below the speed of light.
