@@ -32,7 +32,7 @@ void Simulation::rebuild() {
   // the history source of the new neighbour list. A deforming cell's decomposition grid takes its shape now.
   if (!config_.domain.standing()) follow_cell();
   cell_rebuild_ = false;
-  neighbours_.set_time_step(dt_);
+  neighbours_.set_cell_bound(dt_, neighbours_.range(R_max_));
   const DiscExchange::Counts moved = exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_);
   decomposition_->migrated();
   // Received discs come last: back into gid order, the kernel's order (the arithmetic does not depend on it).

@@ -88,7 +88,6 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
                           ContactTable& pairs, ContactTable& wall_rows) {
   double R_max = 0.0;
   for (double R : discs.radius) R_max = std::max(R_max, R);
-  R_max_ = R_max;
   bin(discs, domain, R_max);
   {
     std::vector<Candidate> found = candidates(discs, domain, pairs.size());
@@ -160,7 +159,7 @@ NeighbourList::Strain NeighbourList::strain(const Domain& d) const {
 double NeighbourList::strain_term(const Domain& domain) const {
   if (domain.standing() && cell_at_build_.standing()) return 0.0;
   const Strain G = strain(domain);
-  return 0.5 * std::sqrt(G.xx * G.xx + G.xy * G.xy + G.yy * G.yy) * range(R_max_);
+  return 0.5 * std::sqrt(G.xx * G.xx + G.xy * G.xy + G.yy * G.yy) * cell_range_;
 }
 
 double NeighbourList::displacement(double max_step, const DiscStore& discs, const Domain& domain,

@@ -22,7 +22,9 @@ class NeighbourList {
   explicit NeighbourList(double skin) : skin_(skin) {}
 
   double skin() const { return skin_; }
-  void set_time_step(double dt) { dt_ = dt; }
+  // A deforming cell's motion bound: the time step and the interaction range of the largest disc of the run (the
+  // same on every rank).
+  void set_cell_bound(double dt, double range) { dt_ = dt, cell_range_ = range; }
   // Interaction range for a largest radius: the cell side must be at least this.
   double range(double R_max) const { return 2.0 * R_max + skin_; }
 
@@ -86,9 +88,8 @@ class NeighbourList {
   std::vector<std::size_t> cell_start_, cell_items_;  // bin b is column b % columns_.size(), row b / it
   std::vector<Vec2> position_at_build_;
   Domain cell_at_build_;
-  double R_max_ = 0.0;       // of the discs at the build
-  double dt_ = 0.0;          // the time step (set_time_step): a deforming cell's bound grows with it
-  double bound_ = INFINITY;  // the bound of displacement() (infinite before a build)
+  double dt_ = 0.0, cell_range_ = 0.0;  // set_cell_bound
+  double bound_ = INFINITY;             // the bound of displacement() (infinite before a build)
   std::size_t builds_ = 0;
 };
 
