@@ -4,7 +4,7 @@
 // deform is this cell with tilt 0 and no rates: one type. Periodic directions wrap positions and use the minimum
 // image; the others only bound the cell grid (walls keep the discs in). The type owns the minimum image (with the
 // image's velocity in a moving cell), the wrap of a position (with the matching shift of its velocity), the
-// deformation and the flip. No key sets a rate yet: a run's cell stands still.
+// deformation and the flip. The [cell] keys (cell.rate_*, cell.stress_*) set the run's rates.
 #include <cmath>
 #include <stdexcept>
 
