@@ -18,7 +18,8 @@
 // summed and the sums multiplied by dt/2 once per pass; for a law whose couple on disc 2 is -M1, the rolling term is
 // (M1' + M1)(omega1 - omega2). The laws report Coulomb slip, rolling plastic and dashpot work and
 // brittle-break releases. A row is booked by the rank that owns its disc 1, so a border pair computed on
-// two ranks counts once.
+// two ranks counts once. A pair across a moving cell's boundary also books the cell's work on its discs,
+// dv . (f1' + f1) dt/2, dv the velocity offset of disc 2's image (W_cell, docs/physics.md section 10).
 #include <algorithm>
 #include <array>
 #include <bit>
