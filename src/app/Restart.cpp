@@ -73,11 +73,7 @@ std::vector<SceneDisc> Restart::scene_from_file(const std::string& file, const C
   if (fs::is_directory(path)) path = Checkpointing::newest_checkpoint(path, self);
   const StateHeader header = read_state_header(path, self);
   check_material_table(path, header, config);
-  if (header.has_cell && cell.periodic_x && cell.periodic_y) {
-    cell.xlo = header.cell.xlo, cell.xhi = header.cell.xhi, cell.ylo = header.cell.ylo, cell.yhi = header.cell.yhi;
-    cell.tilt = header.cell.tilt;
-    cell.rates();
-  }
+  if (header.has_cell && cell.periodic_x && cell.periodic_y) cell.take_shape(header.cell);
   DiscStore d;
   read_state_discs(path, d, self);
   check_disc_materials(path, d, config);

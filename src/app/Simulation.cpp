@@ -413,12 +413,10 @@ void Simulation::resume_cell(const StateHeader& h, const std::string& path) {
       throw ConfigError("'" + path + "' holds a cell that has deformed (tilt " + fmt(h.cell.tilt) +
                         "): resume it with domain.periodic_x = true and domain.periodic_y = true");
   });
-  cell.xlo = h.cell.xlo, cell.xhi = h.cell.xhi, cell.ylo = h.cell.ylo, cell.yhi = h.cell.yhi;
-  cell.tilt = h.cell.tilt;
   // A stress-controlled component goes on at the rate its servo set last (the servo's state).
   if (config_.cell_stress_xx > 0.0) cell.L.xx = h.cell.L.xx;
   if (config_.cell_stress_yy > 0.0) cell.L.yy = h.cell.L.yy;
-  cell.rates();
+  cell.take_shape(h.cell);
   flips_ = h.flips;
 }
 

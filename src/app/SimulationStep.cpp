@@ -85,18 +85,13 @@ void Simulation::deform_cell() {
   cell.deform(dt_);
   // The growth per step of the displacement bound's cell terms (NeighbourList::displacement and strain_term:
   // |L| dt (skin / 2 + |F| range / 2), |F| <= 2 before a rebuild).
-  const CellGradient& L = cell.L;
-  const double range = neighbours_.range(R_max_);
-  cell_step_ = std::sqrt(L.xx * L.xx + L.xy * L.xy + L.yy * L.yy) * dt_ * (0.5 * neighbours_.skin() + range);
+  cell_step_ = cell.L.norm() * dt_ * (0.5 * neighbours_.skin() + neighbours_.range(R_max_));
   const int flipped = cell.flip();
   if (flipped == 0) return;
   flips_ += flipped;
   double W_cell = 0.0;  // the kinetic energy of the discs moved by -a (their velocity by -da/dt)
-  for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
-    const Vec2 before = discs_.velocity[i];
-    cell.wrap(discs_.position[i], discs_.velocity[i]);
-    W_cell += 0.5 * discs_.mass[i] * (dot(discs_.velocity[i], discs_.velocity[i]) - dot(before, before));
-  }
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i)
+    W_cell += cell.wrap_work(discs_.position[i], discs_.velocity[i], discs_.mass[i]);
   core_.ledger().W_cell += W_cell;
   cell_rebuild_ = true;
 }

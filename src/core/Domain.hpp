@@ -16,6 +16,8 @@ namespace rondel {
 struct CellGradient {
   double xx = 0.0, xy = 0.0, yy = 0.0;
   bool any() const { return xx != 0.0 || xy != 0.0 || yy != 0.0; }
+  // The Frobenius norm, a bound of |L v| / |v|.
+  double norm() const { return std::sqrt(xx * xx + xy * xy + yy * yy); }
   // L v
   Vec2 of(Vec2 v) const { return {xx * v.x + xy * v.y, yy * v.y}; }
 };
@@ -73,6 +75,13 @@ struct Domain {
     }
     return shifted;
   }
+  // wrap(x, v) of a disc of mass m, and the kinetic energy the shift of its velocity changed (the cell's work).
+  [[gnu::always_inline]] double wrap_work(Vec2& x, Vec2& v, double m) const {
+    const Vec2 before = v;
+    if (!wrap(x, v)) [[likely]]
+      return 0.0;
+    return 0.5 * m * (dot(v, v) - dot(before, before));
+  }
   // The same without a velocity (a cell that does not move, or a position alone).
   void wrap(Vec2& x) const {
     Vec2 v;
@@ -101,6 +110,11 @@ struct Domain {
     return sx >= xlo && sx <= xhi && x.y >= ylo && x.y <= yhi;
   }
 
+  // The shape of `other` (corner, lengths, tilt), this cell's rates and periodic flags kept.
+  void take_shape(const Domain& other) {
+    xlo = other.xlo, xhi = other.xhi, ylo = other.ylo, yhi = other.yhi, tilt = other.tilt;
+    rates();
+  }
   // da/dt and db/dt from the gradient and the present h.
   void rates() {
     va = {L.xx * length_x(), 0.0};

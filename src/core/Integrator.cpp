@@ -82,9 +82,7 @@ Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, 
         box.wrap_standing(position[i]);
       } else {
         // A moving cell shifts the velocity too (Lees-Edwards): the kinetic energy that changes is the cell's work.
-        const Vec2 before = v;
-        if (box.wrap(position[i], v)) [[unlikely]]
-          W_cell += 0.5 * m * (dot(v, v) - dot(before, before));
+        W_cell += box.wrap_work(position[i], v, m);
       }
       W_g += m * dot(gravity, dx);
       force[i] = body.on(m, flags[i]);

@@ -165,8 +165,7 @@ double NeighbourList::strain_term(const Domain& domain) const {
 double NeighbourList::displacement(double max_step, const DiscStore& discs, const Domain& domain,
                                    const WallSet& walls) {
   // In a deforming cell |d delta / dt| <= |v - L (x - x0)| + |L| |delta| (the Frobenius norm bounds |L|).
-  const CellGradient& L = domain.L;
-  if (domain.moving) bound_ *= 1.0 + dt_ * std::sqrt(L.xx * L.xx + L.xy * L.xy + L.yy * L.yy);
+  if (domain.moving) bound_ *= 1.0 + dt_ * domain.L.norm();
   bound_ += max_step;
   const double affine = strain_term(domain);
   if (!(bound_ + affine <= 0.5 * skin_)) bound_ = max_displacement(discs, domain);  // also a NaN step or position

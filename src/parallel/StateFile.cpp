@@ -238,10 +238,7 @@ void StateWriter::write(const std::string& path, const StateHeader& h, DiscStore
     f.write_attribute("/walls", "box_width0", h.box_width0);
     f.write_attribute("/walls", "box_height0", h.box_height0);
     f.create_group("/cell");
-    const std::pair<const char*, double> cell[] = {
-        {"xlo", h.cell.xlo},   {"xhi", h.cell.xhi},      {"ylo", h.cell.ylo},      {"yhi", h.cell.yhi},
-        {"tilt", h.cell.tilt}, {"rate_xx", h.cell.L.xx}, {"rate_xy", h.cell.L.xy}, {"rate_yy", h.cell.L.yy}};
-    for (const auto& [name, value] : cell) f.write_attribute("/cell", name, value);
+    for (const auto& [name, value] : cell_attributes(h.cell)) f.write_attribute("/cell", name, *value);
     f.write_attribute("/cell", "flips", h.flips);
     f.create_group("/ledger");
     h.ledger.for_each_term(

@@ -1,6 +1,8 @@
 #pragma once
+#include <array>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -28,6 +30,20 @@ inline constexpr std::int64_t kStateFormatVersion = 5;
 // version 5 added /cell (the periodic cell now: corner, lengths, tilt, rates, flips), without which the cell is
 // the configuration's box standing still.
 inline constexpr std::int64_t kOldestReadableFormatVersion = 1;
+
+// The attributes of /cell that are numbers of the cell (its flips apart), named once for the writer and the reader.
+template <class D>
+auto cell_attributes(D& c) {
+  using P = std::conditional_t<std::is_const_v<D>, const double*, double*>;
+  return std::array<std::pair<const char*, P>, 8>{{{"xlo", &c.xlo},
+                                                   {"xhi", &c.xhi},
+                                                   {"ylo", &c.ylo},
+                                                   {"yhi", &c.yhi},
+                                                   {"tilt", &c.tilt},
+                                                   {"rate_xx", &c.L.xx},
+                                                   {"rate_xy", &c.L.xy},
+                                                   {"rate_yy", &c.L.yy}}};
+}
 
 struct StateHeader {
   std::string kind;  // "checkpoint" or "snapshot"

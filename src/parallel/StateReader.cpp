@@ -73,10 +73,7 @@ StateHeader read_header(const Hdf5File& f, const std::string& path) {
   if (version >= 5) {
     h.has_cell = true;
     Domain& c = h.cell;
-    const std::pair<const char*, double*> cell[] = {{"xlo", &c.xlo},      {"xhi", &c.xhi},     {"ylo", &c.ylo},
-                                                    {"yhi", &c.yhi},      {"tilt", &c.tilt},   {"rate_xx", &c.L.xx},
-                                                    {"rate_xy", &c.L.xy}, {"rate_yy", &c.L.yy}};
-    for (const auto& [name, value] : cell) {
+    for (const auto& [name, value] : cell_attributes(c)) {
       *value = f.read_double_attribute("/cell", name);
       if (!std::isfinite(*value))
         throw InputError("'" + path + "': /cell " + name + " = " + std::to_string(*value) + " is not finite");
