@@ -83,21 +83,26 @@ void Measures::cell_measures(MeasuresRow& m, const DiscStore& discs, double area
   const Domain& d = domain_;
   m.cell_lx = d.length_x(), m.cell_ly = d.length_y(), m.cell_tilt = d.tilt;
   m.shear_strain = (d.tilt + static_cast<double>(flips_) * d.length_x()) / d.length_y();
-  ExactSum xx, yy, xy, mass, solid, diameter;
+  ExactSum xx, yy, xy, px, py, mass, solid, diameter;
   for (std::size_t i = 0; i < discs.n_owned(); ++i) {
     const double mi = discs.mass[i];
     const Vec2 u = discs.velocity[i] - d.flow(discs.position[i]);
-    xx += mi * u.x * u.x, yy += mi * u.y * u.y, xy += mi * u.x * u.y;
+    xx += mi * u.x * u.x, yy += mi * u.y * u.y, xy += mi * u.x * u.y, px += mi * u.x, py += mi * u.y;
     mass += mi, solid += std::numbers::pi * discs.radius[i] * discs.radius[i], diameter += 2.0 * discs.radius[i];
   }
-  const double scale = 1.0 / (area * thickness_);
-  m.kxx = scale * comm_.exact_sum(xx), m.kyy = scale * comm_.exact_sum(yy), m.kxy = scale * comm_.exact_sum(xy);
+  // Apart from the mean flow's uniform part too: the discs' mean velocity relative to L (x - x0) is a free
+  // translation (a wrap shifts a velocity, so the momentum drifts), not agitation. sum m (u - U)(u - U) =
+  // sum m u u - M U U with M U = sum m u.
+  const double scale = 1.0 / (area * thickness_), m_total = comm_.exact_sum(mass);
+  const double qx = comm_.exact_sum(px), qy = comm_.exact_sum(py), inv_m = m_total > 0.0 ? 1.0 / m_total : 0.0;
+  m.kxx = scale * (comm_.exact_sum(xx) - qx * qx * inv_m), m.kyy = scale * (comm_.exact_sum(yy) - qy * qy * inv_m);
+  m.kxy = scale * (comm_.exact_sum(xy) - qx * qy * inv_m);
   m.pressure = 0.5 * (m.sxx + m.syy + m.kxx + m.kyy);
   m.tau = -(m.sxy + m.kxy);
   m.mu = m.pressure > 0.0 ? m.tau / m.pressure : 0.0;
   const double a_solid = comm_.exact_sum(solid);
   const double n = static_cast<double>(comm_.sum(static_cast<std::int64_t>(discs.n_owned())));
-  const double rho = comm_.exact_sum(mass) / (a_solid * thickness_);
+  const double rho = m_total / (a_solid * thickness_);
   const double d_mean = n > 0.0 ? comm_.exact_sum(diameter) / n : 0.0;
   m.inertial = m.pressure > 0.0 ? std::fabs(d.L.xy) * d_mean / std::sqrt(m.pressure / rho) : 0.0;
   m.phi = a_solid / area;

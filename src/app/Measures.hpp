@@ -23,11 +23,11 @@ namespace rondel {
 //    (of the free discs: glued discs are part of their wall), fractions of loaded contacts sliding (|F_t| = mu F_n) and
 //    yielded in rolling (|M| at the law's cap);
 //  - the cell (docs/physics.md section 10): its lengths and tilt, the shear strain gamma = (tilt + flips L_x) / L_y
-//    (flips counted with their sign), the kinetic stress K = (1/(A t)) sum m u (x) u of the velocities u = v - L
-//    (x - x0) apart from the mean flow, the pressure p = (sxx + syy + kxx + kyy) / 2, the shear stress
-//    tau = -(sxy + kxy) (positive when the discs resist a shear at cell.rate_xy > 0), mu = tau / p, the
-//    inertial number I = |rate_xy| d / sqrt(p / rho) (d the mean diameter, rho the discs' mean density; 0 when
-//    p <= 0) and the solid fraction phi = A_solid / A.
+//    (flips counted with their sign), the kinetic stress K = (1/(A t)) sum m (u - U) (x) (u - U) of the velocities
+//    u = v - L (x - x0) apart from the mean flow and of their mass-weighted mean U, the pressure p = (sxx + syy + kxx +
+//    kyy) / 2, the shear stress tau = -(sxy + kxy) (positive when the discs resist a shear at cell.rate_xy > 0), mu =
+//    tau / p, the inertial number I = |rate_xy| d / sqrt(p / rho) (d the mean diameter, rho the discs' mean density; 0
+//    when p <= 0) and the solid fraction phi = A_solid / A.
 struct MeasuresRow {
   std::int64_t step = 0;
   double time = 0.0;

@@ -83,9 +83,15 @@ std::vector<SceneDisc> Restart::scene_from_file(const std::string& file, const C
       walls_out[w].p0 = walls[w].p0, walls_out[w].p1 = walls[w].p1;
       if (walls_out[w].rotates() && walls[w].kind == walls_out[w].kind) walls_out[w].normal = walls[w].normal;
     }
+  // With cell.flow_start the discs start with their velocity apart from the file's own mean flow (its cell's
+  // rates at that step), to which the new run adds its own: a stage at another rate starts from the state's
+  // agitation, not from the old flow (whose mismatch would meet the boundary as a jump of the rate times L_y).
+  const bool relative = config.cell_flow_start && header.has_cell && cell.periodic_x && cell.periodic_y;
   std::vector<SceneDisc> out;
-  for (std::size_t i = 0; i < d.n_owned(); ++i)
-    out.push_back({d.gid[i], d.position[i], d.radius[i], d.velocity[i], d.omega[i], d.material[i]});
+  for (std::size_t i = 0; i < d.n_owned(); ++i) {
+    const Vec2 v = relative ? d.velocity[i] - header.cell.flow(d.position[i]) : d.velocity[i];
+    out.push_back({d.gid[i], d.position[i], d.radius[i], v, d.omega[i], d.material[i]});
+  }
   return out;
 }
 

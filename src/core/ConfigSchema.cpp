@@ -125,7 +125,7 @@ void add_body_sections(po::options_description& all, std::vector<KeySpec>& keys,
       .number("cell.rate_xx", at(&Config::domain, &Domain::L, &CellGradient::xx), 0.0, "1/s", kFinite, "L_xx: stretching in x" + rate)
       .number("cell.rate_xy", at(&Config::domain, &Domain::L, &CellGradient::xy), 0.0, "1/s", kFinite, "L_xy: the shear rate d(v_x)/dy, Lees-Edwards" + rate)
       .number("cell.rate_yy", at(&Config::domain, &Domain::L, &CellGradient::yy), 0.0, "1/s", kFinite, "L_yy: stretching in y" + rate)
-      .flag("cell.flow_start", at(&Config::cell_flow_start), true, "a new run's discs start with the mean flow's velocity L (x - x0) added")
+      .flag("cell.flow_start", at(&Config::cell_flow_start), true, "a new run's discs start with the mean flow's velocity L (x - x0) added (a file scene's, to their velocity apart from the file's own flow)")
       .number("cell.stress_xx", at(&Config::cell_stress_xx), 0.0, "Pa", kNonNegative, "target contact stress S_xx (compression positive) held by the servo instead of cell.rate_xx; 0 = none")
       .number("cell.stress_yy", at(&Config::cell_stress_yy), 0.0, "Pa", kNonNegative, "target contact stress S_yy (compression positive) held by the servo instead of cell.rate_yy; 0 = none")
       .number("cell.servo_gain", at(&Config::cell_servo_gain), 0.0, "1/s", kNonNegative, "servo: L_ii = gain (S_ii - target) / target; > 0 with a stress target")

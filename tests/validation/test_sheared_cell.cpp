@@ -2,7 +2,8 @@
 // touching discs across the sheared boundary gives the forces, couples and history of the same pair inside the
 // cell (the same relative position and velocities) to round-off, for every rolling law, through a flip of the
 // cell; a lone disc started with the mean flow keeps its velocity and changes it by -gamma_dot L_y at a crossing;
-// the keys of the cell refuse what they cannot do, naming the key.
+// the kinetic stress ignores a drift of the whole; a stage read from a sheared run starts from its agitation plus
+// the new flow; the keys of the cell refuse what they cannot do, naming the key.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -149,6 +150,52 @@ TEST(ShearedCell, ALoneDiscKeepsItsVelocityAndChangesItAtACrossing) {
   ASSERT_LT(y, 0.5 * kLy) << "the disc did not cross the top";
   EXPECT_NEAR(v.x, v0.x - kRate * kLy, 1e-12 * kRate * kLy);
   EXPECT_EQ(v.y, v0.y);
+}
+
+// The kinetic stress is the agitation apart from the mean flow and from the discs' mean velocity: two equal discs
+// far apart moving at U + w and U - w over the flow have K_xx = 2 m w^2 / (A t), whatever the drift U.
+TEST(ShearedCell, TheKineticStressIsTheAgitationApartFromAnyDrift) {
+  constexpr double kW = 0.3;
+  for (const double drift : {0.0, 7.0}) {
+    const std::vector<Disc> discs{{{0.01, 0.01}, {drift + kW, 0.0}}, {{0.03, 0.035}, {drift - kW, 0.0}}};
+    Simulation s(parse_config_text(cell_ini("none", discs), {"--cell.flow_start=true"}), self_comm(), false);
+    const MeasuresRow m = s.measures();
+    const double mass = s.discs().mass[0], area = kLx * kLy;  // thickness 1 m
+    EXPECT_NEAR(m.kxx, 2.0 * mass * kW * kW / area, 1e-12 * mass * kW * kW / area) << "drift " << drift;
+    EXPECT_NEAR(m.kyy, 0.0, 1e-12 * mass * kW * kW / area) << "drift " << drift;
+    EXPECT_NEAR(m.kxy, 0.0, 1e-12 * mass * kW * kW / area) << "drift " << drift;
+  }
+}
+
+// A new stage read from a sheared run's checkpoint (scene.type = file) starts each disc with its velocity apart
+// from the file's flow (rate r1) plus the new run's (rate r2): v = v_file + (r2 - r1) (y - ylo), so that a stage
+// at another rate meets no jump of the flow at the boundary.
+TEST(ShearedCell, AFileStageStartsFromItsAgitationPlusTheNewFlow) {
+  const test::TempDir dir("rondel-sheared-stage");
+  const std::string first = (dir / "first").string();
+  const std::vector<Disc> discs{{{0.01, 0.01}, {0.2, 0.1}, 3.0}, {{0.03, 0.035}, {-0.1, 0.05}, -1.0}};
+  Simulation a(parse_config_text(cell_ini("none", discs), {"--cell.flow_start=true", "--run.steps=30",
+                                                           "--run.output=" + first, "--output.checkpoint_at_end=true"}),
+               self_comm(), true);
+  {
+    test::QuietCout quiet;
+    a.run();
+  }
+  constexpr double kRate2 = 500.0;
+  Simulation b(parse_config_text(cell_ini("none", discs), {"--scene.type=file", "--scene.file=" + first,
+                                                           "--cell.rate_xy=" + num(kRate2), "--cell.flow_start=true"}),
+               self_comm(), false);
+  ASSERT_EQ(b.discs().n_owned(), a.discs().n_owned());
+  const double ylo = a.config().domain.ylo;
+  for (std::size_t i = 0; i < a.discs().n_owned(); ++i) {
+    std::size_t j = 0;
+    while (b.discs().gid[j] != a.discs().gid[i]) ++j;
+    const Vec2 va = a.discs().velocity[i], vb = b.discs().velocity[j], x = a.discs().position[i];
+    EXPECT_EQ(b.discs().position[j].x, x.x);
+    EXPECT_NEAR(vb.x, va.x + (kRate2 - kRate) * (x.y - ylo), 1e-12 * kRate * kLy) << "disc " << a.discs().gid[i];
+    EXPECT_EQ(vb.y, va.y);
+    EXPECT_EQ(b.discs().omega[j], a.discs().omega[i]);
+  }
 }
 
 // A random gas of 250 discs in a periodic cell, both lengths servo-controlled to a contact stress of 1e5 Pa
