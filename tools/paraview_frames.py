@@ -2,7 +2,7 @@
 """Render a Rondel snapshot series to PNG frames with ParaView (docs/paraview.md).
 
 Discs are drawn at their true radius (Point Gaussian representation, "Plain circle" shader, scaled by the
-snapshot's `radius` dataset), coloured by a chosen field; walls are drawn as black lines.
+snapshot's `radius` dataset), coloured by a chosen field; walls and a periodic cell's edges are drawn as black lines.
 
     xvfb-run -a pvpython tools/paraview_frames.py RUN_DIR [--field velocity] [--out DIR] [--size 1200x900]
                                                  [--every K] [--step N] [--bounds XLO XHI YLO YHI]
@@ -147,7 +147,7 @@ def main(argv):
     d.UseScaleFunction = 0  # the array's value is the radius in world units
     d.GaussianRadius = 1.0
     w = pv.Show(walls, view)
-    pv.ColorBy(w, None)
+    w.ColorArrayName = ["POINTS", ""]  # solid colour (ColorBy(w, None) fails on lines without arrays: a cell alone)
     w.AmbientColor = w.DiffuseColor = [0.0, 0.0, 0.0]
     w.LineWidth = 2.0
     if a.field == "solid":

@@ -41,6 +41,13 @@ std::vector<fs::path> h5_files(const fs::path& dir, const char* kind, std::vecto
   if (others) std::sort(others->begin(), others->end());
   return found;
 }
+
+// The configuration's domain (its periodic flags) with the shape a file records.
+Domain with_shape(Domain d, const Domain& shape) {
+  if (d.periodic_x && d.periodic_y) d.take_shape(shape);
+  return d;
+}
+
 }  // namespace
 
 Checkpointing::Checkpointing(std::string directory, int keep, bool verify, std::vector<std::string> snapshot_fields,
@@ -121,7 +128,8 @@ void Checkpointing::adopt_snapshots(std::int64_t step) {
       // The file's own datasets and walls: it may come from a run with other output.snapshot_fields.
       snapshots_.push_back(
           {p.filename().string(), h.step, static_cast<std::int64_t>(state_file_discs(p.string(), comm_)), h.time,
-           state_file_disc_datasets(p.string(), comm_), wall_outline(read_state_walls(p.string(), comm_), domain_)});
+           state_file_disc_datasets(p.string(), comm_), wall_outline(read_state_walls(p.string(), comm_), domain_),
+           cell_outline(h.has_cell ? with_shape(domain_, h.cell) : domain_)});
     } catch (const InputError&) {
       // not a complete snapshot: left out of the series
     }
@@ -152,7 +160,8 @@ std::string Checkpointing::write_snapshot(const StateHeader& header, DiscStore& 
   writer_.write((fs::path(dir_) / name).string(), header, discs, none, none, walls, comm_, fields_, 0.0);
   std::vector<std::string> written = fields_;
   written.emplace_back(kIndexField);
-  snapshots_.push_back({name, header.step, n_discs, header.time, written, wall_outline(walls, domain_)});
+  snapshots_.push_back({name, header.step, n_discs, header.time, written, wall_outline(walls, domain_),
+                        cell_outline(header.has_cell ? with_shape(domain_, header.cell) : domain_)});
   agree(comm_, [&] {
     if (comm_.root()) write_xdmf();
   });
@@ -184,7 +193,8 @@ void xdmf_discs(std::ostream& x, const std::string& file, std::int64_t discs, co
         << hdf_item(file, "/discs/" + f.name, f.components == 2 ? n + " 2" : n, f.number, f.bytes) << "</Attribute>\n";
 }
 
-void xdmf_walls(std::ostream& x, const std::string& file, const std::vector<Vec2>& outline) {
+// Line cells of two points each, their points written into the XDMF file itself.
+void xdmf_lines(std::ostream& x, const std::vector<Vec2>& outline) {
   const std::size_t n = outline.size() / 2;
   const std::string cells = std::to_string(n), dims = std::to_string(2 * n);
   x << "     <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << cells << "\" NodesPerElement=\"2\">"
@@ -194,6 +204,11 @@ void xdmf_walls(std::ostream& x, const std::string& file, const std::vector<Vec2
     << " 2\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">";
   for (std::size_t k = 0; k < outline.size(); ++k) x << (k ? " " : "") << outline[k].x << ' ' << outline[k].y;
   x << "</DataItem></Geometry>\n";
+}
+
+void xdmf_walls(std::ostream& x, const std::string& file, const std::vector<Vec2>& outline) {
+  const std::string cells = std::to_string(outline.size() / 2);
+  xdmf_lines(x, outline);
   x << "     <Attribute Name=\"kind\" AttributeType=\"Scalar\" Center=\"Cell\">"
     << hdf_item(file, "/walls/kind", cells, "Int", 4) << "</Attribute>\n"
     << "     <Attribute Name=\"normal_force\" AttributeType=\"Scalar\" Center=\"Cell\">"
@@ -207,6 +222,12 @@ void xdmf_walls(std::ostream& x, const std::string& file, const std::vector<Vec2
 
 }  // namespace
 
+std::vector<Vec2> Checkpointing::cell_outline(const Domain& c) {
+  if (!(c.periodic_x && c.periodic_y)) return {};
+  const Vec2 a{c.xlo, c.ylo}, b{c.xhi, c.ylo}, d{c.xhi + c.tilt, c.yhi}, e{c.xlo + c.tilt, c.yhi};
+  return {a, b, b, d, d, e, e, a};
+}
+
 std::vector<Vec2> Checkpointing::wall_outline(const WallSet& walls, const Domain& domain) {
   std::vector<Vec2> out;
   for (const Wall& w : walls) WallKinds::with(w.kind, [&]<class K>() { K::outline(w, walls, domain, out); });
@@ -214,7 +235,7 @@ std::vector<Vec2> Checkpointing::wall_outline(const WallSet& walls, const Domain
 }
 
 void Checkpointing::write_xdmf() const {
-  // One temporal collection of spatial ones (discs, walls): the Xdmf3 readers take two temporal collections
+  // One temporal collection of spatial ones (discs, walls, the cell): the Xdmf3 readers take two temporal collections
   // side by side for one data set of every step at once.
   std::ostringstream x;
   x.precision(17);  // times and wall ends round-trip
@@ -228,6 +249,11 @@ void Checkpointing::write_xdmf() const {
     if (!s.walls.empty()) {  // an empty grid would not load
       x << "    <Grid Name=\"walls\" GridType=\"Uniform\">\n";
       xdmf_walls(x, s.file, s.walls);
+      x << "    </Grid>\n";
+    }
+    if (!s.cell.empty()) {
+      x << "    <Grid Name=\"cell\" GridType=\"Uniform\">\n";
+      xdmf_lines(x, s.cell);
       x << "    </Grid>\n";
     }
     x << "   </Grid>\n";

@@ -14,7 +14,7 @@ namespace rondel {
 //    complete, so a killed writer never leaves a file that looks usable; the newest `keep` are kept;
 //  - snapshot_<step>.h5 with the selected fields, and snapshots.xdmf listing them for ParaView: per snapshot a
 //    grid of discs (one vertex cell per disc) and a grid of walls (one line cell per wall, drawn within
-//    `domain`, docs/paraview.md).
+//    `domain`, docs/paraview.md), and in a cell periodic both ways a grid of its four edges at that step.
 class Checkpointing {
  public:
   // `verify`: each checkpoint is read back (verify_state_file) before it is renamed into place and older
@@ -40,6 +40,9 @@ class Checkpointing {
   // The drawn part of each wall, two points per wall: a segment as it is; an infinite line clipped to the
   // domain box and to the discs' side of the other lines (so the walls of a box meet at its corners).
   static std::vector<Vec2> wall_outline(const WallSet& walls, const Domain& domain);
+  // The edges of a cell periodic both ways, two points per edge (bottom, right, top, left: the top shifted by
+  // the tilt); none for any other domain.
+  static std::vector<Vec2> cell_outline(const Domain& cell);
   // A resumed run keeps the snapshots already in the directory up to `step` in its XDMF series (collective).
   void adopt_snapshots(std::int64_t step);
   // A replaced run (run.overwrite) leaves no checkpoint or snapshot that could be taken for the new one's.
@@ -66,6 +69,7 @@ class Checkpointing {
     double time;
     std::vector<std::string> fields;  // the /discs datasets the file holds
     std::vector<Vec2> walls;          // wall_outline() at that step
+    std::vector<Vec2> cell;           // cell_outline() at that step
   };
   std::vector<Snapshot> snapshots_;
 };

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """ParaView out of the box (docs/paraview.md): a tiny run with snapshots made by the built rondel loads in
 pvpython (one point and one vertex cell per disc, one line cell per wall, at every step, step 0 included),
-and tools/paraview_frames.py renders a frame whose disc pixels cover the discs' true area.
+and tools/paraview_frames.py renders a frame whose disc pixels cover the discs' true area; in a sheared periodic
+cell, the cell's four edges are line cells at the corners its /cell records, and the frame tool draws them.
 
     test_paraview.py RONDEL_BINARY
 
@@ -52,6 +53,10 @@ x0 = 0.02
 y0 = 0.02
 """
 DISCS, WALLS, RADIUS = 12, 4, 0.005
+# The same discs in a cell periodic both ways, sheared (docs/physics.md section 10): no walls; the cell's four
+# edges are line cells.
+CELL_INI = INI.replace("[walls]\nbox = bottom left right top\n", "[cell]\nrate_xy = 100\n").replace(
+    "yhi = 0.08\n", "yhi = 0.08\nperiodic_x = true\nperiodic_y = true\n")
 
 # Run by pvpython: counts per step with the readers ParaView offers for .xdmf.
 LOAD = r"""
@@ -95,6 +100,25 @@ def pvpython(args):
             break
         print("note: the X server of xvfb-run was not usable (attempt %d), retrying" % (attempt + 1))
     return rc, out
+
+
+def cell_edges(xdmf, out, step):
+    """The inline points of the step's "cell" grid equal the corners from the snapshot's /cell attributes."""
+    import xml.etree.ElementTree as ET
+    import h5py
+    for grid in ET.parse(xdmf).getroot().iter("Grid"):
+        if grid.get("Name") != "step %d" % step:
+            continue
+        for sub in grid.findall("Grid"):
+            if sub.get("Name") == "cell":
+                got = [float(v) for v in sub.find("Geometry/DataItem").text.split()]
+                with h5py.File(os.path.join(out, "snapshot_%010d.h5" % step), "r") as f:
+                    c = dict(f["/cell"].attrs)
+                a, b = (c["xlo"], c["ylo"]), (c["xhi"], c["ylo"])
+                d, e = (c["xhi"] + c["tilt"], c["yhi"]), (c["xlo"] + c["tilt"], c["yhi"])
+                want = [v for p in (a, b, b, d, d, e, e, a) for v in p]
+                return c["tilt"] > 0 and got == want
+    return False
 
 
 def red_pixels(png):
@@ -148,6 +172,23 @@ def main():
             check("%s at t = %s: %s points and cells %s (want %s), 3 steps" % (reader, t, kind, (points, cells),
                                                                              want), steps == 3 and
                   (points, cells) == want)
+
+        # A sheared cell: its edges at every step, as the snapshot's /cell records them, drawn by the frame tool.
+        cell_ini, cell_out = os.path.join(tmp, "cell.ini"), os.path.join(tmp, "cell")
+        with open(cell_ini, "w") as f:
+            f.write(CELL_INI)
+        rc, log = run([rondel, cell_ini, "--run.output=" + cell_out], env=env)
+        check("rondel writes the tiny sheared cell", rc == 0, log[-2000:])
+        if rc == 0:
+            cell_xdmf = os.path.join(cell_out, "snapshots.xdmf")
+            rc, got = pvpython([loader, cell_xdmf])
+            lines = [l.split() for l in got.splitlines() if l.startswith("Xdmf3ReaderS ") and " Polyline " in l]
+            check("the cell: 8 points and 4 line cells at each of 3 steps",
+                  rc == 0 and len(lines) == 3 and all(r[4:6] == ["8", "4"] for r in lines), got[-3000:])
+            check("the cell's edges at step 20 are those of its /cell", cell_edges(cell_xdmf, cell_out, 20))
+            rc, got = pvpython([SCRIPT, cell_out, "--step", "20", "--out", os.path.join(tmp, "cell_frames"),
+                                "--size", "300x200"])
+            check("paraview_frames.py draws a cell without walls", rc == 0, got[-2000:])
 
         # One frame, discs pure red: their pixel count is their area in pixels (not blank, true radius).
         frames = os.path.join(tmp, "frames")
