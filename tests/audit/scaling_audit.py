@@ -9,7 +9,9 @@ and checks that
   - the checkpoint structures (the distributed sort's buffers) are bounded per local record (a constant
     that does not depend on P: no key list of the whole problem) and fall with P at a fixed total size;
   - the steps of the deposition and biaxial scenes make at most one collective call per step on average,
-    and send a bounded number of messages per step.
+    and send a bounded number of messages per step;
+  - the strong lattice in a sheared periodic cell with a servo on its height: the structures fall as 1/P as
+    above, with at most one collective call and a bounded number of messages per step.
 usage: scaling_audit.py --exe rondel_scaling_audit --inputs DIR --work DIR [--mpiexec mpirun]
 Exit 0 when every check holds, 1 otherwise."""
 import argparse
@@ -56,6 +58,12 @@ x0 = 0.0005
 y0 = 0.0005
 vx = 0.05
 vy = 0.02
+"""
+
+SHEARED = """[cell]
+rate_xy = 20
+stress_yy = 1e3
+servo_gain = 1
 """
 
 
@@ -119,6 +127,29 @@ def main():
     if strong[3]["checkpoint_bytes"] > 0.6 * strong[1]["checkpoint_bytes"]:
         failures.append("strong: the checkpoint structures of 8 ranks (%d B) are not 0.6 or less of 2 ranks' (%d B)" %
                         (strong[3]["checkpoint_bytes"], strong[1]["checkpoint_bytes"]))
+
+    # The same lattice in a cell sheared at 20 /s with its height held by the servo (docs/physics.md section 10):
+    # the sheared minimum image, grid cells in reduced coordinates, the servo's sums in the step's reduction.
+    sheared_ini = os.path.join(args.work, "sheared.ini")
+    with open(sheared_ini, "w") as f:
+        f.write(LATTICE.format(nx=200, ny=200, xhi=0.2, yhi=0.2) + SHEARED)
+    sheared = [run(args, p, sheared_ini, 30) for p in RANKS]
+    table("strong scaling, the same lattice in a sheared cell (rate_xy 20 /s, stress_yy by servo), 30 steps:", sheared)
+    s1 = total(sheared[0])
+    for r in sheared[1:]:
+        bound = s1 / r["ranks"] + 0.25 * s1
+        if total(r) > bound:
+            failures.append("sheared: %d ranks hold %d bytes, above 1/P of 1 rank's %d plus a quarter (%d)" %
+                            (r["ranks"], total(r), s1, bound))
+        if r["step_collectives"] > r["steps"]:
+            failures.append("sheared on %d ranks: %.3f collectives per step (at most 1)" %
+                            (r["ranks"], r["step_collectives"] / r["steps"]))
+        if r["step_messages"] / r["steps"] > 32:
+            failures.append("sheared on %d ranks: %.1f messages per step and rank" %
+                            (r["ranks"], r["step_messages"] / r["steps"]))
+    if total(sheared[3]) > 0.5 * total(sheared[1]):
+        failures.append("sheared: 8 ranks hold %d bytes each, not half or less of 2 ranks' %d" %
+                        (total(sheared[3]), total(sheared[1])))
 
     sizes = {1: (200, 100), 2: (200, 200), 4: (400, 200), 8: (400, 400)}
     weak = [run(args, p, lattice(args, "weak%d" % p, *sizes[p]), 30) for p in RANKS]
