@@ -12,7 +12,9 @@ With several confining stresses the Mohr-Coulomb strength envelope t = s sin(phi
   python3 tools/biaxial.py RUN1/measures.csv [RUN2 ...] --out PREFIX [--window 0.05] [--format pdf] [--dpi 300]
 Writes PREFIX_curves.png, PREFIX_curves.csv, PREFIX_angles.csv and, with >= 2 confining stresses,
 PREFIX_envelope.png (.pdf, .svg with --format). Use --stress loveweber to take s1, s3 from the Love-Weber
-sxx, syy instead. A run directory may be given for its measures.csv. Files are read with tools/rondel.
+sxx, syy instead, and --stress cell for a wall-free biaxial test in the periodic cell (inputs/periodic_biaxial.ini):
+s1, s3 the Love-Weber syy, sxx, the strains from the cell's lengths (eps_axial = 1 - L_y / L_y0, eps_vol = 1 -
+L_x L_y / (L_x0 L_y0)). A run directory may be given for its measures.csv. Files are read with tools/rondel.
 """
 import csv
 import math
@@ -98,6 +100,16 @@ def envelope(s_values, t_values):
     return phi, c
 
 
+def cell_strains(m, path):
+    """A wall-free test: the strains from the cell's lengths (measures.csv cell_lx, cell_ly)."""
+    if "cell_ly" not in m or not (m["cell_ly"][0] > 0):
+        raise RondelFileError(path, "has no cell_lx, cell_ly columns of a periodic cell (--stress cell is for "
+                              "the periodic cell; a box with walls takes --stress wall or loveweber)")
+    m["eps_axial"] = 1.0 - m["cell_ly"] / m["cell_ly"][0]
+    m["eps_vol"] = 1.0 - m["cell_lx"] * m["cell_ly"] / (m["cell_lx"][0] * m["cell_ly"][0])
+    m["wall_sxx"] = m["sxx"]  # the confining stress the servo holds
+
+
 def stresses(m, which):
     if which == "wall":
         return m["wall_syy"], m["wall_sxx"]
@@ -111,8 +123,9 @@ def main(argv=None):
     ap.add_argument("--labels", default=None, help="comma-separated labels (default: the run directory names)")
     ap.add_argument("--window", type=float, default=0.05,
                     help="residual window: the last WINDOW of axial strain (default 0.05 = 5 %%)")
-    ap.add_argument("--stress", choices=["wall", "loveweber"], default="wall",
-                    help="s1, s3 from the box walls (default) or the Love-Weber average")
+    ap.add_argument("--stress", choices=["wall", "loveweber", "cell"], default="wall",
+                    help="s1, s3 from the box walls (default) or the Love-Weber average; cell: Love-Weber and the "
+                         "strains of the periodic cell")
     ap.add_argument("--no-envelope", action="store_true",
                     help="no strength envelope (the runs differ in more than the confining stress)")
     add_figure_options(ap, dpi=150)
@@ -135,6 +148,8 @@ def analyse(a):
     runs = []
     for path, lab in zip(a.measures, labels):
         m = read_measures(path)
+        if a.stress == "cell":
+            cell_strains(m, path)
         s1, s3 = stresses(m, a.stress)
         res = friction_angles(m["eps_axial"], s1, s3, a.window)
         res.update(label=lab, path=path, confining=float(np.median(m["wall_sxx"])),

@@ -122,7 +122,49 @@ def test_cli():
             check("cli png written", os.path.exists(out + "_curves.png") and os.path.exists(out + "_envelope.png"))
 
 
-for t in (test_known_angles, test_window_option, test_formula_and_guards, test_envelope, test_cli):
+def test_cell():
+    """--stress cell: a wall-free test's strains from the cell's lengths, s1, s3 from the Love-Weber stresses;
+    a file without the cell's columns is refused naming it."""
+    eps, s1, s3, _ = synthetic()
+    ly = 0.3 * (1.0 - eps)  # eps_axial = 1 - L_y / L_y0 exactly
+    lx = 0.2 * (1.0 + 0.7 * eps)
+    cols = ["step", "wall_sxx", "wall_syy", "sxx", "syy", "eps_axial", "eps_vol", "cell_lx", "cell_ly"]
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "measures.csv")
+        with open(path, "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(cols)
+            for k in range(len(eps)):
+                w.writerow([k, 0.0, 0.0, repr(s3[k]), repr(s1[k]), 0.0, 0.0, repr(lx[k]), repr(ly[k])])
+        out = os.path.join(d, "cell")
+        rc = biaxial.main([path, "--stress", "cell", "--out", out, "--no-plot", "--no-envelope"])
+        check("--stress cell: exit 0", rc == 0, rc)
+        rows = list(csv.DictReader(open(out + "_angles.csv"))) if rc == 0 else []
+        check("--stress cell: peak 30 at eps 0.03 from the cell's height, residual 24",
+              len(rows) == 1 and abs(float(rows[0]["phi_peak"]) - 30.0) < 1e-6 and
+              abs(float(rows[0]["eps_peak"]) - 0.03) < 1e-9 and abs(float(rows[0]["phi_residual"]) - 24.0) < 1e-6,
+              rows)
+        check("--stress cell: the confining stress is the Love-Weber sxx",
+              len(rows) == 1 and abs(float(rows[0]["confining"]) - 2e5) < 1e-6, rows)
+        curves = list(csv.DictReader(open(out + "_curves.csv"))) if rc == 0 else []
+        want = 1.0 - lx[-1] * ly[-1] / (lx[0] * ly[0])
+        check("--stress cell: eps_vol = 1 - A / A0", curves and abs(float(curves[-1]["eps_vol"]) - want) < 1e-12,
+              (curves[-1] if curves else None, want))
+        plain = os.path.join(d, "plain.csv")
+        with open(plain, "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(cols[:7])
+            w.writerow([0, 1.0, 1.0, 1.0, 1.0, 0.0, 0.0])
+        import io
+        import contextlib
+        err = io.StringIO()
+        with contextlib.redirect_stderr(err):
+            rc = biaxial.main([plain, "--stress", "cell", "--out", out, "--no-plot"])
+        check("--stress cell on a walled run: exit 1 naming the columns", rc == 1 and "cell_ly" in err.getvalue(),
+              (rc, err.getvalue()))
+
+
+for t in (test_known_angles, test_window_option, test_formula_and_guards, test_envelope, test_cli, test_cell):
     try:
         t()
     except Exception as exc:  # a crash counts as a failure
