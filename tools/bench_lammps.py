@@ -4,7 +4,7 @@ the two codes share them, the same time step and step counts, run as interleaved
 
   /usr/bin/python3 tools/bench_lammps.py [--discs 10000[,160000...]] [--steps 5000] [--warmup 1000]
       [--trials 5] [--ranks 1] [--rondel build/rondel_bench] [--lmp lmp] [--workdir DIR] [--keep]
-      [--packing bench/jammed10k.csv] [--no-stream]
+      [--packing bench/jammed10k.csv] [--no-stream] [--shear RATE]
 
 For each disc count N (10,000 times nx x ny periodic copies of the packing, as `rondel_bench --discs N`
 makes them) it writes the packing as a LAMMPS data file and two LAMMPS inputs into the work directory, then
@@ -207,7 +207,18 @@ def write_data(path, ids, x, y, r, lo, L, nx, ny):
         f.writelines(f"{k + 1} 1 {d!r} {e!r} {qx!r} {qy!r} 0\n" for k, (d, e, qx, qy) in enumerate(vals.tolist()))
 
 
-def lammps_input(kind, data, skin, gamma_n, steps, warmup):
+def shear_commands(rate, lo, height):
+    """A cell sheared at RATE (Rondel: cell.rate_xy, docs/physics.md section 10): a triclinic box whose tilt
+    grows at RATE x height, velocities of atoms crossing the sheared boundary shifted (remap v), flipped past
+    half the width as Rondel's (flip yes); the discs start with the mean flow RATE (y - lo), as rondel_bench's
+    (cell.flow_start). After the pair style: its history fix must come before fix deform, which migrates atoms
+    when it flips."""
+    return ("change_box all triclinic\n"
+            f"velocity all ramp vx 0.0 {rate * height!r} y {lo!r} {lo + height!r} sum yes units box\n"
+            f"fix shear all deform 1 xy erate {rate!r} remap v flip yes\n")
+
+
+def lammps_input(kind, data, skin, gamma_n, steps, warmup, shear=""):
     if kind == "granular":
         pair = ("pair_style granular\n"
                 f"pair_coeff * * hooke {K_N!r} {gamma_n!r} tangential linear_history {K_T!r} 0 {MU!r} "
@@ -217,7 +228,7 @@ def lammps_input(kind, data, skin, gamma_n, steps, warmup):
     warm = f"run {warmup}\n" if warmup > 0 else ""
     return (f"# Written by {ME}: Rondel's benchmark packing and parameters (see the script's header)\n"
             "units si\ndimension 2\nboundary p p p\natom_style sphere\nnewton on\ncomm_modify vel yes\n"
-            f"read_data {data}\n{pair}"
+            f"read_data {data}\n{pair}{shear}"
             f"neighbor {skin!r} bin\nneigh_modify delay 0 every 1 check yes\n"
             "fix integrate all nve/sphere disc\nfix plane all enforce2d\n"
             f"timestep {DT!r}\nthermo 0\n"
@@ -242,6 +253,8 @@ def run(cmd, cwd, env, log):
 def run_rondel(args, prefix, discs, rolling, workdir, env, stream, tag):
     cmd = prefix + [args.rondel, "--discs", str(discs), "--rolling", rolling, "--steps", str(args.steps),
                     "--warmup", str(args.warmup), "--file", args.packing]
+    if args.shear:
+        cmd += ["--shear", repr(args.shear)]
     if not stream:
         cmd.append("--no-stream")
     code, out = run(cmd, workdir, env, os.path.join(workdir, f"rondel_{rolling}_{discs}_{tag}.log"))
@@ -324,10 +337,11 @@ def bench_size(args, discs, packing, lmp, prefix, env):
     inputs = {}
     data = f"discs_{discs}.data"
     write_data(os.path.join(args.workdir, data), ids, x, y, r, lo, L, nx, ny)
+    shear = shear_commands(args.shear, lo, ny * L) if args.shear else ""
     for kind in ("granular", "hooke"):
         inputs[kind] = os.path.join(args.workdir, f"in.{kind}_{discs}")
         with open(inputs[kind], "w") as f:
-            f.write(lammps_input(kind, data, skin, gamma_n, args.steps, args.warmup))
+            f.write(lammps_input(kind, data, skin, gamma_n, args.steps, args.warmup, shear))
     say(f"   data file and inputs: {os.path.join(args.workdir, data)}, {inputs['granular']}, {inputs['hooke']}")
     runs = [run_ for run_ in RUNS if lmp or run_[1] == "rondel"]
     rates = {label: [] for label, _, _ in runs}
@@ -389,6 +403,10 @@ def main():
     ap.add_argument("--keep", action="store_true", help="keep the temporary work directory")
     ap.add_argument("--no-stream", action="store_true",
                     help="pass --no-stream to rondel_bench (no memory-bandwidth triad, no bandwidth bound)")
+    ap.add_argument("--shear", type=float, default=0.0,
+                    help="shear both codes' cells at this rate [1/s] (Rondel: rondel_bench --shear, the discs started "
+                         "with the mean flow; LAMMPS: a triclinic box, fix deform xy erate RATE remap v, velocity "
+                         "ramp); 0.0067 is I = 1e-3 for this packing (docs/benchmarks.md); default 0: standing")
     ap.add_argument("--packing", default=DEFAULT_PACKING,
                     help="the packing CSV (default bench/jammed10k.csv of this repository)")
     args = ap.parse_args()
@@ -396,6 +414,8 @@ def main():
         sizes = [int(v) for v in args.discs.split(",") if v.strip()]
     except ValueError:
         ap.error(f"--discs '{args.discs}': whole numbers separated by commas")
+    if not math.isfinite(args.shear) or abs(args.shear) > 1.0:
+        ap.error(f"--shear {args.shear!r}: a finite rate of at most 1 /s in magnitude (0.0067 is I = 1e-3)")
     if not sizes or args.steps < 1 or args.warmup < 0 or args.trials < 1 or args.ranks < 1:
         ap.error("--discs needs a value; --steps, --trials and --ranks at least 1, --warmup at least 0")
 
@@ -440,7 +460,8 @@ def main():
                 "for the side-by-side run)")
             say(f"{ME}: rondel {args.rondel}")
         say(f"{ME}: {args.ranks} rank(s), {args.steps} timed steps after {args.warmup} warm-up, {args.trials} "
-            f"round(s); work directory {args.workdir}")
+            f"round(s); work directory {args.workdir}" + (f"; both cells sheared at {args.shear!r} /s" if args.shear
+                                                           else ""))
         try:
             for discs in sizes:
                 bench_size(args, discs, packing, lmp, prefix, env)

@@ -11,7 +11,10 @@ Short runs (10,000 discs, 20 timed steps, 1 round):
     the ratios of both codes are printed; a stand-in that prints an ERROR line, one that prints no
     "Loop time" line, and one whose mass differs make the script fail with a message naming the cause;
   - a missing rondel_bench fails naming it;
-  - with the real LAMMPS (`lmp` on the PATH; skipped otherwise): the whole side-by-side round, ratios included.
+  - --shear: rondel_bench shears its cell, the LAMMPS input a triclinic box by fix deform (remap v) after the
+    pair style, the discs started on the flow; --shear nan refused;
+  - with the real LAMMPS (`lmp` on the PATH; skipped otherwise): the whole side-by-side round, ratios included,
+    standing and sheared.
 Exits non-zero on any failure and prints 'N passed, N failed'.
 """
 import math
@@ -179,12 +182,35 @@ def main():
         code, out, err = run(["--discs", "15000", "--rondel", rondel, "--lmp", "/nonexistent"])
         check("--discs 15000: refused naming --discs", code == 1 and "--discs 15000" in err, err)
 
+        # --shear: both cells sheared, Rondel by rondel_bench --shear, LAMMPS by a triclinic box that deforms
+        # (after the pair style, whose history fix must come first) with the discs started on the flow.
+        sheared = os.path.join(work, "sheared")
+        code, out, err = run(SHORT + ["--rondel", rondel, "--lmp", "/nonexistent", "--workdir", sheared, "--shear",
+                                      "0.0067"])
+        check("--shear: exit 0, said", code == 0 and "both cells sheared at 0.0067 /s" in out, err + out)
+        log = [n for n in os.listdir(sheared) if n.startswith("rondel_wang")] if os.path.isdir(sheared) else []
+        check("--shear: rondel_bench ran with --shear 0.0067",
+              log and "--shear 0.0067" in open(os.path.join(sheared, log[0])).readline(), log)
+        text = open(os.path.join(sheared, "in.granular_10000")).read() if os.path.isdir(sheared) else ""
+        height = hi - lo
+        ramp = re.search(r"^velocity all ramp vx 0\.0 (\S+) y (\S+) (\S+) sum yes units box$", text, re.M)
+        check("--shear: the discs start on the flow 0.0067 (y - ylo)",
+              ramp and abs(float(ramp.group(1)) - 0.0067 * height) < 1e-12 * height and float(ramp.group(2)) == lo,
+              text)
+        check("--shear: a triclinic box deformed in xy with remap v, after the pair style",
+              "change_box all triclinic" in text and
+              0 < text.find("pair_style") < text.find("fix shear all deform 1 xy erate 0.0067 remap v flip yes"), text)
+        code, out, err = run(SHORT + ["--rondel", rondel, "--lmp", "/nonexistent", "--shear", "nan"])
+        check("--shear nan: refused naming --shear", code != 0 and "--shear" in err, err)
+
         # The real LAMMPS, when installed.
         if shutil.which("lmp"):
             code, out, err = run(SHORT + ["--no-stream", "--rondel", rondel])
             check("lammps: exit 0", code == 0, err + out)
             check("lammps: ratios printed", re.search(r"ratios of the medians: rondel wang / lammps granular\+sds \S+",
                                                       out), out)
+            code, out, err = run(SHORT + ["--no-stream", "--rondel", rondel, "--shear", "0.0067"])
+            check("lammps --shear: exit 0 (fix deform with pair granular's history)", code == 0, err + out)
         else:
             print("SKIP the real LAMMPS: lmp is not on the PATH (apt-get install lammps)")
     finally:
