@@ -38,9 +38,7 @@ import csv
 import math
 import os
 import re
-import subprocess
 import sys
-import time
 
 import numpy as np
 
@@ -48,7 +46,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import biaxial  # noqa: E402
-from rondel import CheckFailed, RondelError, UsageError, open_run  # noqa: E402
+from rondel import CheckFailed, UsageError, open_run, study  # noqa: E402
 from rondel.cli import ArgumentParser, add_figure_options, check_figure_options, pyplot, run_tool, save_figure  # noqa: E402,E501
 
 TOOL = "biaxial_sweep"
@@ -59,51 +57,10 @@ QUICK = dict(prep="undercompaction", samples=2, ucm_count=90, ucm_layers=3, ucm_
 DT = 3.36486e-6  # [s] the J05 set-up's step (0.2 x critical, tangential+rolling mode of the smallest discs)
 
 
-def run(cmd, log):
-    t0 = time.time()
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    with open(log, "w") as f:
-        rc = subprocess.call(cmd, stdout=f, stderr=subprocess.STDOUT, env=env, cwd=ROOT)
-    return rc, time.time() - t0
-
-
-def wall_seconds(outdir):
-    """The run's wall time from its summary (summary.json or summary.txt); NaN when it has none."""
-    try:
-        return float(open_run(outdir).summary()["wall_seconds"])
-    except (RondelError, KeyError, TypeError, ValueError):
-        return float("nan")
-
-
-def probe_dt(cmd, outdir):
-    """The run's time step (it depends on the laws, e.g. delta): one step into OUTDIR.probe."""
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    p = subprocess.run(cmd + ["--run.steps=1", f"--run.output={outdir}.probe", "--run.overwrite=true",
-                              "--output.checkpoint_at_end=false"], capture_output=True, text=True, env=env, cwd=ROOT)
-    if p.returncode != 0:
-        tail = (p.stderr.strip() or p.stdout.strip()).splitlines()[-1:] or [""]
-        raise CheckFailed(f"the probe run for {outdir} exited with code {p.returncode}: {tail[0]}")
-    try:  # summary.json (dt) when the build writes it, else the log's 'time step' line
-        return float(open_run(f"{outdir}.probe").time_step()["dt"])
-    except RondelError:
-        return DT
-
-
-def done(outdir):
-    """The run in OUTDIR ran to its end: its summary.txt says 'status: complete'. A run stopped by a signal
-    writes a summary.txt too (with 'status: stopped by a signal ...') and one that failed writes none: both
-    run again."""
-    try:
-        with open(os.path.join(outdir, "summary.txt")) as f:
-            return any(line.strip() == "status: complete" for line in f)
-    except OSError:
-        return False
-
-
 def ucm_done(d):
     """tools/undercompaction.py finished in D: its own OUT/summary.txt (written last) and a complete
     consolidation run."""
-    return os.path.exists(os.path.join(d, "summary.txt")) and done(os.path.join(d, "consolidated"))
+    return os.path.exists(os.path.join(d, "summary.txt")) and study.complete(os.path.join(d, "consolidated"))
 
 
 def main(argv=None):
@@ -215,12 +172,12 @@ def sweep(a):
                 continue
             d = os.path.join(a.out, f"prep_{p/1e3:g}kPa")
             preps[p] = d
-            if not done(d):
+            if not study.complete(d):
                 cmd = [a.rondel, a.prepare, f"--run.output={d}", "--run.overwrite=true", "--run.progress=false",
                        f"--run.steps={a.prep_steps}", f"--walls.control=top:servo:{p:g} right:servo:{p:g}"] + a.extra
                 jobs.append((cmd, d + ".log", d))
         with cf.ThreadPoolExecutor(a.jobs) as ex:
-            for (cmd, log, d), (rc, t) in zip(jobs, ex.map(lambda j: run(j[0], j[1]), jobs)):
+            for (cmd, log, d), (rc, t) in zip(jobs, ex.map(lambda j: study.run_command(j[0], j[1], ROOT), jobs)):
                 print(f"prepare {d}: rc {rc}, {t:.1f} s", flush=True)
                 if rc:
                     raise CheckFailed(f"the prepare run {d} exited with code {rc}: see {log}")
@@ -234,8 +191,8 @@ def sweep(a):
             name += f"_a{a.damping:g}" if a.damping else ""
             d = os.path.join(a.out, name)
             runs.append((m, dlt, p, r, seed, d))
-            if done(d) or a.collect_only:
-                reused += done(d)
+            if study.complete(d) or a.collect_only:
+                reused += study.complete(d)
                 continue
             # Every shear run drops the prepared contact history (laws and parameters differ from the
             # prepare stage's), so all cases start alike.
@@ -247,13 +204,13 @@ def sweep(a):
             if a.damping:
                 cmd.append(f"--run.local_damping={a.damping:g}")
             if not a.steps and (m, dlt) not in dts:  # the step depends on the laws, not on the sample or p
-                dts[(m, dlt)] = probe_dt(cmd, d)
+                dts[(m, dlt)] = study.probe_dt(cmd, d, ROOT, fallback=DT)
             cmd += [f"--run.output={d}", "--run.overwrite=true",
                     f"--run.steps={shear_steps(r, dts.get((m, dlt), DT))}"]
             jobs.append((cmd, d + ".log", d))
         print(f"sample {seed}: {reused} shear run(s) reused, {len(jobs)} to run", flush=True)
         with cf.ThreadPoolExecutor(a.jobs) as ex:
-            for (cmd, log, d), (rc, t) in zip(jobs, ex.map(lambda j: run(j[0], j[1]), jobs)):
+            for (cmd, log, d), (rc, t) in zip(jobs, ex.map(lambda j: study.run_command(j[0], j[1], ROOT), jobs)):
                 print(f"shear {d}: rc {rc}, {t:.1f} s", flush=True)
                 if rc:
                     failed.append(d)
@@ -289,7 +246,7 @@ def collect(a, runs, failed):
     rows = []
     for m, dlt, p, r, seed, d in runs:
         path = os.path.join(d, "measures.csv")
-        if not done(d) or not os.path.exists(path):
+        if not study.complete(d) or not os.path.exists(path):
             continue
         meas = biaxial.read_measures(path)
         res = biaxial.friction_angles(meas["eps_axial"], meas["wall_syy"], meas["wall_sxx"], a.window)
@@ -307,7 +264,7 @@ def collect(a, runs, failed):
                          s_peak_kPa=res["s_peak"] / 1e3, t_peak_kPa=0.5 * res["q_peak"] / 1e3,
                          s_res_kPa=s_res / 1e3, t_res_kPa=t_res / 1e3,
                          s3_mean_kPa=float(late.mean()) / 1e3, e0=float(meas["void_ratio"][0]),
-                         eps_end=float(meas["eps_axial"][-1]), wall_s=wall_seconds(d), dir=d))
+                         eps_end=float(meas["eps_axial"][-1]), wall_s=study.wall_seconds(d), dir=d))
     keys = list(rows[0].keys()) if rows else []
     with open(os.path.join(a.out, "table.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, keys)

@@ -38,16 +38,14 @@ import csv
 import math
 import os
 import re
-import subprocess
 import sys
-import time
 
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
-from rondel import CheckFailed, RondelError, RondelFileError, UsageError, open_file, open_run  # noqa: E402
+from rondel import CheckFailed, RondelError, RondelFileError, UsageError, open_file, open_run, study  # noqa: E402
 from rondel.cli import ArgumentParser, add_figure_options, check_figure_options, pyplot, run_tool, save_figure  # noqa: E402,E501
 
 TOOL = "drum"
@@ -286,22 +284,8 @@ def run_dir_name(law, mu_r):
     return "none" if mu_r == 0.0 else f"{law}_mu{mu_r:g}"
 
 
-def done(d):
-    """The run in D ran to its end: its summary.txt says 'status: complete'. A run stopped by a signal writes a
-    summary.txt too ('status: stopped by a signal ...') and one that failed writes none: both run again."""
-    try:
-        with open(os.path.join(d, "summary.txt")) as f:
-            return any(line.strip() == "status: complete" for line in f)
-    except OSError:
-        return False
-
-
 def launch(cmd, d, log):
-    t0 = time.time()
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    with open(log, "w") as f:
-        rc = subprocess.call(cmd, stdout=f, stderr=subprocess.STDOUT, env=env, cwd=ROOT)
-    return d, rc, time.time() - t0
+    return (d,) + study.run_command(cmd, log, ROOT)
 
 
 def main_sweep(args):
@@ -325,7 +309,7 @@ def main_sweep(args):
     todo = []
     for name, (law, mu) in cases.items():
         d = os.path.join(args.out, name)
-        if done(d):
+        if study.complete(d):
             print(f"{name}: finished before, reused")
             continue
         cmd = ([args.mpiexec, "-n", str(args.ranks), "--oversubscribe"] if args.ranks > 1 else []) + [
@@ -343,7 +327,7 @@ def main_sweep(args):
     table = []
     for name, (law, mu) in cases.items():
         d = os.path.join(args.out, name)
-        if not done(d):
+        if not study.complete(d):
             continue
         rows, summary, t_from, last = measure_run(d, args.t_from)
         write_outputs(os.path.join(d, "drum"), rows, summary, t_from, last, args, f"{law}, mu_r = {mu:g}")

@@ -77,8 +77,7 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 from rondel import CheckFailed, Config, RondelFileError, UsageError, open_file, open_run, step_of_name  # noqa: E402
 from rondel.cli import ArgumentParser, add_figure_options, check_figure_options, pyplot, run_tool, save_figure  # noqa: E402,E501
-from biaxial_sweep import done, wall_seconds  # noqa: E402
-from biaxial_sweep import run as launch  # noqa: E402
+from rondel.study import complete as done, run_command, wall_seconds  # noqa: E402
 import repose  # noqa: E402
 
 TOOL = "sandpile"
@@ -448,7 +447,7 @@ def launch_all(jobs, n, failed):
     if not jobs:
         return
     with cf.ThreadPoolExecutor(n) as ex:
-        futures = {ex.submit(launch, cmd, log): (log, d) for cmd, log, d in jobs}
+        futures = {ex.submit(run_command, cmd, log, ROOT): (log, d) for cmd, log, d in jobs}
         for fu in cf.as_completed(futures):
             log, d = futures[fu]
             rc, secs = fu.result()

@@ -41,8 +41,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import biaxial  # noqa: E402
-from biaxial_sweep import probe_dt, run, wall_seconds  # noqa: E402
-from rondel import CheckFailed, UsageError  # noqa: E402
+from rondel import CheckFailed, UsageError, study  # noqa: E402
 from rondel.cli import ArgumentParser, add_figure_options, check_figure_options, pyplot, run_tool, save_figure  # noqa: E402,E501
 
 TOOL = "w15_sweep"
@@ -112,16 +111,6 @@ def main(argv=None):
     return run_tool(TOOL, sweep, a)
 
 
-def done(outdir):
-    """The run in OUTDIR ran to its end: summary.txt says 'status: complete' (a run stopped by a signal writes
-    one too, with 'status: stopped ...'; a run that failed writes none)."""
-    try:
-        with open(os.path.join(outdir, "summary.txt")) as f:
-            return any(line.strip() == "status: complete" for line in f)
-    except OSError:
-        return False
-
-
 def parse_lists(a):
     """(mu_r values, models, seeds) from the options; UsageError on a malformed list."""
     try:
@@ -145,7 +134,7 @@ def run_dir(out, model, mu, seed):
 def run_all(jobs, n, what, failed):
     """Run JOBS [(cmd, log, dir)] N at a time in the given order, printing each as it ends."""
     with cf.ThreadPoolExecutor(n) as ex:
-        futures = {ex.submit(run, cmd, log): (cmd, log, d) for cmd, log, d in jobs}
+        futures = {ex.submit(study.run_command, cmd, log, ROOT): (cmd, log, d) for cmd, log, d in jobs}
         for fu in cf.as_completed(futures):
             cmd, log, d = futures[fu]
             rc, t = fu.result()
@@ -165,7 +154,7 @@ def sweep(a):
     for s in seeds:
         d = os.path.join(a.out, f"prep_s{s}")
         preps[s] = d
-        if not done(d) and not a.collect_only:
+        if not study.complete(d) and not a.collect_only:
             cmd = [a.rondel, a.prepare, f"--run.output={d}", "--run.overwrite=true", "--run.progress=false",
                    f"--run.steps={a.prep_steps}", f"--scene.seed={s}",
                    f"--walls.control=top:servo:{p:g} right:servo:{p:g}",
@@ -182,19 +171,19 @@ def sweep(a):
             for m in models:
                 d = run_dir(a.out, m, mu, s)
                 runs.append((m, mu, s, d))
-                if done(d) or a.collect_only:
+                if study.complete(d) or a.collect_only:
                     continue
                 cmd = [a.rondel, a.shear, f"--scene.file={preps[s]}", "--run.progress=false",
                        "--run.reset_history=true", f"--contact.rolling={m}", f"--wang.mu_r={mu:g}",
                        f"--run.max_overlap={a.max_overlap:g}",
                        f"--walls.control=top:strain_rate:{a.rate:g} left:servo:{p:g} right:servo:{p:g}"] + a.extra
                 if not a.steps and (m, mu) not in dts:  # the step depends on the laws, not on the sample
-                    dts[(m, mu)] = probe_dt(cmd, os.path.join(a.out, f"probe_{m}_mur{mu:g}"))
+                    dts[(m, mu)] = study.probe_dt(cmd, os.path.join(a.out, f"probe_{m}_mur{mu:g}"), ROOT)
                 steps = a.steps or int(math.ceil(math.log(1.0 / (1.0 - a.strain)) / (a.rate * dts[(m, mu)])))
                 cmd += [f"--run.output={d}", "--run.overwrite=true", f"--run.steps={steps}"]
                 jobs.append((cmd, d + ".log", d))
     if a.collect_only:
-        print(f"--collect-only: {sum(done(r[3]) for r in runs)} of {len(runs)} shear runs finished; running none",
+        print(f"--collect-only: {sum(study.complete(r[3]) for r in runs)} of {len(runs)} shear runs finished; running none",
               flush=True)
     else:
         print(f"{len(runs) - len(jobs)} shear run(s) reused, {len(jobs)} to run ({a.jobs} at a time)", flush=True)
@@ -229,11 +218,11 @@ def collect(a, runs):
     rows = []
     for m, mu, s, d in runs:
         path = os.path.join(d, "measures.csv")
-        if not done(d) or not os.path.exists(path):
+        if not study.complete(d) or not os.path.exists(path):
             continue
         r = dict(model=m, mu_r=mu, seed=s)
         r.update(analyse_run(biaxial.read_measures(path), a.window))
-        r.update(wall_s=wall_seconds(d), dir=d)
+        r.update(wall_s=study.wall_seconds(d), dir=d)
         rows.append(r)
     keys = ["model", "mu_r", "seed", "sin_peak", "eps_peak", "sin_res", "phi_peak", "phi_res", "e0", "e_max", "e_res",
             "eps_end", "s3_mean_kPa", "rows_res", "wall_s", "dir"]
@@ -251,7 +240,7 @@ def zero_mu_identity(a, mus, models, seeds):
     out = {}
     for s in seeds:
         paths = [os.path.join(run_dir(a.out, m, 0.0, s), "measures.csv") for m in models]
-        if all(done(os.path.dirname(x)) and os.path.exists(x) for x in paths):
+        if all(study.complete(os.path.dirname(x)) and os.path.exists(x) for x in paths):
             texts = [open(x, "rb").read() for x in paths]
             out[s] = all(t == texts[0] for t in texts[1:])
     return out

@@ -51,9 +51,10 @@ def wall_seconds(outdir):
         return float("nan")
 
 
-def probe_dt(cmd, outdir, cwd=None):
+def probe_dt(cmd, outdir, cwd=None, fallback=None):
     """The time step a run of CMD takes (it depends on the laws and materials): one step into OUTDIR.probe
-    (CMD's own run.steps, run.output and run.overwrite are replaced)."""
+    (CMD's own run.steps, run.output and run.overwrite are replaced). FALLBACK, when given, is returned if the
+    probe's files do not say it (an older build); otherwise that raises."""
     mine = ("--run.steps=", "--run.output=", "--run.overwrite=", "--output.checkpoint_at_end=")
     cmd = [c for c in cmd if not str(c).startswith(mine)]
     p = subprocess.run(cmd + ["--run.steps=1", f"--run.output={outdir}.probe", "--run.overwrite=true",
@@ -62,7 +63,12 @@ def probe_dt(cmd, outdir, cwd=None):
     if p.returncode != 0:
         tail = (p.stderr.strip() or p.stdout.strip()).splitlines()[-1:] or [""]
         raise CheckFailed(f"the probe run for {outdir} exited with code {p.returncode}: {tail[0]}")
-    return float(open_run(f"{outdir}.probe").time_step()["dt"])
+    try:
+        return float(open_run(f"{outdir}.probe").time_step()["dt"])
+    except RondelError:
+        if fallback is None:
+            raise
+        return fallback
 
 
 class Job:
