@@ -46,7 +46,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import biaxial  # noqa: E402
-from rondel import CheckFailed, UsageError, open_run, study  # noqa: E402
+from rondel import CheckFailed, UsageError, study  # noqa: E402
 from rondel.cli import ArgumentParser, add_figure_options, check_figure_options, pyplot, run_tool, save_figure  # noqa: E402,E501
 
 TOOL = "biaxial_sweep"

@@ -21,7 +21,6 @@ import time
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "tools"))
 from rondel_run import Checks  # noqa: E402
 
 PREPARE = os.path.join(ROOT, "inputs", "periodic_prepare.ini")
