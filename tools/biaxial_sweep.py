@@ -33,7 +33,6 @@ mean over the last --window of axial strain.
 --quick: the CI preset (90 discs in 3 layers, 2 samples, delta 0 and 1.6, 200 kPa, 20,000 shear steps).
 Exit status: 0 done, 1 bad input or usage, 2 a rondel run failed (the tables hold the others).
 """
-import concurrent.futures as cf
 import csv
 import math
 import os
@@ -176,11 +175,10 @@ def sweep(a):
                 cmd = [a.rondel, a.prepare, f"--run.output={d}", "--run.overwrite=true", "--run.progress=false",
                        f"--run.steps={a.prep_steps}", f"--walls.control=top:servo:{p:g} right:servo:{p:g}"] + a.extra
                 jobs.append((cmd, d + ".log", d))
-        with cf.ThreadPoolExecutor(a.jobs) as ex:
-            for (cmd, log, d), (rc, t) in zip(jobs, ex.map(lambda j: study.run_command(j[0], j[1], ROOT), jobs)):
-                print(f"prepare {d}: rc {rc}, {t:.1f} s", flush=True)
-                if rc:
-                    raise CheckFailed(f"the prepare run {d} exited with code {rc}: see {log}")
+        bad = study.run_chains([[study.Job(f"prepare {d}", cmd, d, log, ucm_done if ucm else study.complete,
+                                           output=False)] for cmd, log, d in jobs], a.jobs, ROOT)
+        if bad:
+            raise CheckFailed("the prepare run(s) failed: " + "; ".join(f"{k}: see {v}" for k, v in bad.items()))
         return preps
 
     def shear(seed, preps, todo):
@@ -209,12 +207,11 @@ def sweep(a):
                     f"--run.steps={shear_steps(r, dts.get((m, dlt), DT))}"]
             jobs.append((cmd, d + ".log", d))
         print(f"sample {seed}: {reused} shear run(s) reused, {len(jobs)} to run", flush=True)
-        with cf.ThreadPoolExecutor(a.jobs) as ex:
-            for (cmd, log, d), (rc, t) in zip(jobs, ex.map(lambda j: study.run_command(j[0], j[1], ROOT), jobs)):
-                print(f"shear {d}: rc {rc}, {t:.1f} s", flush=True)
-                if rc:
-                    failed.append(d)
-                    print(f"  FAILED: see {log}", flush=True)
+        bad = study.run_chains([[study.Job(f"shear {d}", cmd, d, log)] for cmd, log, d in jobs], a.jobs, ROOT)
+        for cmd, log, d in jobs:
+            if f"shear {d}" in bad:
+                failed.append(d)
+                print(f"  FAILED {d}: see {log}", flush=True)
 
     # Sample after sample (seed-major): an interrupted sweep has every point of the first sample first. The
     # --cases at another rate than --rate (the quasi-static check) run on the first --check-samples samples, right

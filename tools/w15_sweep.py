@@ -29,7 +29,6 @@ tool compares their measures.csv and says so in table.md.
 window 0.1 %; the CI test of the tool).
 Exit status: 0 done, 1 bad input or usage, 2 a rondel run failed (the table holds the others).
 """
-import concurrent.futures as cf
 import csv
 import math
 import os
@@ -132,16 +131,13 @@ def run_dir(out, model, mu, seed):
 
 
 def run_all(jobs, n, what, failed):
-    """Run JOBS [(cmd, log, dir)] N at a time in the given order, printing each as it ends."""
-    with cf.ThreadPoolExecutor(n) as ex:
-        futures = {ex.submit(study.run_command, cmd, log, ROOT): (cmd, log, d) for cmd, log, d in jobs}
-        for fu in cf.as_completed(futures):
-            cmd, log, d = futures[fu]
-            rc, t = fu.result()
-            print(f"{what} {d}: rc {rc}, {t:.1f} s", flush=True)
-            if rc:
-                failed.append(d)
-                print(f"  FAILED: see {log}", flush=True)
+    """Run JOBS [(cmd, log, dir)] N at a time in the given order (rondel.study), printing each as it ends; the
+    directories of those that fail go into FAILED."""
+    bad = study.run_chains([[study.Job(f"{what} {d}", cmd, d, log)] for cmd, log, d in jobs], n, ROOT)
+    for cmd, log, d in jobs:
+        if f"{what} {d}" in bad:
+            failed.append(d)
+            print(f"  FAILED {d}: see {log}", flush=True)
 
 
 def sweep(a):

@@ -72,14 +72,15 @@ def probe_dt(cmd, outdir, cwd=None, fallback=None):
 
 
 class Job:
-    """One rondel run: NAME (for the messages), CMD (the whole command line, --run.output included, or OUT
-    is added), OUT its run directory, LOG its output (default OUT.log). DONE(out) says whether it finished
-    (default: complete)."""
+    """One run: NAME (for the messages), CMD (the whole command line), OUT its run directory, LOG its output
+    (default OUT.log). DONE(out) says whether it finished (default: complete). With OUTPUT (default) a rondel
+    command without --run.output gets --run.output=OUT --run.overwrite=true; a command of another program (a
+    tool that runs rondel itself) passes OUTPUT=False."""
 
-    def __init__(self, name, cmd, out, log=None, done=complete):
+    def __init__(self, name, cmd, out, log=None, done=complete, output=True):
         self.name, self.out, self.log, self.done = name, out, log or out + ".log", done
-        self.cmd = cmd if any(str(c).startswith("--run.output=") for c in cmd) else \
-            cmd + [f"--run.output={out}", "--run.overwrite=true"]
+        named = any(str(c).startswith("--run.output=") for c in cmd)
+        self.cmd = cmd if named or not output else cmd + [f"--run.output={out}", "--run.overwrite=true"]
 
 
 def run_chains(chains, workers=1, cwd=None, say=print):
