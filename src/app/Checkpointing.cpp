@@ -42,12 +42,6 @@ std::vector<fs::path> h5_files(const fs::path& dir, const char* kind, std::vecto
   return found;
 }
 
-// The configuration's domain (its periodic flags) with the shape a file records.
-Domain with_shape(Domain d, const Domain& shape) {
-  if (d.periodic_x && d.periodic_y) d.take_shape(shape);
-  return d;
-}
-
 }  // namespace
 
 Checkpointing::Checkpointing(std::string directory, int keep, bool verify, std::vector<std::string> snapshot_fields,
@@ -129,7 +123,7 @@ void Checkpointing::adopt_snapshots(std::int64_t step) {
       snapshots_.push_back(
           {p.filename().string(), h.step, static_cast<std::int64_t>(state_file_discs(p.string(), comm_)), h.time,
            state_file_disc_datasets(p.string(), comm_), wall_outline(read_state_walls(p.string(), comm_), domain_),
-           cell_outline(h.has_cell ? with_shape(domain_, h.cell) : domain_)});
+           cell_outline(recorded_cell(h, domain_))});
     } catch (const InputError&) {
       // not a complete snapshot: left out of the series
     }
@@ -161,7 +155,7 @@ std::string Checkpointing::write_snapshot(const StateHeader& header, DiscStore& 
   std::vector<std::string> written = fields_;
   written.emplace_back(kIndexField);
   snapshots_.push_back({name, header.step, n_discs, header.time, written, wall_outline(walls, domain_),
-                        cell_outline(header.has_cell ? with_shape(domain_, header.cell) : domain_)});
+                        cell_outline(recorded_cell(header, domain_))});
   agree(comm_, [&] {
     if (comm_.root()) write_xdmf();
   });

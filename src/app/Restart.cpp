@@ -73,7 +73,8 @@ std::vector<SceneDisc> Restart::scene_from_file(const std::string& file, const C
   if (fs::is_directory(path)) path = Checkpointing::newest_checkpoint(path, self);
   const StateHeader header = read_state_header(path, self);
   check_material_table(path, header, config);
-  if (header.has_cell && cell.periodic_x && cell.periodic_y) cell.take_shape(header.cell);
+  const bool recorded = records_cell(header, cell);
+  cell = recorded_cell(header, cell);
   DiscStore d;
   read_state_discs(path, d, self);
   check_disc_materials(path, d, config);
@@ -86,7 +87,7 @@ std::vector<SceneDisc> Restart::scene_from_file(const std::string& file, const C
   // With cell.flow_start the discs start with their velocity apart from the file's own mean flow (its cell's
   // rates at that step), to which the new run adds its own: a stage at another rate starts from the state's
   // agitation, not from the old flow (whose mismatch would meet the boundary as a jump of the rate times L_y).
-  const bool relative = config.cell_flow_start && header.has_cell && cell.periodic_x && cell.periodic_y;
+  const bool relative = config.cell_flow_start && recorded;
   std::vector<SceneDisc> out;
   for (std::size_t i = 0; i < d.n_owned(); ++i) {
     const Vec2 v = relative ? d.velocity[i] - header.cell.flow(d.position[i]) : d.velocity[i];

@@ -214,7 +214,7 @@ void Simulation::distribute_discs() {
 
 Domain Simulation::cell_sizing() const {
   Domain s = config_.domain;
-  if (!s.moving && !cell_control_.active()) return s;
+  if (!config_.cell_deforms()) return s;
   // Constant rates: each length changes by the factor (1 + dt L_ii) a step; the smallest is at one end.
   const double n = static_cast<double>(std::max<std::int64_t>(config_.steps, 0));
   const auto smallest = [&](double length, double rate) {

@@ -174,7 +174,7 @@ void check_initial_motion(const Config& c, const DiscStore& discs) {
 
 void check_cell(const Config& c, const Domain& sizing, double range, double dt) {
   const Domain& d = c.domain;
-  if (!d.moving && !(c.cell_stress_xx > 0.0 || c.cell_stress_yy > 0.0)) return;
+  if (!c.cell_deforms()) return;
   const std::string step = " with run.dt = " + fmt(dt) + " s";
   if (!(std::fabs(d.vb.x) * dt < 0.5 * d.length_x()))
     throw ConfigError("cell.rate_xy = " + fmt(d.L.xy) + " 1/s" + step + " tilts the cell by " +

@@ -99,6 +99,9 @@ struct Config {
   bool cell_flow_start = true;                              // cell.flow_start
   double cell_stress_xx = 0.0, cell_stress_yy = 0.0;        // cell.stress_xx, stress_yy (0: no target)
   double cell_servo_gain = 0.0, cell_servo_max_rate = 1.0;  // cell.servo_gain, servo_max_rate
+  // A length of the cell held at a target stress by the servo; the cell deforms (a rate or a target).
+  bool cell_servo() const { return cell_stress_xx > 0.0 || cell_stress_yy > 0.0; }
+  bool cell_deforms() const { return domain.moving || cell_servo(); }
   Vec2 gravity;
   double thickness = 1.0;           // every material's (the thickness stresses are per)
   std::vector<Material> materials;  // one ([material]) or several ([material.NAME], ordered by name)

@@ -99,8 +99,7 @@ void read_walls(Config& c) {
   read_wall_controls(c);
   for (const std::string& name : c.wall_keys.rough) box_wall(c, name, "walls.rough", name).rough = true;
   // A deforming cell is periodic both ways: nothing bounds it, and a wall would not follow its images.
-  const bool deforming = c.domain.moving || c.cell_stress_xx > 0.0 || c.cell_stress_yy > 0.0;
-  if (deforming && !c.walls.empty()) {
+  if (c.cell_deforms() && !c.walls.empty()) {
     const char* key = !c.wall_keys.box.empty() ? "walls.box" : "walls.lines, walls.segments or walls.circles";
     check(false, key, "no wall inside a deforming periodic cell (a cell.rate_* or cell.stress_* not 0)",
           std::to_string(c.walls.size()) + " wall(s)");

@@ -159,7 +159,7 @@ NeighbourList::Strain NeighbourList::strain(const Domain& d) const {
 double NeighbourList::strain_term(const Domain& domain) const {
   if (domain.standing() && cell_at_build_.standing()) return 0.0;
   const Strain G = strain(domain);
-  return 0.5 * std::sqrt(G.xx * G.xx + G.xy * G.xy + G.yy * G.yy) * cell_range_;
+  return 0.5 * G.norm() * cell_range_;
 }
 
 double NeighbourList::displacement(double max_step, const DiscStore& discs, const Domain& domain,

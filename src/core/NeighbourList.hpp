@@ -72,10 +72,7 @@ class NeighbourList {
   // A deforming cell's strain since the build, G = F - I with F = h h0^-1 (upper triangular), and half its
   // Frobenius norm times the interaction range: a pair whose discs moved with the mean flow comes closer by at
   // most |G| (2 R_max + skin), across the boundary too (F maps the lattice of the build onto today's).
-  struct Strain {
-    double xx, xy, yy;
-    Vec2 of(Vec2 v) const { return {xx * v.x + xy * v.y, yy * v.y}; }
-  };
+  using Strain = CellGradient;  // the same upper-triangular form as the velocity gradient
   Strain strain(const Domain& domain) const;
   double strain_term(const Domain& domain) const;
   // The wall rows anew (every owned disc within the range of a wall), history kept by key.

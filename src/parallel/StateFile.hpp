@@ -62,6 +62,17 @@ struct StateHeader {
   std::int64_t flips = 0;  // of the cell since the run began
 };
 
+// Whether a file's cell applies to the configured one: the file records one and the cell is periodic both ways.
+inline bool records_cell(const StateHeader& h, const Domain& configured) {
+  return h.has_cell && configured.periodic_x && configured.periodic_y;
+}
+// The configured cell with the shape `h` records (its lengths, corner and tilt; the rates and periodic flags stay
+// the configuration's) where records_cell; else `configured` as it is.
+inline Domain recorded_cell(const StateHeader& h, Domain configured) {
+  if (records_cell(h, configured)) configured.take_shape(h.cell);
+  return configured;
+}
+
 // Writes checkpoints and snapshots (collective). `fields` selects the disc datasets of a snapshot (empty:
 // every checkpointed field plus the contacts); a snapshot also gets the owner rank when "rank" is listed,
 // and its row numbers ("index"). Records are put in file order by a distributed sample sort (CanonicalOrder:
