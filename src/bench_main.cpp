@@ -7,7 +7,7 @@
 // built; --no-stream skips it), the model of the bytes a step moves per disc (traffic_model,
 // BenchSupport.hpp) and the bound on disc-steps per second that the two give.
 //   rondel_bench [--discs 10000 x k] [--steps 5000] [--warmup 1000] [--rolling LAW] [--file PATH] [--no-stream]
-//                [--skin S] [--against LAW [--chunk 100]] [--shear RATE]
+//                [--skin S] [--against LAW [--chunk 100]] [--shear RATE] [--locked]
 // Without --file it reads bench/jammed10k.csv of the working directory (a clone's root) and, when that is
 // missing, the one of the source tree it was built from (RONDEL_SOURCE_DIR, set by CMakeLists.txt), so it runs
 // from a build directory as well; the packing is described in bench/README.md. With --file, --discs counts
@@ -23,7 +23,10 @@
 // neighbours of a shared machine disturb far less than separate runs. --shear RATE shears the first
 // simulation's cell at cell.rate_xy = RATE (Lees-Edwards, docs/physics.md section 10; the discs start with the
 // mean flow) and leaves the second's standing: `--rolling none --against none --shear 0.0067` is the cost of the
-// sheared cell at I = 1e-3 against today's periodic box (docs/benchmarks.md).
+// sheared cell at I = 1e-3 against today's periodic box (docs/benchmarks.md). --locked makes every contact of
+// both simulations stick: coulomb.mu and the rolling laws' caps (wang, force_proportional, constant_torque and
+// displacement_damping mu_r, iwashita_oda eta) raised to 1e6, so that a sheared packing's contacts neither slide
+// nor yield in rolling, as a jammed one's: what a cell costs apart from the physics of a flow.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -54,6 +57,7 @@ struct Options {
   std::string shear;    // cell.rate_xy of the first simulation (empty: its cell stands still)
   long chunk = -1;      // steps per chunk with --against (-1: 100, or --steps when fewer)
   bool no_stream = false;
+  bool locked = false;  // contacts that neither slide nor yield in rolling (the caps raised to kLockedCap)
 };
 
 Options parse(int argc, char** argv) {
@@ -68,7 +72,8 @@ Options parse(int argc, char** argv) {
                                {"--skin", &o.skin},
                                {"--against", &o.against},
                                {"--shear", &o.shear},
-                               {"--chunk", &o.chunk}});
+                               {"--chunk", &o.chunk},
+                               {"--locked", &o.locked}});
   if (o.steps <= 0)
     throw rondel::ConfigError("rondel_bench: --steps must be at least 1, not " + std::to_string(o.steps));
   if (o.warmup < 0)
@@ -129,9 +134,13 @@ constexpr BenchValue kRollingValues[] = {
     {"constant_torque.mu_r", "0.05"},
     {"displacement_damping.mu_r", "0.05"},
 };
+// --locked: the value of coulomb.mu and of these caps.
+constexpr const char* kLockedCap = "1e6";
+constexpr const char* kCapKeys[] = {"wang.mu_r", "iwashita_oda.eta", "force_proportional.mu_r", "constant_torque.mu_r",
+                                    "displacement_damping.mu_r"};
 
 // The [contact] rolling line and the law's parameter block, from the law's parameter list.
-std::string rolling_block(const std::string& law, const char* option) {
+std::string rolling_block(const std::string& law, const char* option, bool locked) {
   const rondel::LawInfo* info = rondel::law_catalog().rolling.find(law);
   if (!info)
     throw rondel::ConfigError("rondel_bench: " + std::string(option) + " '" + law + "' is not a rolling law (" +
@@ -143,7 +152,10 @@ std::string rolling_block(const std::string& law, const char* option) {
     const std::string key = std::string(info->block->section) + "." + p.key;
     const auto v = std::find_if(std::begin(kRollingValues), std::end(kRollingValues),
                                 [&key](const BenchValue& b) { return key == b.key; });
-    if (v != std::end(kRollingValues))
+    const bool cap = std::find(std::begin(kCapKeys), std::end(kCapKeys), key) != std::end(kCapKeys);
+    if (locked && cap)
+      text += std::string(p.key) + " = " + kLockedCap + "\n";
+    else if (v != std::end(kRollingValues))
       text += std::string(p.key) + " = " + v->value + "\n";
     else if (p.presence == rondel::Presence::required && std::isfinite(p.example))
       text += std::string(p.key) + " = " + rondel::fmt(p.example) + "\n";
@@ -198,9 +210,10 @@ std::string bench_ini(const Options& o, long nx, long ny, double lo, double hi) 
   std::snprintf(ini, sizeof ini,
                 "[run]\ndt = 3e-4\nsteps = 0\n[domain]\nxlo = %.17g\nxhi = %.17g\nylo = %.17g\nyhi = %.17g\n"
                 "periodic_x = true\nperiodic_y = true\n[material]\ndensity = 1\n[linear]\nk_n = 1e5\nzeta = 0.3\n"
-                "[coulomb]\nk_s = 28571.43\nmu = 0.5\n[scene]\ntype = csv\nfile = %s\nreplicate_x = %ld\n"
+                "[coulomb]\nk_s = 28571.43\nmu = %s\n[scene]\ntype = csv\nfile = %s\nreplicate_x = %ld\n"
                 "replicate_y = %ld\nmax_initial_overlap = 0.2\n",
-                lo, lo + static_cast<double>(nx) * L, lo, lo + static_cast<double>(ny) * L, o.file.c_str(), nx, ny);
+                lo, lo + static_cast<double>(nx) * L, lo, lo + static_cast<double>(ny) * L,
+                o.locked ? kLockedCap : "0.5", o.file.c_str(), nx, ny);
   return std::string(ini) + (o.skin.empty() ? "" : "[neighbour]\nskin = " + o.skin + "\n");
 }
 
@@ -347,7 +360,7 @@ int bench(int argc, char** argv, const rondel::Communicator& comm) {
   const double bandwidth = measure_bandwidth(o, comm, peak_reset);
   const std::string ini = bench_ini(o, nx, ny, lo, hi);
   const auto config_of = [&](const std::string& law, const char* option, bool sheared) {
-    return rondel::parse_config_text(ini + rolling_block(law, option) +
+    return rondel::parse_config_text(ini + rolling_block(law, option, o.locked) +
                                      (sheared && !o.shear.empty() ? "[cell]\nrate_xy = " + o.shear + "\n" : ""));
   };
   rondel::Simulation sim(config_of(o.rolling, "--rolling", true), comm, false);

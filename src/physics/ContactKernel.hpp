@@ -28,6 +28,7 @@
 #include <cstdint>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "core/ContactParams.hpp"
 #include "core/ContactTable.hpp"
@@ -167,7 +168,6 @@ struct ContactKernel {
 
   // One row's motion: the kinematics in the canonical frame, the bodies, both spins and the wall's velocity.
   struct Row {
-    Vec2 dv;  // the velocity offset of disc 2's image (a pair across a moving cell's boundary; else 0)
     ContactKinematics k;
     ContactBodies b;
     double w1 = 0.0, w2 = 0.0;
@@ -175,11 +175,27 @@ struct ContactKernel {
   };
   enum class Found { apart, contact, coincident };
 
+  // A row across a moving cell's boundary: the kernel's works are of the motion relative to disc 2's image, and
+  // the discs themselves receive dv . (f1' + f1) more, the cell's work (docs/physics.md section 10). The pass
+  // notes these rows (the few at the boundary, in the image's branches that shift them) with the last step's
+  // forces, and books them after the loop in row order (book_crossings): the same sums as booking them in the
+  // loop, without a test of dv in every row.
+  struct Crossing {
+    std::size_t r;
+    double F_n, F_t;  // the last step's
+  };
+  using Crossings = std::vector<Crossing>;
+  [[gnu::noinline, gnu::cold]] static void note_crossing(Crossings& crossings, std::size_t r, const ContactTable& tab) {
+    if (crossings.empty() || crossings.back().r != r) crossings.push_back({r, tab.F_n[r], tab.F_t[r]});
+  }
+
   // Kinematics of row r; `apart` when the discs are apart and the row carries no force (nothing to do),
   // `coincident` when two centres coincide (no normal exists: reported as a failed run).
+  // A pass that books the cell's work passes `crossings`: a moving cell's rows across its boundary are noted.
   template <bool kWall, class Image>
   [[gnu::always_inline]] static Found kinematics(const DiscView& D, const Image& image, const WallSet& walls,
-                                                 const ContactTable& tab, std::size_t r, Row& row) {
+                                                 const ContactTable& tab, std::size_t r, Row& row,
+                                                 Crossings* crossings = nullptr) {
     const auto i = static_cast<std::size_t>(tab.i1[r]);
     const auto j = static_cast<std::size_t>(tab.i2[r]);
     const bool loaded = tab.F_n[r] != 0.0 || tab.F_t[r] != 0.0;
@@ -198,7 +214,13 @@ struct ContactKernel {
       row.b = disc_wall_bodies(D.m[i], D.I[i]);
     } else {
       Vec2 dv;  // in a moving cell, the velocity offset of disc 2's image (Lees-Edwards)
-      const Vec2 d = image.separation(D.x[i], D.x[j], dv);
+      Vec2 d;
+      if constexpr (Image::kMoving)
+        d = image.separation(D.x[i], D.x[j], dv, [&] {
+          if (crossings) note_crossing(*crossings, r, tab);
+        });
+      else
+        d = image.separation(D.x[i], D.x[j], dv);
       const double dist2 = dot(d, d);
       const double R1 = D.R[i], R2 = D.R[j];
       const double Rs = R1 + R2;
@@ -207,7 +229,6 @@ struct ContactKernel {
       row.w1 = D.w[i];
       row.w2 = D.w[j];
       const Vec2 v2 = Image::kMoving ? D.v[j] + dv : D.v[j];
-      if constexpr (Image::kMoving) row.dv = dv;
       row.k = disc_disc_kinematics(d, std::sqrt(dist2), R1, R2, D.v[i], v2, row.w1, row.w2);
       row.b = disc_disc_bodies(D.m[i], D.m[j], D.I[i], D.I[j]);
     }
@@ -285,11 +306,6 @@ struct ContactKernel {
                                                const TangentialForce& T, const RollingCouple& M, Vec2 f1, PassSums& S) {
     const ContactKinematics& k = row.k;
     S.work += Pair{(tab.F_n[r] + F_n) * k.v_n, (tab.F_t[r] + T.F_t) * k.V_s};
-    // Across a moving cell's boundary the kernel's works are of the motion relative to disc 2's image; the discs
-    // themselves receive dv . (f1' + f1) more: the cell's work (docs/physics.md section 10).
-    if constexpr (!kWall)
-      if (row.dv.x != 0.0 || row.dv.y != 0.0)
-        S.W_cell += (tab.F_t[r] + T.F_t) * dot(row.dv, k.t) - (tab.F_n[r] + F_n) * dot(row.dv, k.n);
     double W_r = 0.0;
     if constexpr (kCouples > 1 && !kWall)
       W_r = (tab.M1[r] + M.M1) * row.w1 + (tab.M2[r] + M.M2) * row.w2;
@@ -324,6 +340,29 @@ struct ContactKernel {
     if constexpr (kWall) tab.f1[r] = f1;
   }
 
+  // The cell's work of the rows across a moving cell's boundary, in row order (Crossing).
+  template <class Image>
+  static void book_crossings(const DiscView& D, const Image& image, const ContactTable& tab, const Crossings& crossings,
+                             PassSums& S) {
+    for (const Crossing& c : crossings) {
+      const auto i = static_cast<std::size_t>(tab.i1[c.r]);
+      const auto j = static_cast<std::size_t>(tab.i2[c.r]);
+      if (i >= D.n_owned) continue;  // booked by the rank that owns disc 1
+      Vec2 dv;
+      const Vec2 d = image.separation(D.x[i], D.x[j], dv);
+      const double dist2 = dot(d, d);
+      const double Rs = D.R[i] + D.R[j];
+      const bool loaded = c.F_n != 0.0 || c.F_t != 0.0;
+      if ((dist2 >= Rs * Rs && !loaded) || dist2 == 0.0 || (dv.x == 0.0 && dv.y == 0.0)) continue;  // as the pass
+      const ContactKinematics k =
+          disc_disc_kinematics(d, std::sqrt(dist2), D.R[i], D.R[j], D.v[i], D.v[j] + dv, D.w[i], D.w[j]);
+      if (k.u_n <= 0.0)  // it opened this step: the last half of the trapezoid (its forces are now zero)
+        S.W_cell += c.F_t * dot(dv, k.t) - c.F_n * dot(dv, k.n);
+      else
+        S.W_cell += (c.F_t + tab.F_t[c.r]) * dot(dv, k.t) - (c.F_n + tab.F_n[c.r]) * dot(dv, k.n);
+    }
+  }
+
   // The last half of the trapezoid of a contact that opened this step (its forces and couples fall to zero).
   template <bool kWall>
   [[gnu::always_inline]] static void book_opening(const ContactTable& tab, std::size_t r, const Row& row, PassSums& S) {
@@ -337,8 +376,6 @@ struct ContactKernel {
     }
     S.work += Pair{tab.F_n[r] * k.v_n, tab.F_t[r] * k.V_s};
     S.roll += Pair{W_r, 0.0};
-    if constexpr (!kWall)
-      if (row.dv.x != 0.0 || row.dv.y != 0.0) S.W_cell += tab.F_t[r] * dot(row.dv, k.t) - tab.F_n[r] * dot(row.dv, k.n);
     if constexpr (kWall) {
       S.W_w += dot(tab.f1[r], row.v_wall);
       if constexpr (Rolling::kActive)
@@ -405,10 +442,12 @@ struct ContactKernel {
     double* const sum_T = sums.torque;
     LedgerStep L;
     PassSums S;
+    static thread_local Crossings crossings;  // reused pass to pass
+    crossings.clear();
     const std::size_t n_rows = tab.size();
     for (std::size_t r = 0; r < n_rows; ++r) {
       Row row;
-      const Found found = kinematics<kWall>(D, image, c.walls, tab, r, row);
+      const Found found = kinematics<kWall>(D, image, c.walls, tab, r, row, kCommit ? &crossings : nullptr);
       if (found != Found::contact) {
         if (found == Found::coincident) {
           L.worst_overlap = INFINITY;  // coincident centres: the run has failed
@@ -439,6 +478,7 @@ struct ContactKernel {
       store_row<kWall>(tab, r, F_n, T, M, f1);
       add_to_sums<kWall>(tab, r, i, k, T, M, f1, sum_F, sum_T);
     }
+    if constexpr (!kWall && Image::kMoving && kCommit) book_crossings(D, image, tab, crossings, S);
     S.book(dt, L);
     merge(L, ledger);
   }
