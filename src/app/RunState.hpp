@@ -32,6 +32,7 @@ struct RunState {
   std::size_t ghosts = 0;    // ghost discs this rank holds
   std::size_t migrated = 0;  // discs this rank has sent to others so far
   std::int64_t flips = 0;    // of the periodic cell since the run began (config.domain is the cell now)
+  std::size_t regrids = 0;   // new decomposition grids of the deforming cell in this process (Simulation::regrid)
 };
 
 }  // namespace rondel

@@ -224,7 +224,7 @@ Domain Simulation::cell_sizing() const {
   s.yhi = s.ylo + smallest(s.length_y(), s.L.yy);
   if (s.L.xy != 0.0 || s.tilt != 0.0) s.tilt = 0.5 * s.length_x();
   // A stress-controlled length is unknown beforehand: its grid holds down to half the length now (a smaller
-  // cell is refused at the rebuild that finds it, Simulation::follow_cell).
+  // cell takes a new grid at the rebuild that finds it, Simulation::follow_cell).
   if (config_.cell_stress_xx > 0.0) s.xhi = s.xlo + 0.5 * s.length_x();
   if (config_.cell_stress_yy > 0.0) s.yhi = s.ylo + 0.5 * s.length_y();
   return s;
@@ -449,7 +449,8 @@ RunState Simulation::state() const {
                   reduction_.imbalance(),
                   exchange_.ghost_count(),
                   migrated_,
-                  flips_};
+                  flips_,
+                  regrids_};
 }
 
 EnergyLedger Simulation::global_ledger() const { return Reports(state()).global_ledger(); }

@@ -155,9 +155,11 @@ class Simulation final : public RunTarget {
   void check_initial_state();
   void rebuild();
   // A deforming cell: its step h += dt L h and its flip (SimulationStep.cpp); its shape into the decomposition's
-  // grid at a rebuild, refused when the cell has become too small for it.
+  // grid at a rebuild (a new grid when the cell has halved or doubled a side's cells), refused when a length has
+  // fallen below twice the interaction range.
   void deform_cell();
   void follow_cell();
+  void regrid();
   // The smallest and most tilted cell of the run (a decomposition grid's counts serve it all).
   Domain cell_sizing() const;
   // The inputs of the step's serial core (StepCore); `bounds`: the drift measures the motion bound.
@@ -195,6 +197,7 @@ class Simulation final : public RunTarget {
   DiscExchange exchange_;
   PhaseTimes phases_;
   std::size_t migrated_ = 0;
+  std::size_t regrids_ = 0;  // new decomposition grids of a deforming cell (regrid)
   RunFiles files_;
   Boundaries boundaries_{0.2, 0.1};
   BoxGeometry box0_;            // the box at the start of the run (reference of the strains)

@@ -99,15 +99,33 @@ void Simulation::deform_cell() {
 void Simulation::follow_cell() {
   const Domain& cell = config_.domain;
   const double range = neighbours_.range(R_max_);
-  const CellGrid& grid = decomposition_->grid();
-  if (grid.column_width(cell) < range || grid.row_height(cell) < range || cell.length_x() < 2.0 * range ||
-      cell.length_y() < 2.0 * range)
+  if (!(cell.length_x() >= 2.0 * range && cell.length_y() >= 2.0 * range))
     throw InstabilityError("step " + std::to_string(step_) + ": the cell (L_x = " + fmt(cell.length_x()) +
-                           ", L_y = " + fmt(cell.length_y()) + ", tilt = " + fmt(cell.tilt) +
-                           ") has become too small for the interaction range " + fmt(range) +
-                           " (its lengths below twice the range, or its decomposition's cells below the range): "
-                           "lower cell.rate_xx or cell.rate_yy, or run fewer steps");
-  decomposition_->follow(cell);
+                           ", L_y = " + fmt(cell.length_y()) + ") has become too small for the interaction range " +
+                           fmt(range) + " (a length below twice the range: a disc would meet two images of another)" +
+                           ": a larger cell, a higher cell.stress_* target's cell or a lower rate");
+  // A new grid when this one's cells have fallen below the range, or when the cell has grown so that twice as
+  // many cells fit a side (the counts a start now would take): the same on every rank, decided on the shape.
+  const CellGrid& grid = decomposition_->grid();
+  const CellGrid fresh(cell, range, cell_sizing());
+  if (grid.column_width(cell) < range || grid.row_height(cell) < range || fresh.nx() >= 2 * grid.nx() ||
+      fresh.ny() >= 2 * grid.ny())
+    regrid();
+  else
+    decomposition_->follow(cell);
+}
+
+void Simulation::regrid() {
+  // As a restart: the discs (with their rows) to an equal-cell cut of the new grid on any rank, then to the
+  // weighted cut. Collective, and rare: once per halving or doubling of a length.
+  make_decomposition(false);
+  exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_, true);
+  decomposition_->migrated();
+  if (decomposition_->repartition(discs_, pairs_)) {
+    exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_);
+    decomposition_->migrated();
+  }
+  ++regrids_;
 }
 
 void Simulation::walls_and_neighbours(const Integrator::Drift& drift) {

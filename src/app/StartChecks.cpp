@@ -185,16 +185,24 @@ void check_cell(const Config& c, const Domain& sizing, double range, double dt) 
     if (!(std::fabs(rate) * dt < 0.5))
       throw ConfigError(std::string(key) + " = " + fmt(rate) + " 1/s" + step +
                         " changes the cell's length by half or more in one step: lower the rate");
-  // A stress-controlled length is sized for half its length now (Simulation::cell_sizing).
-  const std::pair<const char*, double> lengths[] = {
-      {c.cell_stress_xx > 0.0 ? "cell.stress_xx" : "cell.rate_xx", sizing.length_x()},
-      {c.cell_stress_yy > 0.0 ? "cell.stress_yy" : "cell.rate_yy", sizing.length_y()}};
-  for (const auto& [key, length] : lengths)
-    if (!(length >= 2.0 * range))
-      throw ConfigError(std::string(key) + ": over run.steps = " + std::to_string(c.steps) + step +
-                        " the cell may shrink to a length of " + fmt(length) +
-                        " m (a stress target: half its length now), below twice the interaction range " + fmt(range) +
-                        " m (2 x largest radius + neighbour.skin): a larger cell, a lower rate or fewer steps");
+  // A rate's length over the run is known (the sizing's); a stress target's is not: its length now must hold,
+  // and a run that shrinks it below twice the range later stops there (Simulation::follow_cell).
+  const auto check = [&](bool servo, const char* stress_key, const char* rate_key, double now, double smallest) {
+    if (servo) {
+      if (!(now >= 2.0 * range))
+        throw ConfigError(std::string(stress_key) + ": the cell's length " + fmt(now) +
+                          " m is below twice the interaction range " + fmt(range) +
+                          " m (2 x largest radius + neighbour.skin): a larger cell");
+    } else if (!(smallest >= 2.0 * range)) {
+      throw ConfigError(std::string(rate_key) + ": over run.steps = " + std::to_string(c.steps) + step +
+                        " the cell shrinks to a length of " + fmt(smallest) + " m, below twice the interaction range " +
+                        fmt(range) +
+                        " m (2 x largest radius + neighbour.skin): a larger cell, a lower rate or fewer "
+                        "steps");
+    }
+  };
+  check(c.cell_stress_xx > 0.0, "cell.stress_xx", "cell.rate_xx", d.length_x(), sizing.length_x());
+  check(c.cell_stress_yy > 0.0, "cell.stress_yy", "cell.rate_yy", d.length_y(), sizing.length_y());
 }
 
 }  // namespace rondel::start_checks

@@ -28,8 +28,8 @@ void check_time_step(const Config& c, const CriticalStep& critical, double dt, d
 // count is checked where the scene is built).
 void check_cells(const Config& c, double range);
 // A deforming cell (cell.rate_*, cell.stress_*) with the time step dt: the tilt changes by less than half the cell a
-// step (a flip a step at most), no length shrinks by half in a step, and `sizing` (the smallest cell of the run,
-// Simulation::cell_sizing) is at least twice the interaction range `range` in both lengths.
+// step (a flip a step at most), no length shrinks by half in a step, and each length is at least twice the
+// interaction range `range`: a rate's over the run (`sizing`, Simulation::cell_sizing), a stress target's now.
 void check_cell(const Config& c, const Domain& sizing, double range, double dt);
 // Every disc: a finite kinetic energy and a surface speed |v| + |omega| R below the speed of light.
 void check_initial_motion(const Config& c, const DiscStore& discs);

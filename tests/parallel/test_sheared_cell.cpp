@@ -2,7 +2,8 @@
 // periodic packing of RankInvariance sheared at a constant rate (Lees-Edwards) to a shear strain of 3, through
 // three flips of the cell, gives the bits of the 1-rank run on 1 to 4 ranks (states and contact rows, compared in
 // lock step), with or without a servo on the cell's height; a checkpoint written after the first flip and resumed
-// on another rank count ends in the same bits.
+// on another rank count ends in the same bits. A gas that a servo compresses to under half its lengths takes a new
+// decomposition grid on the way, with the same bits on any rank count.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -145,6 +146,30 @@ TEST(ShearedCellRanks, TheServoHoldsTheMeanStressWithinOnePercent) {
 // checkpoint's rows, as the uninterrupted run's did after its kernel.
 TEST(ShearedCellRanks, AStressControlledRestartOnAnotherRankCountIsBitwise) {
   restart_case(sheared_ini() + "stress_yy = 2e4\nservo_gain = 5\nservo_max_rate = 50\n");
+}
+
+// A random gas of 250 discs at a packing fraction of 0.16, both lengths servo-controlled to 1e5 Pa: the cell
+// shrinks at up to 40 /s to 0.44 of its lengths, below the half its grid was sized for, and takes a new
+// decomposition grid (Simulation::regrid: the discs and their rows to the new grid's owners) before it jams: every
+// bit the 1-rank run's, on any rank count, through the regrid.
+TEST(ShearedCellRanks, AGasCompressedPastItsGridTakesANewGridBitwise) {
+  const std::string gas =
+      "[run]\nprogress = false\n[domain]\nxlo = 0\nxhi = 0.07\nylo = 0\nyhi = 0.07\nperiodic_x = true\n"
+      "periodic_y = true\n[cell]\nstress_xx = 1e5\nstress_yy = 1e5\nservo_gain = 40\nservo_max_rate = 40\n"
+      "[material]\ndensity = 2650\n[linear]\nk_n = 1e8\ne = 0.3\n[coulomb]\nk_s = 7.5e7\nmu = 0.1\n[scene]\n"
+      "type = random\ncount = 250\nradius_min = 0.0008\nradius_max = 0.0012\nseed = 3\n";
+  std::size_t regrids = 0;
+  double lx = 0.0;
+  const LockstepResult r = run_lockstep(gas, {}, 30000, 1000, [&](Simulation& par, Simulation*) {
+    regrids = par.state().regrids;
+    lx = par.measures().cell_lx;
+  });
+  if (world_rank() == 0)
+    std::cout << "[ gas      ] " << world_size() << " ranks: L_x " << lx << " m, " << regrids << " new grids; "
+              << (r.equal ? "bitwise equal" : "DIFFERS") << "\n";
+  EXPECT_TRUE(r.equal) << r.what;
+  EXPECT_LT(lx, 0.5 * 0.07) << "the cell should have shrunk past half its length";
+  EXPECT_GE(regrids, 1u);
 }
 
 }  // namespace
