@@ -49,6 +49,11 @@ from rondel import CheckFailed, UsageError, study  # noqa: E402
 from rondel.cli import ArgumentParser, add_figure_options, check_figure_options, pyplot, run_tool, save_figure  # noqa: E402,E501
 
 TOOL = "biaxial_sweep"
+# J05's own friction angles (Jiang, Yu & Harris 2005, section 5.2, from their text: the envelopes of Fig. 12 and the
+# ends of Fig. 13), (model, delta, phi_peak, phi_res) in degrees; drawn beside the curve. Model 1 at delta 0.4 is
+# 29.0 / 23.0 in the text on Fig. 12 and 28.8 / 22.8 a paragraph later: the first is drawn.
+J05_PUBLISHED = (("none", 0.0, 24.4, 19.3), ("jiang_brittle", 0.4, 26.5, 20.7), ("jiang_plastic", 0.4, 29.0, 23.0),
+                 ("jiang_plastic", 1.6, 42.3, 35.8))
 
 # --quick: the CI preset (a few seconds of simulation): two small undercompaction samples, delta 0 and 1.6.
 QUICK = dict(prep="undercompaction", samples=2, ucm_count=90, ucm_layers=3, ucm_width=0.08, ucm_e=0.35, deltas="0,1.6",
@@ -97,6 +102,9 @@ def main(argv=None):
     ap.add_argument("--ucm-width", type=float, default=0.18, help="undercompaction: box width [m] (default 0.18)")
     ap.add_argument("--collect-only", action="store_true",
                     help="run nothing: tables and figures from the runs finished so far (e.g. beside a running sweep)")
+    ap.add_argument("--from-table", metavar="CSV",
+                    help="run nothing: the curve's tables and figure from a table.csv this tool wrote (e.g. "
+                         "docs/biaxial/j05_table.csv, or one merged from several sweeps)")
     ap.add_argument("--quick", action="store_true",
                     help="tiny preset for CI: 90 discs in 3 layers (8 cm wide, e 0.3), 2 samples, delta 0 and 1.6, 200 kPa, "
                          "20,000 shear steps")
@@ -106,6 +114,10 @@ def main(argv=None):
     if a.quick:
         for k, v in QUICK.items():
             setattr(a, k, v)
+    if a.from_table:
+        if not os.path.isfile(a.from_table):
+            ap.error(f"--from-table: '{a.from_table}': no such file")
+        return run_tool(TOOL, from_table, a)
     if not os.access(a.rondel, os.X_OK):
         ap.error(f"the rondel executable '{a.rondel}' does not exist or is not executable "
                  "(build it: make -C build rondel, or pass --rondel)")
@@ -296,6 +308,23 @@ def collect(a, runs, failed):
     return finish(failed)
 
 
+def from_table(a):
+    """The curve (curve.csv, curve.md, curve.png) from the rows of a table.csv, the runs at --rate."""
+    os.makedirs(a.out, exist_ok=True)
+    text = ("model", "prep", "dir", "sample")
+    with open(a.from_table, newline="") as f:
+        rows = [{k: (v if k in text else float(v)) for k, v in r.items()} for r in csv.DictReader(f)]
+    if not rows:
+        raise UsageError(f"--from-table: '{a.from_table}' holds no run")
+    main_rows = [x for x in rows if x["rate"] == a.rate]
+    summary = summarise(a, main_rows)
+    envs = envelopes(a, main_rows)
+    write_curve(a, summary, envs)
+    if not a.no_plot:
+        plot_curve(a, summary, envs)
+    return 0
+
+
 def summarise(a, rows):
     """Per (model, delta, p): n samples, mean and sample standard deviation of phi_peak, phi_res, e0, eps_peak.
     Writes OUT/summary.csv."""
@@ -421,6 +450,10 @@ def plot_curve(a, summary, envs):
             ax.errorbar([k[1]], [np.mean([e[key] for e in envs[k]])],
                         yerr=[sd([e[key] for e in envs[k]]) if len(envs[k]) > 1 else 0], fmt="D", color="k",
                         mfc="none", ms=7, capsize=3, label="Model 2, envelope")
+        col = 2 if q == "phi_peak" else 3
+        for k, (m, dlt, *angles) in enumerate(J05_PUBLISHED):
+            ax.plot([dlt], [angles[col - 2]], "*", ms=11, color="tab:red", mfc="none" if m == "jiang_brittle" else
+                    "tab:red", label=("J05, envelopes (their text)" if k == 0 else None))
         ax.set_title(f"{title} friction angle", fontsize=10)
         ax.set_xlabel("delta (contact width B = delta r)")
         ax.grid(alpha=0.3)

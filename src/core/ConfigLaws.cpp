@@ -57,7 +57,7 @@ void read_block(const Reader& r, const LawKind& kind, const std::string& law, co
       continue;
     }
     if (block.in_one_of(spec.key)) ++one_of;
-    p.*spec.target = r.get<double>(key);  // in spec.range: the validation pass checked it
+    p.*spec.target = law_param(r, key, spec);
   }
   if (one_of > 1) {
     std::string keys;
@@ -96,6 +96,22 @@ ContactParams read_wall_contact(const LawCatalog& laws, const Reader& r, const C
 }
 
 }  // namespace
+
+void declare_law_param(KeyTable<Config>& table, const std::string& key, const ParamSpec& p, bool with_default,
+                       const std::string& help) {
+  const bool def = with_default && p.presence == Presence::defaulted;
+  if (p.words.empty()) {
+    table.declare_number<double>(key, def ? std::optional<double>(p.def) : std::nullopt, p.unit, p.range, help);
+    return;
+  }
+  table.declare_choice(key, def ? std::optional<std::string>(p.text(p.def)) : std::nullopt,
+                       std::vector<std::string>(p.words.begin(), p.words.end()), help);
+}
+
+double law_param(const Reader& r, const std::string& key, const ParamSpec& p) {
+  if (p.words.empty()) return r.get<double>(key);  // in p.range: the validation pass checked it
+  return p.word_index(r.get<std::string>(key));    // one of p.words: the validation pass checked it
+}
 
 void read_contact(const LawCatalog& laws, const Reader& r, Config& c) {
   refuse_unselected_blocks(laws, r, c);

@@ -48,7 +48,7 @@ void add_pair_keys(po::options_description& d, std::vector<KeySpec>& keys, const
     return;
   }
   for (const ParamSpec& p : find_block(laws, block)->params)
-    table.declare_number<double>(section + "." + p.key, std::nullopt, p.unit, p.range, p.help);
+    declare_law_param(table, section + "." + p.key, p, false, p.help);
 }
 
 }  // namespace
@@ -228,7 +228,7 @@ void read_pair_block(const LawCatalog& laws, const Reader& r, const std::string&
   for (const ParamSpec& spec : law.params) {
     const std::string key = section + "." + spec.key;
     if (!r.vm.count(key)) continue;
-    p.*spec.target = r.get<double>(key);  // in spec.range: the validation pass checked it
+    p.*spec.target = law_param(r, key, spec);
     if (!law.in_one_of(spec.key)) continue;
     ++one_of;  // the key given replaces the default's: the others of its group return to "not given"
     for (const char* other : law.one_of)

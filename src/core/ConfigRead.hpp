@@ -74,6 +74,12 @@ void read_pairs(const LawCatalog& laws, const Reader& r, const DynamicSections& 
 // scene.size_materials, walls.rough_materials.
 void read_scene(Config& c);
 void read_scene_materials(Config& c);
+// A law parameter's key: a number in its range, or one of its words (ParamSpec::words); `with_default`: its
+// default applies (a block's key; a pair block's keys have none). `help`: its help line.
+void declare_law_param(KeyTable<Config>& table, const std::string& key, const ParamSpec& p, bool with_default,
+                       const std::string& help);
+// A law parameter's value as given: its number, or its word's index (the validation pass checked either).
+double law_param(const Reader& r, const std::string& key, const ParamSpec& p);
 // Whether [section] is the block of a law that is not selected (left out of the resolved text).
 bool unselected_law_block(const LawCatalog& laws, const Config& c, const std::string& section);
 

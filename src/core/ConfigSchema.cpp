@@ -170,8 +170,8 @@ void add_law_sections(po::options_description& all, std::vector<KeySpec>& keys, 
     po::options_description section(std::string("[").append(block->section).append("] ").append(block->title));
     for (const ParamSpec& p : block->params) {
       const std::string key = std::string(block->section).append(".").append(p.key);
-      const auto def = p.presence == Presence::defaulted ? std::optional<double>(p.def) : std::nullopt;
-      Keys(section, keys).declare_number<double>(key, def, p.unit, p.range, param_help(p));
+      Keys table(section, keys);
+      config::declare_law_param(table, key, p, true, param_help(p));
     }
     all.add(section);
   }

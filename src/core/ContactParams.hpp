@@ -22,15 +22,17 @@ struct ContactParams {
   double zeta_t = 0.0;
   double mu = 0.0;
   // rolling laws (docs/physics.md section 3)
-  bool rolling = true;        // false: no rolling resistance at this pair (e.g. frictionless walls)
-  double delta = 0.0;         // jiang_*: contact width B = delta r
-  double k_r = 0.0;           // wang, alonso_marroquin
-  double mu_r = 0.0;          // wang, alonso_marroquin, force_proportional, constant_torque, displacement_damping
-  double c_r = 0.0;           // wang, alonso_marroquin rolling dashpot
-  double K_r = 0.0;           // iwashita_oda
-  double C_r = 0.0;           // iwashita_oda
-  double eta = 0.0;           // iwashita_oda
-  double f_lim = 0.08;        // constant_torque moment limiter
+  bool rolling = true;  // false: no rolling resistance at this pair (e.g. frictionless walls)
+  double delta = 0.0;   // jiang_*: contact width B = delta r
+  double after_break =
+      0.0;              // jiang_brittle: 0 reform (the spring restarts after a break), 1 open (M = 0 till it opens)
+  double k_r = 0.0;     // wang, alonso_marroquin
+  double mu_r = 0.0;    // wang, alonso_marroquin, force_proportional, constant_torque, displacement_damping
+  double c_r = 0.0;     // wang, alonso_marroquin rolling dashpot
+  double K_r = 0.0;     // iwashita_oda
+  double C_r = 0.0;     // iwashita_oda
+  double eta = 0.0;     // iwashita_oda
+  double f_lim = 0.08;  // constant_torque moment limiter
   double theta_rmax = 0.035;  // displacement_damping
   double nu = 0.0;            // displacement_damping viscous part
   double f_visc = 1.0;        // displacement_damping viscous factor at the limit

@@ -53,6 +53,18 @@ KeyTable<T>& KeyTable<T>::text(const std::string& key, Field<T, std::string> fie
 }
 
 template <class T>
+KeyTable<T>& KeyTable<T>::declare_choice(const std::string& key, std::optional<std::string> def,
+                                         const std::vector<std::string>& allowed, const std::string& help) {
+  keys_.push_back({key, KeyType::choice, kAnyNumber, allowed});
+  std::string any;
+  for (const std::string& w : allowed) any += (any.empty() ? "" : " | ") + w;
+  auto* value = po::value<std::string>();
+  if (def) value->default_value(*def);
+  declare(key, value, "-", help + ": " + any, kAnyNumber);
+  return *this;
+}
+
+template <class T>
 KeyTable<T>& KeyTable<T>::words(const std::string& key, Field<T, std::vector<std::string>> field, const char* def,
                                 const char* unit, const std::string& help, const std::vector<std::string>& allowed) {
   keys_.push_back({key, KeyType::words, kAnyNumber, allowed});

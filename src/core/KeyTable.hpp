@@ -129,6 +129,9 @@ class KeyTable {
       });
     return *this;
   }
+  // A word of `allowed` that a rule reads by hand (a word-valued law parameter); `def`: its default, or none.
+  KeyTable& declare_choice(const std::string& key, std::optional<std::string> def,
+                           const std::vector<std::string>& allowed, const std::string& help);
   // Whitespace-separated words, each one of `allowed` (any word when empty).
   KeyTable& words(const std::string& key, Field<T, std::vector<std::string>> field, const char* def, const char* unit,
                   const std::string& help, const std::vector<std::string>& allowed = {});

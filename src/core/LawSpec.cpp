@@ -18,6 +18,21 @@ std::string Range::text() const {
   return s.str();
 }
 
+std::string ParamSpec::text(double value) const {
+  if (!words.empty() && value >= 0.0 && value < static_cast<double>(words.size()))
+    return words[static_cast<std::size_t>(value)];
+  std::ostringstream s;
+  s.precision(17);
+  s << value;
+  return s.str();
+}
+
+int ParamSpec::word_index(const std::string& word) const {
+  for (std::size_t k = 0; k < words.size(); ++k)
+    if (word == words[k]) return static_cast<int>(k);
+  return -1;
+}
+
 const ParamSpec* LawBlock::find(const std::string& key) const {
   for (const ParamSpec& p : params)
     if (key == p.key) return &p;
@@ -38,10 +53,7 @@ std::vector<std::string> LawBlock::example_options() const {
   std::vector<std::string> out;
   for (const ParamSpec& spec : params) {
     if (std::isnan(spec.example)) continue;
-    std::ostringstream s;
-    s.precision(17);
-    s << "--" << section << "." << spec.key << "=" << spec.example;
-    out.push_back(s.str());
+    out.push_back("--" + std::string(section) + "." + spec.key + "=" + spec.text(spec.example));
   }
   return out;
 }

@@ -43,6 +43,13 @@ struct ParamSpec {
   // validation cases' disc D5 and contact set S): the law conformance tests run every law with these (NaN: the
   // default, or for an optional key not given).
   double example = NAN;
+  // A word-valued parameter: the words it allows, its value the word's index (`def`, `example` and `range` are
+  // indices). Empty: a number.
+  std::span<const char* const> words = {};
+  // The text of a value: the word of a word-valued parameter, else the number.
+  std::string text(double value) const;
+  // The index of `word` in `words`; -1 when it is not one.
+  int word_index(const std::string& word) const;
 };
 
 // One [section] of law parameters. Several laws may share a block (jiang_plastic and jiang_brittle).

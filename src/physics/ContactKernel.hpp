@@ -28,7 +28,6 @@
 #include <cstdint>
 #include <string>
 #include <type_traits>
-#include <vector>
 
 #include "core/ContactParams.hpp"
 #include "core/ContactTable.hpp"
@@ -37,6 +36,7 @@
 #include "core/ForceAssembly.hpp"
 #include "core/LedgerTerms.hpp"
 #include "core/Wall.hpp"
+#include "physics/CellCrossings.hpp"
 #include "physics/ContactKinematics.hpp"
 #include "physics/LawConcepts.hpp"
 #include "physics/LawTypes.hpp"
@@ -175,23 +175,10 @@ struct ContactKernel {
   };
   enum class Found { apart, contact, coincident };
 
-  // A row across a moving cell's boundary: the kernel's works are of the motion relative to disc 2's image, and
-  // the discs themselves receive dv . (f1' + f1) more, the cell's work (docs/physics.md section 10). The pass
-  // notes these rows (the few at the boundary, in the image's branches that shift them) with the last step's
-  // forces, and books them after the loop in row order (book_crossings): the same sums as booking them in the
-  // loop, without a test of dv in every row.
-  struct Crossing {
-    std::size_t r;
-    double F_n, F_t;  // the last step's
-  };
-  using Crossings = std::vector<Crossing>;
-  [[gnu::noinline, gnu::cold]] static void note_crossing(Crossings& crossings, std::size_t r, const ContactTable& tab) {
-    if (crossings.empty() || crossings.back().r != r) crossings.push_back({r, tab.F_n[r], tab.F_t[r]});
-  }
-
   // Kinematics of row r; `apart` when the discs are apart and the row carries no force (nothing to do),
   // `coincident` when two centres coincide (no normal exists: reported as a failed run).
-  // A pass that books the cell's work passes `crossings`: a moving cell's rows across its boundary are noted.
+  // A pass that books the cell's work passes `crossings`: a moving cell's rows across its boundary are noted
+  // (CellCrossings.hpp).
   template <bool kWall, class Image>
   [[gnu::always_inline]] static Found kinematics(const DiscView& D, const Image& image, const WallSet& walls,
                                                  const ContactTable& tab, std::size_t r, Row& row,
@@ -340,29 +327,6 @@ struct ContactKernel {
     if constexpr (kWall) tab.f1[r] = f1;
   }
 
-  // The cell's work of the rows across a moving cell's boundary, in row order (Crossing).
-  template <class Image>
-  static void book_crossings(const DiscView& D, const Image& image, const ContactTable& tab, const Crossings& crossings,
-                             PassSums& S) {
-    for (const Crossing& c : crossings) {
-      const auto i = static_cast<std::size_t>(tab.i1[c.r]);
-      const auto j = static_cast<std::size_t>(tab.i2[c.r]);
-      if (i >= D.n_owned) continue;  // booked by the rank that owns disc 1
-      Vec2 dv;
-      const Vec2 d = image.separation(D.x[i], D.x[j], dv);
-      const double dist2 = dot(d, d);
-      const double Rs = D.R[i] + D.R[j];
-      const bool loaded = c.F_n != 0.0 || c.F_t != 0.0;
-      if ((dist2 >= Rs * Rs && !loaded) || dist2 == 0.0 || (dv.x == 0.0 && dv.y == 0.0)) continue;  // as the pass
-      const ContactKinematics k =
-          disc_disc_kinematics(d, std::sqrt(dist2), D.R[i], D.R[j], D.v[i], D.v[j] + dv, D.w[i], D.w[j]);
-      if (k.u_n <= 0.0)  // it opened this step: the last half of the trapezoid (its forces are now zero)
-        S.W_cell += c.F_t * dot(dv, k.t) - c.F_n * dot(dv, k.n);
-      else
-        S.W_cell += (c.F_t + tab.F_t[c.r]) * dot(dv, k.t) - (c.F_n + tab.F_n[c.r]) * dot(dv, k.n);
-    }
-  }
-
   // The last half of the trapezoid of a contact that opened this step (its forces and couples fall to zero).
   template <bool kWall>
   [[gnu::always_inline]] static void book_opening(const ContactTable& tab, std::size_t r, const Row& row, PassSums& S) {
@@ -478,7 +442,8 @@ struct ContactKernel {
       store_row<kWall>(tab, r, F_n, T, M, f1);
       add_to_sums<kWall>(tab, r, i, k, T, M, f1, sum_F, sum_T);
     }
-    if constexpr (!kWall && Image::kMoving && kCommit) book_crossings(D, image, tab, crossings, S);
+    if constexpr (!kWall && Image::kMoving && kCommit)
+      S.W_cell = crossings_work(S.W_cell, image, D.x, D.v, D.w, D.R, D.n_owned, tab, crossings);
     S.book(dt, L);
     merge(L, ledger);
   }

@@ -16,10 +16,17 @@
 
 namespace rondel {
 
-// [jiang], shared by jiang_plastic and jiang_brittle.
+// [jiang], shared by jiang_plastic and jiang_brittle. after_break (jiang_brittle, its words' indices in
+// ContactParams::after_break): what a broken contact does next (RollingJiangBrittle).
+inline constexpr const char* kAfterBreakWords[] = {"reform", "open"};
+inline constexpr double kAfterBreakReform = 0.0, kAfterBreakOpen = 1.0;
 inline constexpr ParamSpec kJiangParams[] = {
     {"delta", "-", Presence::required, 0.0, kPositive, "shape parameter: contact width B = delta r",
      &ContactParams::delta, 0.3},
+    {"after_break", "-", Presence::defaulted, kAfterBreakReform, Range{0.0, 1.0, false, false},
+     "jiang_brittle after a break: reform (the spring restarts from theta_r = 0 the next step) or open (no couple "
+     "until the contact opens)",
+     &ContactParams::after_break, NAN, kAfterBreakWords},
 };
 inline constexpr LawBlock kJiangBlock{"jiang", "Jiang, Yu & Harris 2005 (jiang_plastic, jiang_brittle)", kJiangParams};
 

@@ -82,6 +82,13 @@ def main():
         curve = list(csv.DictReader(open(os.path.join(out, "curve.csv")))) if rc == 0 else []
         check("curve.csv: 2 deltas", [float(r["delta"]) for r in curve] == [0.0, 1.6], curve)
 
+        # --from-table: the same curve from the table alone (runs nothing).
+        again = os.path.join(work, "again")
+        rct, sot, set_ = tool("--from-table", os.path.join(out, "table.csv"), "--out", again, "--rondel", rondel,
+                              "--no-plot")
+        same = rct == 0 and open(os.path.join(again, "curve.csv")).read() == open(os.path.join(out, "curve.csv")).read()
+        check("--from-table: the same curve.csv from table.csv", same, (rct, sot[-1000:], set_[-1000:]))
+
         # Resume: a second call runs nothing and leaves the runs untouched.
         run = os.path.join(out, "jiang_plastic_d1.6_p200kPa_r0.1_ucm_s2006")
         before = os.path.getmtime(os.path.join(run, "measures.csv")) if rc == 0 else None
@@ -104,7 +111,7 @@ def main():
 
         # Usage errors: exit 1, one line 'biaxial_sweep: error: ...', no traceback.
         for args in (["--samples", "2"], ["--samples", "0", "--prep", "undercompaction"], ["--deltas", "0,x"],
-                     ["--strain", "1.5"]):
+                     ["--strain", "1.5"], ["--from-table", os.path.join(work, "missing.csv")]):
             rcu, sou, seu = tool("--out", os.path.join(work, "bad"), "--rondel", rondel, *args)
             lines = seu.strip().splitlines()
             check(f"usage error {' '.join(args)}: exit 1, one line",

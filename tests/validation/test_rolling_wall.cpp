@@ -558,13 +558,14 @@ TEST(RollingWall, AlonsoMarroquinStopsWhereWangStops) {
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// Section 2, jiang_brittle: the rolling spring passes theta_r0 = 2 F_n/(k_n B) after theta_r0/|omega0|
-// (7e-6 s, inside the first step), the contact breaks (M = 0 from then on, the contact stays closed) and the
-// disc rolls on at v0: it never stops.
+// Section 2, jiang_brittle with jiang.after_break = open: the rolling spring passes theta_r0 = 2 F_n/(k_n B)
+// after theta_r0/|omega0| (7e-6 s, inside the first step), the contact breaks (M = 0 from then on, the contact
+// stays closed) and the disc rolls on at v0: it never stops.
 
 TEST(RollingWall, JiangBrittleBreaksAndNeverStops) {
   const DiscOnWall d;
-  const Law law = equal_cap("jiang_brittle");
+  Law law = equal_cap("jiang_brittle");
+  law.overrides.push_back("--jiang.after_break=open");  // reform restarts the spring: test_rolling_jiang_brittle.cpp
   WallRun run(law);
   const double B = 0.3 * 2 * kR;
   const double theta_r0 = 2 * d.mg / (kKn * B);
@@ -653,18 +654,20 @@ TEST(RollingWall, JiangPlasticLedgerPlasticWorkAndEnergyBalance) {
 
 // ---------------------------------------------------------------------------------------------------------
 // Section 6, jiang_brittle: at the break the stored rolling energy K_m theta_r^2/2 of that step (theta_r as
-// the step found it, so at most M0^2/(2K_m)) moves from stored to E_r_break, and the ledger residual does
+// the step found it, so at most M0^2/(2K_m)) moves from stored to E_r_break, with the work the couple took from
+// the disc in the step's first half (-M_prev thetadot_r dt/2 of the trapezoid), and the ledger residual does
 // not jump. At v0 = 1 m/s the break comes in the first step with nothing stored yet (checked above), so
 // this runs at v0 = 0.01 m/s: omega0 dt = 2e-4 rad, the spring loads over about 7 steps and breaks with
 // about 5e-7 J stored.
 //
-// The couple still acted in the first half-kick of the breaking step (trapezoid), work M_prev |omega| dt/2
-// that is booked neither as stored nor as dissipated: E_total drops by that much at the break (O(dt),
-// bounded here by M0 |omega0| dt/2 and reported).
+// The couple still acted in the first half-kick of the breaking step (trapezoid), work M_prev |omega| dt/2 that
+// the release books with the stored energy: E_total does not change at the break beyond the integration's
+// error (before, it dropped by that work, up to M0 |omega0| dt/2).
 
 TEST(RollingWall, JiangBrittleLedgerAtBreak) {
   const DiscOnWall d;
-  const Law law = equal_cap("jiang_brittle");
+  Law law = equal_cap("jiang_brittle");
+  law.overrides.push_back("--jiang.after_break=open");  // the first break's release; reform's: the unit test
   const double v0 = 0.01;
   WallRun run(law, v0);
   Simulation& sim = run.sim();
@@ -695,9 +698,12 @@ TEST(RollingWall, JiangBrittleLedgerAtBreak) {
   });
   const double stored_before = 0.5 * law.K * theta_at_break * theta_at_break;
   const double cap_energy = law.M * law.M / (2 * law.K);
+  // The couple's work in the breaking step's first half, K_m |theta_before| |thetadot_r| dt / 2 (no dashpot here;
+  // the half-step spin a few per cent below omega0 by then).
+  const double half_step = 0.5 * law.K * std::fabs(theta_at_break * d.omega0(v0)) * kDt;
   std::printf("  jiang_brittle ledger at v0 = %.2f m/s (theta_r0 = %.7e rad)\n", v0, theta_r0);
   print("time of break [s]", t_break, t_expected);
-  print("E_r_break booked at the break [J]", released, stored_before);
+  print("E_r_break booked at the break [J]", released, stored_before + half_step);
   std::printf("    theta_r before the break %.7e rad; stored before %.6e J (cap M0^2/(2K_m) = %.6e J), after %.3e J\n",
               theta_at_break, stored_before, cap_energy, stored_after);
   std::printf("    E_total change over the breaking step %.3e J (bound M0 |omega0| dt/2 = %.3e J)\n", dE_total,
@@ -710,9 +716,10 @@ TEST(RollingWall, JiangBrittleLedgerAtBreak) {
   EXPECT_LE(t_break, t_expected + 2 * kDt);
   EXPECT_GT(stored_before, 0.5 * cap_energy);  // a real transfer, not the trivial one
   EXPECT_LE(stored_before, cap_energy);
-  EXPECT_NEAR(released, stored_before, 1e-12 * cap_energy);
+  EXPECT_NEAR(released, stored_before + half_step, 0.1 * half_step);  // omega0 for the half-step spin
+  EXPECT_GT(released, stored_before + 0.5 * half_step) << "the first half-step's work is released too";
   EXPECT_EQ(stored_after, 0.0);
-  EXPECT_LE(std::fabs(dE_total), 0.5 * law.M * std::fabs(d.omega0(v0)) * kDt);
+  EXPECT_LE(std::fabs(dE_total), 1e-2 * half_step) << "E_total unchanged at the break";
   EXPECT_LE(residual_jump, 1e-3 * released);
   EXPECT_LE(residual_jump, 2 * residual_step_max);
   EXPECT_LE(tr.residual_max, 1e-3);
