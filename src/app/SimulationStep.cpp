@@ -103,7 +103,7 @@ void Simulation::follow_cell() {
     throw InstabilityError("step " + std::to_string(step_) + ": the cell (L_x = " + fmt(cell.length_x()) +
                            ", L_y = " + fmt(cell.length_y()) + ") has become too small for the interaction range " +
                            fmt(range) + " (a length below twice the range: a disc would meet two images of another)" +
-                           ": a larger cell, a higher cell.stress_* target's cell or a lower rate");
+                           ": a larger cell, a lower cell.stress_* target or a lower rate");
   // A new grid when this one's cells have fallen below the range, or when the cell has grown so that twice as
   // many cells fit a side (the counts a start now would take): the same on every rank, decided on the shape.
   const CellGrid& grid = decomposition_->grid();

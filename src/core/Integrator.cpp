@@ -78,12 +78,12 @@ Integrator::Drift drift_pass(DiscStore& discs, const Domain& domain, double dt, 
       position[i] += dx;
       theta[i] += dt * omega[i];
       if constexpr (kMoving) {
+        // A moving cell shifts the velocity too (Lees-Edwards): the kinetic energy that changes is the cell's work.
         box.wrap_moving(position[i], v, m, W_cell);
       } else if (standing) {
         box.wrap_standing(position[i]);
       } else {
-        // A moving cell shifts the velocity too (Lees-Edwards): the kinetic energy that changes is the cell's work.
-        W_cell += box.wrap_work(position[i], v, m);
+        box.wrap(position[i]);  // a tilted cell that stands still: no velocity to shift
       }
       W_g += m * dot(gravity, dx);
       force[i] = body.on(m, flags[i]);
