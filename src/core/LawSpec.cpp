@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <sstream>
 
+#include "core/Format.hpp"
+
 namespace rondel {
 
 std::string Range::text() const {
@@ -21,10 +23,7 @@ std::string Range::text() const {
 std::string ParamSpec::text(double value) const {
   if (!words.empty() && value >= 0.0 && value < static_cast<double>(words.size()))
     return words[static_cast<std::size_t>(value)];
-  std::ostringstream s;
-  s.precision(17);
-  s << value;
-  return s.str();
+  return fmt(value, 17);
 }
 
 int ParamSpec::word_index(const std::string& word) const {

@@ -41,8 +41,7 @@ struct RollingJiangBrittle {
       h.theta_r = 0.0;
       return c;
     }
-    // Model 1's step, with its exact split of the couple's work into stored, plastic and dashpot energy.
-    return RollingJiangPlastic::moment(in, {h.theta_r});
+    return jiang_step(in, g, h.theta_r);  // Model 1's step, with its exact ledger split
   }
   static double stored(const ContactInput& in, History h) {
     return 0.5 * jiang_geometry(in).K_m * h.theta_r * h.theta_r;

@@ -39,18 +39,24 @@ inline JiangGeometry jiang_geometry(const ContactInput& in) {
   return {B, in.p.k_n * B * B / 12.0, NormalLinear::c_n(in.p, in.b) * B * B / 12.0};
 }
 
-// The elastic-plastic spring-slider shared by both Jiang models; theta_r already incremented.
-inline RollingCouple jiang_spring_slider(const JiangGeometry& g, double F_n, double thetadot_r, double dt,
-                                         double& theta_r) {
-  const double trial = -g.K_m * theta_r - g.mu_m * thetadot_r;
+// Model 1's step, shared by both Jiang models (jiang_brittle between its breaks), with the contact's geometry g:
+// theta_r += thetadot_r dt, the elastic-plastic spring-slider, and the ledger's split made exact (docs/physics.md
+// section 5): the kernel integrates the couple's work with the trapezoid of last and this step's couple, so the
+// energy the rolling spring-slider takes from the motion this step is -(M' + M)/2 thetadot_r dt; what the spring
+// does not store, K_m (theta_r^2 - theta_r'^2)/2, is dissipated: plastic work when the couple is at its cap, dashpot
+// work otherwise. Booked so, D_rolling_plastic + D_rolling_dashpot + the stored rolling energy equal -W_rolling to
+// round-off.
+inline RollingCouple jiang_step(const ContactInput& in, const JiangGeometry& g, double& theta_r) {
   const double before = theta_r;
-  const CapResult m = cap_spring_slider(trial, F_n * g.B / 6.0, g.K_m, theta_r);
+  theta_r += in.k.thetadot_r * in.dt;
+  const double trial = -g.K_m * theta_r - g.mu_m * in.k.thetadot_r;
+  const CapResult m = cap_spring_slider(trial, in.F_n * g.B / 6.0, g.K_m, theta_r);
   RollingCouple c{m.value, -m.value};
   c.yielded = m.capped;
-  if (m.capped)
-    c.plastic = std::fabs(m.value * (before - theta_r));
-  else
-    c.dashpot = g.mu_m * thetadot_r * thetadot_r * dt;
+  const double taken = -0.5 * (in.M1_prev + c.M1) * in.k.thetadot_r * in.dt;
+  const double lost = taken - 0.5 * g.K_m * (theta_r * theta_r - before * before);
+  c.plastic = c.yielded ? lost : 0.0;
+  c.dashpot = c.yielded ? 0.0 : lost;
   return c;
 }
 
@@ -68,22 +74,8 @@ struct RollingJiangPlastic {
     double& theta_r;  // [rad]
   };
 
-  // The ledger's split is made exact (docs/physics.md section 5): the kernel integrates the couple's work with the
-  // trapezoid of last and this step's couple, so the energy the rolling spring-slider takes from the motion this
-  // step is -(M' + M)/2 thetadot_r dt; what the spring does not store, K_m (theta_r^2 - theta_r'^2)/2, is
-  // dissipated: plastic work when the couple is at its cap, dashpot work otherwise. Booked so,
-  // D_rolling_plastic + D_rolling_dashpot + the stored rolling energy equal -W_rolling to round-off.
   static RollingCouple moment(const ContactInput& in, History h) {
-    double& theta_r = h.theta_r;
-    const double before = theta_r;
-    theta_r += in.k.thetadot_r * in.dt;
-    const JiangGeometry g = jiang_geometry(in);
-    RollingCouple c = jiang_spring_slider(g, in.F_n, in.k.thetadot_r, in.dt, theta_r);
-    const double taken = -0.5 * (in.M1_prev + c.M1) * in.k.thetadot_r * in.dt;
-    const double lost = taken - 0.5 * g.K_m * (theta_r * theta_r - before * before);
-    c.plastic = c.yielded ? lost : 0.0;
-    c.dashpot = c.yielded ? 0.0 : lost;
-    return c;
+    return jiang_step(in, jiang_geometry(in), h.theta_r);
   }
   static double stored(const ContactInput& in, History h) {
     return 0.5 * jiang_geometry(in).K_m * h.theta_r * h.theta_r;

@@ -59,12 +59,13 @@ Rolled roll(double after_break, int n_steps) {
 }
 
 struct Expected {
-  double B, K_m, M0, theta_r0;
+  double K_m, M0, theta_r0;
+  // The period theta_r0 / thetadot_r in steps: the steps from one break to the next, those that pass theta_r0 from 0.
+  int period() const { return static_cast<int>(std::floor(theta_r0 / (kRate * kDt))) + 1; }
 };
 Expected expected() {
   const double B = kDelta * kR;  // r = 2 R1 R2/(R1 + R2) = R for equal discs
-  const double K_m = kKn * B * B / 12.0;
-  return {B, K_m, kFn * B / 6.0, 2.0 * kFn / (kKn * B)};
+  return {kKn * B * B / 12.0, kFn * B / 6.0, 2.0 * kFn / (kKn * B)};
 }
 
 TEST(JiangBrittle, ReformIsASawtoothBetweenZeroAndTheCapWithItsPeriod) {
@@ -91,8 +92,7 @@ TEST(JiangBrittle, ReformIsASawtoothBetweenZeroAndTheCapWithItsPeriod) {
       EXPECT_EQ(r.released[s], 0.0);
     }
   }
-  // The period theta_r0 / thetadot_r: the steps from one break to the next are those that pass theta_r0 from 0.
-  const int period = static_cast<int>(std::floor(e.theta_r0 / (kRate * kDt))) + 1;
+  const int period = e.period();
   std::printf("  reform: theta_r0 %.6e rad, M0 %.6e N m, %d breaks in 200 steps, every %d steps\n", e.theta_r0, e.M0,
               breaks, second_break - first_break);
   ASSERT_GE(breaks, 3);
@@ -107,7 +107,7 @@ TEST(JiangBrittle, OpenKeepsTheCoupleAtZeroAfterTheFirstBreak) {
   const Expected e = expected();
   const Rolled r = roll(kAfterBreakOpen, 200);
   EXPECT_LE(r.worst_gap, 1e-12 * e.M0 * e.theta_r0) << "a step's energy does not close";
-  const int period = static_cast<int>(std::floor(e.theta_r0 / (kRate * kDt))) + 1;
+  const int period = e.period();
   for (int s = 0; s < period - 1; ++s) EXPECT_NE(r.M[static_cast<std::size_t>(s)], 0.0) << "step " << s;
   for (std::size_t s = static_cast<std::size_t>(period) - 1; s < r.M.size(); ++s) {
     EXPECT_EQ(r.M[s], 0.0) << "step " << s;
