@@ -251,14 +251,15 @@ void Simulation::setup_boundaries() {
     b.m_eff = m;
     return NormalLinear::c_n(p, b);
   };
-  // A contact that stiffens with overlap counts with its stiffness and dashpot at the largest overlap allowed.
+  // A contact that stiffens with overlap counts with its stiffness and dashpot at the largest overlap allowed, a
+  // hysteretic one with its unloading stiffness (stiffest_normal).
   const double u = config_.max_overlap * R_max_;
   auto linear = [&](const ContactParams& p, double m, double R_star) {
     ContactBodies b;
     b.m_eff = m;
     ContactKinematics k;
     k.R_star = R_star, k.u_n = u;
-    return normal_law(laws_).stiffening ? linearised(laws_, ContactInput{p, b, k}) : p;
+    return stiffest_normal(laws_, ContactInput{p, b, k});
   };
   double k_n = 0.0, c_n = 0.0;
   for (const ContactParams& w : config_.params.walls()) {

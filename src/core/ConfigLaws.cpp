@@ -1,8 +1,8 @@
 // [contact], the law blocks and [wall_contact]. Which laws exist, their keywords, blocks and parameters come from
 // the law catalog (physics/LawRegistry); the rows of ConfigSchema.cpp read the selected keywords. What is written
 // here applies to any law: a block of an unselected law is refused, a block's parameters fill ContactParams through
-// their ParamSpec, at most one key of a block's one_of group is given, and [wall_contact] takes only keys that the
-// selected laws' blocks have.
+// their ParamSpec, at most one key of a block's one_of group is given (one where the block requires it), and
+// [wall_contact] takes only keys that the selected laws' blocks have.
 #include <string>
 
 #include "core/ConfigRead.hpp"
@@ -59,11 +59,13 @@ void read_block(const Reader& r, const LawKind& kind, const std::string& law, co
     if (block.in_one_of(spec.key)) ++one_of;
     p.*spec.target = law_param(r, key, spec);
   }
-  if (one_of > 1) {
+  if (one_of > 1 || (one_of == 0 && block.one_of_required)) {
     std::string keys;
     for (const char* k : block.one_of)
       keys += (keys.empty() ? "'" : ", '") + std::string(block.section) + "." + k + "'";
-    throw ConfigError("keys " + keys + ": give at most one");
+    if (one_of > 1) throw ConfigError("keys " + keys + ": give at most one");
+    throw ConfigError("keys " + keys + ": give one (required with contact." + std::string(kind.kind) + " = " + law +
+                      ")");
   }
 }
 

@@ -60,6 +60,8 @@ struct LawBlock {
   // Keys of which at most one may be given (the linear law's damping: zeta, c_n or e). In a pair block, the one
   // given replaces the default's: the others return to their "not given" value.
   std::span<const char* const> one_of = {};
+  // One key of one_of must be given (walton_braun: e or K2); else none need be (linear: zeta 0 by default).
+  bool one_of_required = false;
   const ParamSpec* find(const std::string& key) const;
   // Every parameter at its example value (ParamSpec::example), or its default when it has no example.
   ContactParams with_examples(ContactParams p) const;

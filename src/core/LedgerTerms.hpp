@@ -26,14 +26,15 @@ struct LedgerTermInfo {
 
 // The ledger's values [J per thickness]. Works: of gravity W_g, of moving walls on discs W_w, of the contact
 // forces and couples W_n + W_t + W_r on the relative motion (negative when they resist). Dissipation by
-// mechanism (>= 0): Coulomb slip, rolling plastic work, rolling dashpots, and the stored rolling energy
-// released when brittle contacts break; and the work taken by the integrator's local damping
-// (run.local_damping; 0 when it is off).
+// mechanism (>= 0): Coulomb slip, rolling plastic work, rolling dashpots, the stored rolling energy released
+// when brittle contacts break and the normal law's hysteresis (walton_braun); and the work taken by the integrator's
+// local damping (run.local_damping; 0 when it is off).
 struct LedgerTerms {
   double KE0 = 0.0;  // kinetic energy at the start
   double W_g = 0.0, W_w = 0.0, W_n = 0.0, W_t = 0.0, W_r = 0.0;
   double W_cell = 0.0;  // of a deforming periodic cell on the discs (docs/physics.md section 10; 0 in a standing box)
   double D_slip = 0.0, D_r_plastic = 0.0, D_r_dashpot = 0.0, E_r_break = 0.0;
+  double D_n_hyst = 0.0;  // the hysteresis of a normal law whose unloading is stiffer (walton_braun; else 0)
   double D_damping = 0.0;
   double scale = 0.0;  // largest of KE, |W_g|, |W_w| seen at the diagnostics so far
 
@@ -56,6 +57,7 @@ struct LedgerTerms {
     visit(LedgerTermInfo{"D_r_plastic", "D_rolling_plastic", kKernelLoss}, terms.D_r_plastic...);
     visit(LedgerTermInfo{"D_r_dashpot", "D_rolling_dashpot", kKernelLoss}, terms.D_r_dashpot...);
     visit(LedgerTermInfo{"E_r_break", "E_rolling_break", kKernelLoss}, terms.E_r_break...);
+    visit(LedgerTermInfo{"D_n_hyst", "D_normal_hysteresis", kKernelLoss}, terms.D_n_hyst...);
     visit(LedgerTermInfo{"D_damping", "D_damping", kTermDissipation | kTermRankShare | kTermOfMotion},
           terms.D_damping...);
     visit(LedgerTermInfo{"scale", "", 0u}, terms.scale...);

@@ -16,10 +16,10 @@
 // point; a rotating wall (Omega) also works through the couple, (M1' + M1)/2 Omega dt, while the rolling
 // term of a wall row is (M1' + M1)/2 (omega1 - Omega) dt (docs/physics.md section 8). The rows' (F' + F) v terms are
 // summed and the sums multiplied by dt/2 once per pass; for a law whose couple on disc 2 is -M1, the rolling term is
-// (M1' + M1)(omega1 - omega2). The laws report Coulomb slip, rolling plastic and dashpot work and
-// brittle-break releases. A row is booked by the rank that owns its disc 1, so a border pair computed on
-// two ranks counts once. A pair across a moving cell's boundary also books the cell's work on its discs,
-// dv . (f1' + f1) dt/2, dv the velocity offset of disc 2's image (W_cell, docs/physics.md section 10).
+// (M1' + M1)(omega1 - omega2). The laws report Coulomb slip, rolling plastic and dashpot work, brittle-break
+// releases and the normal law's hysteresis. A row is booked by the rank that owns its disc 1, so a border pair computed
+// on two ranks counts once. A pair across a moving cell's boundary also books the cell's work on its discs, dv . (f1' +
+// f1) dt/2, dv the velocity offset of disc 2's image (W_cell, docs/physics.md section 10).
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -43,13 +43,16 @@
 
 namespace rondel {
 
-// This step's ledger terms: the kernel books those of kTermKernel (the rest stay zero).
-struct LedgerStep : LedgerTerms {
-  // The worst overlap above the context's limit this step (u_n / smaller radius; 0 when none), and where.
+// The worst overlap above the context's limit (u_n / smaller radius; 0 when none), and where.
+struct WorstOverlap {
   double worst_overlap = 0.0;
   ContactKey worst_key;
   bool worst_at_wall = false;
 };
+
+// This step's ledger terms: the kernel books those of kTermKernel (the rest stay zero), and the step's worst
+// overlap.
+struct LedgerStep : LedgerTerms, WorstOverlap {};
 
 // The contacts now: energy held by their springs [J per thickness], how many carry load, how many slide
 // (|F_t| at mu F_n) and how many have yielded in rolling (|M| at the law's cap). Booked rows only.
@@ -72,6 +75,7 @@ template <class Normal, class Tangential, class Rolling>
 struct ContactKernel {
   static constexpr std::size_t kTSlots = Tangential::slots.size();
   static constexpr std::size_t kRSlots = Rolling::slots.size();
+  static constexpr std::size_t kNSlots = Normal::slots.size();
   static constexpr int kCouples = couple_columns<Rolling>();
 
   // The pair rows take the standing box's minimum image or, in a cell that tilts or moves, the sheared one with
@@ -111,9 +115,11 @@ struct ContactKernel {
   struct Slots {
     std::array<double*, kTSlots + 1> t{};
     std::array<double*, kRSlots + 1> r{};
+    std::array<double*, kNSlots + 1> n{};
     explicit Slots(ContactTable& tab) {
       for (std::size_t s = 0; s < kTSlots; ++s) t[s] = tab.slot[s].data();
       for (std::size_t s = 0; s < kRSlots; ++s) r[s] = tab.slot[kTSlots + s].data();
+      for (std::size_t s = 0; s < kNSlots; ++s) n[s] = tab.slot[kTSlots + kRSlots + s].data();
     }
   };
 
@@ -121,30 +127,38 @@ struct ContactKernel {
   // copy of the row's values that is dropped afterwards (scratch; the structs then refer to the copy).
   using THistory = typename Tangential::History;
   using RHistory = typename Rolling::History;
+  using NHistory = typename Normal::History;
   struct CommittedHistory {
     THistory t;
     RHistory r;
+    NHistory n;
     CommittedHistory(const Slots& slots, std::size_t row)
         : t(history_row<THistory, kTSlots>(slots.t.data(), row)),
-          r(history_row<RHistory, kRSlots>(slots.r.data(), row)) {}
+          r(history_row<RHistory, kRSlots>(slots.r.data(), row)),
+          n(history_row<NHistory, kNSlots>(slots.n.data(), row)) {}
   };
   struct ScratchValues {
     std::array<double, kTSlots + 1> tv{};
     std::array<double, kRSlots + 1> rv{};
+    std::array<double, kNSlots + 1> nv{};
     std::array<double*, kTSlots + 1> tp{};
     std::array<double*, kRSlots + 1> rp{};
+    std::array<double*, kNSlots + 1> np{};
     ScratchValues(const Slots& slots, std::size_t row) {
       for (std::size_t s = 0; s < kTSlots; ++s) tv[s] = slots.t[s][row], tp[s] = &tv[s];
       for (std::size_t s = 0; s < kRSlots; ++s) rv[s] = slots.r[s][row], rp[s] = &rv[s];
+      for (std::size_t s = 0; s < kNSlots; ++s) nv[s] = slots.n[s][row], np[s] = &nv[s];
     }
   };
   struct ScratchHistory : ScratchValues {
     THistory t;
     RHistory r;
+    NHistory n;
     ScratchHistory(const Slots& slots, std::size_t row)
         : ScratchValues(slots, row),
           t(history_row<THistory, kTSlots>(this->tp.data(), 0)),
-          r(history_row<RHistory, kRSlots>(this->rp.data(), 0)) {}
+          r(history_row<RHistory, kRSlots>(this->rp.data(), 0)),
+          n(history_row<NHistory, kNSlots>(this->np.data(), 0)) {}
     ScratchHistory(const ScratchHistory&) = delete;  // t and r refer into this object
   };
   template <bool kCommit>
@@ -230,6 +244,7 @@ struct ContactKernel {
     if constexpr (kCommit) {
       for (std::size_t s = 0; s < kTSlots; ++s) clear(h.t[s][r]);
       for (std::size_t s = 0; s < kRSlots; ++s) clear(h.r[s][r]);
+      for (std::size_t s = 0; s < kNSlots; ++s) clear(h.n[s][r]);
     }
     clear(tab.F_n[r]);
     clear(tab.F_t[r]);
@@ -256,7 +271,7 @@ struct ContactKernel {
   // The worst overlap above the context's limit (u_n / smaller radius), and where.
   template <bool kWall>
   [[gnu::always_inline]] static void note_overlap(double overlap_limit, const ContactKinematics& k,
-                                                  const ContactKey& key, LedgerStep& L) {
+                                                  const ContactKey& key, WorstOverlap& L) {
     const double R_small = kWall ? k.R1 : std::min(k.R1, k.R2);
     if (k.u_n > overlap_limit * R_small && k.u_n > L.worst_overlap * R_small) {
       L.worst_overlap = k.u_n / R_small;
@@ -276,6 +291,7 @@ struct ContactKernel {
     Pair loss{0.0, 0.0};  // D_r_plastic, D_r_dashpot
     double W_w = 0.0, E_r_break = 0.0;
     double W_cell = 0.0;
+    double D_n_hyst = 0.0;
     // Into this pass's ledger terms, with the works' factor dt/2.
     void book(double dt, LedgerStep& L) const {
       const double half_dt = 0.5 * dt;
@@ -283,6 +299,7 @@ struct ContactKernel {
       L.W_w += half_dt * W_w;
       L.W_cell += half_dt * W_cell;
       L.D_slip += roll[1], L.D_r_plastic += loss[0], L.D_r_dashpot += loss[1], L.E_r_break += E_r_break;
+      if constexpr (hysteretic<Normal>()) L.D_n_hyst += D_n_hyst;
     }
   };
 
@@ -381,9 +398,8 @@ struct ContactKernel {
     }
   }
 
-  // A pass's terms into the step's: the kernel's sums and the worst overlap.
-  static void merge(const LedgerStep& L, LedgerStep& ledger) {
-    ledger.add_terms(L, kTermKernel);
+  // A pass's worst overlap into the step's.
+  static void merge(const WorstOverlap& L, LedgerStep& ledger) {
     if (L.worst_overlap > ledger.worst_overlap) {
       ledger.worst_overlap = L.worst_overlap;
       ledger.worst_key = L.worst_key;
@@ -404,7 +420,7 @@ struct ContactKernel {
     const ContactParams* const params = (kWall ? c.params.walls() : c.params.pairs()).data();
     Vec2* const sum_F = sums.force;
     double* const sum_T = sums.torque;
-    LedgerStep L;
+    WorstOverlap L;
     PassSums S;
     static thread_local Crossings crossings;  // reused pass to pass
     crossings.clear();
@@ -432,19 +448,23 @@ struct ContactKernel {
 
       note_overlap<kWall>(overlap_limit, k, tab.key[r], L);
       const ContactParams& p = params[tab.param[r]];
-      const double F_n = Normal::force(ContactInput{p, row.b, k});
       History<kCommit> hist(h, r);
+      const NormalForce N = Normal::force(ContactInput{p, row.b, k}, hist.n);
+      const double F_n = N.F_n;
       const ContactInput in{p, row.b, k, F_n, dt, row.w1, row.w2, last_M1(tab, r)};
       const TangentialForce T = Tangential::force(in, hist.t);
       const RollingCouple M = couple(in, tab, r, row, hist);
       const Vec2 f1 = T.F_t * k.t - F_n * k.n;
-      if (book) book_work<kWall>(tab, r, row, F_n, T, M, f1, S);
+      if (book) {
+        book_work<kWall>(tab, r, row, F_n, T, M, f1, S);
+        if constexpr (hysteretic<Normal>()) S.D_n_hyst += N.hysteresis;
+      }
       store_row<kWall>(tab, r, F_n, T, M, f1);
       add_to_sums<kWall>(tab, r, i, k, T, M, f1, sum_F, sum_T);
     }
     if constexpr (!kWall && Image::kMoving && kCommit)
       S.W_cell = crossings_work(S.W_cell, image, D.x, D.v, D.w, D.R, D.n_owned, tab, crossings);
-    S.book(dt, L);
+    S.book(dt, ledger);  // onto the step's sums (0 + x is x: the same bits as a pass's own sums added)
     merge(L, ledger);
   }
 
@@ -460,7 +480,7 @@ struct ContactKernel {
       if (kinematics<kWall>(D, image, c.walls, tab, r, row) != Found::contact || row.k.u_n <= 0.0) continue;
       const ContactParams& p = params[static_cast<std::size_t>(tab.param[r])];
       const ContactInput geometry{p, row.b, row.k};
-      e.normal += Normal::stored(geometry);
+      e.normal += Normal::stored(geometry, history_row<NHistory, kNSlots>(h.n.data(), r));
       e.tangential += Tangential::stored(geometry, history_row<THistory, kTSlots>(h.t.data(), r));
       const double F_n = tab.F_n[r];
       if (!(F_n > 0.0)) continue;

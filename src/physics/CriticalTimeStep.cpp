@@ -40,8 +40,10 @@ double contact_critical_step(const LawSelection& laws, const ContactParams& p_in
   if (normal_law(laws).stiffening) at_limit.u_n = max_overlap * (wall ? a.R : std::min(a.R, b.R));
   const ContactParams p = linearised(laws, ContactInput{p_in, bodies, at_limit});
   Best best;
-  const double w_n = std::sqrt(p.k_n / m_eff);
-  best.consider(mode_limit(w_n, NormalLinear::c_n(p, bodies) / (2.0 * std::sqrt(m_eff * p.k_n))), "normal");
+  // The normal mode with the law's stiffest spring (walton_braun: its unloading stiffness K2).
+  const ContactParams q = stiffest_normal(laws, ContactInput{p_in, bodies, at_limit});
+  const double w_n = std::sqrt(q.k_n / m_eff);
+  best.consider(mode_limit(w_n, NormalLinear::c_n(q, bodies) / (2.0 * std::sqrt(m_eff * q.k_n))), "normal");
 
   // Tangential and rolling springs in the coordinates s (sliding) and theta_r (rolling): their modes are
   // the eigenvalues of diag(k_s, K) [[G, C], [C, H]] with G = 1/m_t = sum(1/m_i + R_i^2/I_i),

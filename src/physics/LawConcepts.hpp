@@ -39,12 +39,33 @@ concept DeclaresNoSpring = requires {
 };
 
 template <class L>
-concept NormalLawType = DeclaredLaw<L> && requires(const ContactInput& in) {
-  { L::force(in) } -> std::same_as<double>;
-  { L::stored(in) } -> std::same_as<double>;
+concept NormalLawType = DeclaredLaw<L> && HistoryLaw<L> && requires(const ContactInput& in, typename L::History h) {
+  { L::force(in, h) } -> std::same_as<NormalForce>;
+  { L::stored(in, h) } -> std::same_as<double>;
   { L::linearised(in) } -> std::same_as<ContactParams>;
   { L::kStiffening } -> std::convertible_to<bool>;
 };
+
+// A normal law whose unloading is stiffer than what the other laws see of it (walton_braun: K2 = K1/e^2 against
+// K1) declares `stiffest(in)`, the parameters with that stiffness: the normal mode of the critical step and the
+// servo's gain take it. Every other law's stiffest spring is its linearised one.
+template <class L>
+ContactParams stiffest_normal(const ContactInput& in) {
+  if constexpr (requires { L::stiffest(in); })
+    return L::stiffest(in);
+  else
+    return L::linearised(in);
+}
+
+// A normal law that dissipates by hysteresis declares `kHysteresis = true` (walton_braun): the kernel books its
+// NormalForce::hysteresis (D_n_hyst), the others' kernels have no such term.
+template <class L>
+constexpr bool hysteretic() {
+  if constexpr (requires { L::kHysteresis; })
+    return L::kHysteresis;
+  else
+    return false;
+}
 
 template <class L>
 concept TangentialAPrioriSpring = requires(const ContactParams& p) {

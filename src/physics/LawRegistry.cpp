@@ -1,5 +1,5 @@
 // The registry's functions over the rows of LawRows.hpp. Every (linear, tangential, rolling) combination of
-// the step kernel is instantiated here, once; the hertz ones in HertzKernels.cpp.
+// the step kernel is instantiated here, once; those of the other normal laws in NormalLawKernels.cpp.
 #include "physics/LawRegistry.hpp"
 
 #include <type_traits>
@@ -21,15 +21,16 @@ const LawCatalog& law_catalog() {
 }
 
 KernelOps select_kernel(const LawSelection& laws) {
-  if (normal_law(laws).stiffening) return registry::select_stiffening_kernel(laws);
   KernelOps ops;
-  // The kernels of the other normal laws only, here (LawRows.hpp, select_stiffening_kernel).
-  registry::with_kernel_laws(laws, [&]<class N, class T, class R>() {
-    if constexpr (!N::kStiffening && registry::compatible<N, T>()) {
-      using K = ContactKernel<N, T, R>;
-      ops = KernelOps{&K::run, registry::select_initial_forces(laws), &K::stored_energy};
-    }
-  });
+  if (laws.normal != NormalLaws::First::name)
+    ops = registry::select_normal_law_kernel(laws);
+  else  // the kernels of the default normal law only, here (LawRows.hpp, select_normal_law_kernel)
+    registry::with_kernel_laws(laws, [&]<class N, class T, class R>() {
+      if constexpr (std::is_same_v<N, NormalLaws::First> && registry::compatible<N, T>()) {
+        using K = ContactKernel<N, T, R>;
+        ops = KernelOps{&K::run, registry::select_initial_forces(laws), &K::stored_energy};
+      }
+    });
   if (!ops.run)
     throw ConfigError("contact.tangential = " + laws.tangential +
                       " needs contact.normal = " + law_catalog().tangential.find(laws.tangential)->needs_normal);
@@ -52,6 +53,12 @@ LawSelection law_selection(const Config& c) {
   return laws;
 }
 
+ContactParams stiffest_normal(const LawSelection& laws, const ContactInput& in) {
+  ContactParams q = in.p;
+  NormalLaws::with(normal_law(laws).keyword, [&]<class N>() { q = stiffest_normal<N>(in); });
+  return q;
+}
+
 ContactParams linearised(const LawSelection& laws, const ContactInput& in) {
   ContactParams q = in.p;
   registry::NormalLaws::with(laws.normal, [&]<class N>() { q = N::linearised(in); });
@@ -67,6 +74,9 @@ std::vector<std::string> history_slots(const LawSelection& laws) {
   with_laws(laws, [&out]<class T, class R>() {
     for (const char* s : T::slots) out.emplace_back(s);
     for (const char* s : R::slots) out.emplace_back(s);
+  });
+  NormalLaws::with(normal_law(laws).keyword, [&out]<class N>() {
+    for (const char* s : N::slots) out.emplace_back(s);
   });
   return out;
 }

@@ -51,6 +51,10 @@ const LawInfo& normal_law(const LawSelection& laws);
 // and c_n at this overlap, the tangential law's k_s and zeta_t): the critical step at the largest overlap, the
 // servo's stiffest wall contact. The identity for linear laws.
 ContactParams linearised(const LawSelection& laws, const ContactInput& in);
+// The parameters with the normal law's stiffest spring and its dashpot at the kinematics `in.k`: its unloading
+// stiffness where that is stiffer than what the other laws see (walton_braun's K2), else its linearised k_n and c_n.
+// The normal mode of the critical step and the servo's gain.
+ContactParams stiffest_normal(const LawSelection& laws, const ContactInput& in);
 
 // The kernel and the stored-energy pass instantiated for the selected laws, chosen once at set-up (no
 // per-contact dispatch). `run` and `initial` add every row's force and torques to the discs' sums (begun and
@@ -64,7 +68,7 @@ struct KernelOps {
 
 // Throws ConfigError naming the key for a keyword that no law of its kind has.
 KernelOps select_kernel(const LawSelection& laws);
-// History slot names of the selected laws, in kernel order (tangential, then rolling).
+// History slot names of the selected laws, in kernel order (tangential, rolling, then normal).
 std::vector<std::string> history_slots(const LawSelection& laws);
 // An empty contact table with exactly the columns the selected laws need: of disc-disc rows, or of
 // disc-wall rows (wall_rows, with the force column f1).

@@ -5,6 +5,7 @@
 // Internal to the registry's translation units (LawRegistry.cpp, InitialForces.cpp).
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <type_traits>
 
 #include "core/Errors.hpp"
@@ -13,6 +14,7 @@
 #include "physics/LawRegistry.hpp"
 #include "physics/NormalHertz.hpp"
 #include "physics/NormalLinear.hpp"
+#include "physics/NormalWaltonBraun.hpp"
 #include "physics/RollingAlonsoMarroquin.hpp"
 #include "physics/RollingConstantTorque.hpp"
 #include "physics/RollingDisplacementDamping.hpp"
@@ -49,6 +51,8 @@ struct RollingRow {
 template <template <class> class Row, class... Laws>
 struct LawList {
   static_assert((Row<Laws>::ok && ...));
+  // The first law: the default of its contact.<kind> key.
+  using First = std::tuple_element_t<0, std::tuple<Laws...>>;
   // Calls f.template operator()<Law>() for the law named `keyword`; false when no law has that name.
   template <class F>
   static bool with(const std::string& keyword, F&& f) {
@@ -65,7 +69,7 @@ struct LawList {
 };
 
 // The registry rows. The first law of each list is the default of its contact.<kind> key.
-using NormalLaws = LawList<NormalRow, NormalLinear, NormalHertz>;
+using NormalLaws = LawList<NormalRow, NormalLinear, NormalHertz, NormalWaltonBraun>;
 using TangentialLaws = LawList<TangentialRow, TangentialCoulomb, TangentialNone, TangentialMindlin>;
 using RollingLaws =
     LawList<RollingRow, RollingNone, RollingJiangPlastic, RollingJiangBrittle, RollingWang, RollingAlonsoMarroquin,
@@ -125,9 +129,9 @@ constexpr bool compatible() {
 using InitialForces = void (*)(const KernelContext&, ContactTable&, ContactTable&, ForceSums);
 InitialForces select_initial_forces(const LawSelection& laws);
 
-// The step kernels of the normal laws whose stiffness grows with overlap (kStiffening: hertz), instantiated in
-// their own translation unit (StiffeningKernels.cpp): next to the others they change how GCC inlines the rolling
-// laws into the linear step kernel (wang: +15 % instructions per disc-step).
-KernelOps select_stiffening_kernel(const LawSelection& laws);
+// The step kernels of every normal law but the default (NormalLaws::First, linear), instantiated in their own
+// translation unit (NormalLawKernels.cpp): next to the linear kernels they change how GCC inlines the rolling laws
+// into the linear step kernel (wang: +15 % instructions per disc-step).
+KernelOps select_normal_law_kernel(const LawSelection& laws);
 
 }  // namespace rondel::registry

@@ -73,6 +73,13 @@ struct RollingCouple {
   bool yielded = false;  // a spring-slider at its cap this step
 };
 
+// The normal force of a contact [N, >= 0], with the work its hysteresis dissipated this step (a law whose unloading
+// is stiffer than its loading: walton_braun; 0 for the others).
+struct NormalForce {
+  double F_n = 0.0;
+  double hysteresis = 0.0;
+};
+
 // Tangential force on disc 1 along t, with the work dissipated by Coulomb slip this step.
 struct TangentialForce {
   double F_t = 0.0;

@@ -8,6 +8,7 @@
 // E*, G* and beta = ln e/sqrt(ln^2 e + pi^2) are the pair's constants (PairConstants.hpp). The rolling
 // laws that use k_n and c_n (jiang_*: K_m = k_n B^2/12, mu_m = c_n B^2/12) see this contact's S_n and c_n
 // (linearised()); the critical step takes S_n at the largest overlap the run allows (run.max_overlap).
+#include <array>
 #include <cmath>
 
 #include "core/ContactParams.hpp"
@@ -28,7 +29,9 @@ struct NormalHertz {
   static constexpr const char* name = "hertz";
   static constexpr const LawBlock* block = &kHertzBlock;
   static constexpr bool kStiffening = true;
-  static constexpr bool kElastic = true;  // E* from the materials' E and nu
+  static constexpr bool kElastic = true;                // E* from the materials' E and nu
+  static constexpr std::array<const char*, 0> slots{};  // no history
+  struct History {};
   // 2 sqrt(5/6): the Tsuji dashpot's factor.
   static constexpr double kDashpot = 1.8257418583505538;
 
@@ -38,13 +41,13 @@ struct NormalHertz {
   static double dashpot(const ContactParams& p, const ContactBodies& b, double S_n) {
     return -kDashpot * p.beta * std::sqrt(S_n * b.m_eff);
   }
-  static double force(const ContactInput& in) {
+  static NormalForce force(const ContactInput& in, History = {}) {
     const ContactKinematics& k = in.k;
     const double S_n = stiffness(in.p, k.R_star, k.u_n);
     const double f = (2.0 / 3.0) * S_n * k.u_n - dashpot(in.p, in.b, S_n) * k.v_n;
-    return f > 0.0 ? f : 0.0;
+    return {f > 0.0 ? f : 0.0};
   }
-  static double stored(const ContactInput& in) {
+  static double stored(const ContactInput& in, History = {}) {
     return (4.0 / 15.0) * stiffness(in.p, in.k.R_star, in.k.u_n) * in.k.u_n * in.k.u_n;
   }
   // The parameters with k_n and c_n of this contact now (for the rolling laws that use them, the critical step).

@@ -5,6 +5,7 @@
 #include <mpi.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -21,6 +22,7 @@
 #include "../support/ContactRows.hpp"
 #include "app/Simulation.hpp"
 #include "core/Errors.hpp"
+#include "core/Partitioners.hpp"
 #include "core/SceneBuilder.hpp"
 #include "support/Assertions.hpp"
 #include "support/Format.hpp"
@@ -333,6 +335,50 @@ inline LockstepResult run_lockstep(const std::string& ini, const std::vector<std
   res.migrated = par.diagnostics().migrated;
   res.builds = par.counts().neighbour_builds;
   return res;
+}
+
+// A decomposition a rank-invariance scene runs with: its name and its options (check_scene).
+struct Variant {
+  std::string name;
+  std::vector<std::string> overrides;
+};
+
+// Every partitioner of the registry (core/Partitioners.hpp), keeping its first map and repartitioning every 10
+// steps: a new partitioner is tested here without an edit.
+inline const std::vector<Variant>& variants() {
+  static const std::vector<Variant> v = [] {
+    std::vector<Variant> out;
+    for (const auto& partitioner : Partitioners::choices()) {
+      const std::string option = std::string("--parallel.partitioner=") + partitioner.word;
+      out.push_back({partitioner.word, {option}});
+      out.push_back({std::string(partitioner.word) + "+rebalance/10",
+                     {option, "--parallel.force_balance=true", "--parallel.balance_every=10"}});
+    }
+    return out;
+  }();
+  return v;
+}
+
+inline void check_scene(const std::string& scene, const std::string& ini, int steps, int every,
+                        bool expect_shared_rows) {
+  for (const Variant& var : variants()) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const LockstepResult r = run_lockstep(ini, var.overrides, steps, every);
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (world_rank() == 0)
+      std::cout << "[ rank-inv ] " << scene << " / " << var.name << " on " << world_size() << " ranks: " << steps
+                << " steps, " << r.builds << " neighbour builds, " << r.migrated
+                << " discs migrated, an active pair on up to " << r.max_copies << " ranks, " << secs << " s; "
+                << (r.equal ? "bitwise equal" : "DIFFERS") << "\n";
+    EXPECT_TRUE(r.equal) << scene << " / " << var.name << " on " << world_size() << " ranks: " << r.what;
+    EXPECT_GE(r.builds, 5u) << scene << " / " << var.name;
+    if (world_size() > 1) {
+      EXPECT_GT(r.migrated, 0) << scene << " / " << var.name << ": no disc crossed a rank border";
+      if (expect_shared_rows) {
+        EXPECT_GE(r.max_copies, 2) << scene << " / " << var.name << ": no contact across a border";
+      }
+    }
+  }
 }
 
 // Runs `body` on every rank; returns the message of a ConfigError thrown by it on every rank ("" when it

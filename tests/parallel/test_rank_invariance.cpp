@@ -26,48 +26,6 @@ namespace {
 
 using namespace partest;
 
-struct Variant {
-  std::string name;
-  std::vector<std::string> overrides;
-};
-
-// Every partitioner of the registry (core/Partitioners.hpp), keeping its first map and repartitioning every 10
-// steps: a new partitioner is tested here without an edit.
-const std::vector<Variant>& variants() {
-  static const std::vector<Variant> v = [] {
-    std::vector<Variant> out;
-    for (const auto& partitioner : Partitioners::choices()) {
-      const std::string option = std::string("--parallel.partitioner=") + partitioner.word;
-      out.push_back({partitioner.word, {option}});
-      out.push_back({std::string(partitioner.word) + "+rebalance/10",
-                     {option, "--parallel.force_balance=true", "--parallel.balance_every=10"}});
-    }
-    return out;
-  }();
-  return v;
-}
-
-void check_scene(const std::string& scene, const std::string& ini, int steps, int every, bool expect_shared_rows) {
-  for (const Variant& var : variants()) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const LockstepResult r = run_lockstep(ini, var.overrides, steps, every);
-    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (world_rank() == 0)
-      std::cout << "[ rank-inv ] " << scene << " / " << var.name << " on " << world_size() << " ranks: " << steps
-                << " steps, " << r.builds << " neighbour builds, " << r.migrated
-                << " discs migrated, an active pair on up to " << r.max_copies << " ranks, " << secs << " s; "
-                << (r.equal ? "bitwise equal" : "DIFFERS") << "\n";
-    EXPECT_TRUE(r.equal) << scene << " / " << var.name << " on " << world_size() << " ranks: " << r.what;
-    EXPECT_GE(r.builds, 5u) << scene << " / " << var.name;
-    if (world_size() > 1) {
-      EXPECT_GT(r.migrated, 0) << scene << " / " << var.name << ": no disc crossed a rank border";
-      if (expect_shared_rows) {
-        EXPECT_GE(r.max_copies, 2) << scene << " / " << var.name << ": no contact across a border";
-      }
-    }
-  }
-}
-
 // 1. (a) Deposition into a box with walls, gravity, friction and the Wang rolling law.
 TEST(RankInvariance, DepositionBitwiseEqualToOneRank) { check_scene("deposition", deposition_ini(), 4000, 250, true); }
 
@@ -83,59 +41,6 @@ TEST(RankInvariance, PeriodicPackingBitwiseEqualToOneRank) { check_scene("period
 // 1. (c) Plane shear: the packing of (b), periodic in x only, between rough walls (the bottom and top rows are
 // glued to them); the top wall is a servo and both walls shear in opposite directions, so glued discs cross
 // the periodic seam and the rank borders and free discs press on glued ghosts.
-// 1. (d) Two materials with Hertz-Mindlin contacts and the Wang rolling law with per-pair parameters: a
-// bidisperse deposition (glass and heavier steel discs, each with its own radius range) onto steel walls.
-TEST(RankInvariance, TwoMaterialHertzMindlinDepositionBitwiseEqualToOneRank) {
-  const std::string ini = R"(
-[domain]
-xlo = 0
-xhi = 0.06
-ylo = 0
-yhi = 0.12
-[gravity]
-y = -9.81
-[material.glass]
-density = 2500
-youngs_modulus = 1e10
-poisson_ratio = 0.25
-[material.steel]
-density = 7800
-youngs_modulus = 2e10
-poisson_ratio = 0.3
-[contact]
-normal = hertz
-tangential = mindlin
-rolling = wang
-[hertz]
-e = 0.6
-[hertz.glass.steel]
-e = 0.4
-[mindlin]
-mu = 0.5
-[mindlin.glass.wall.steel]
-mu = 0.2
-[wang]
-k_r = 2e5
-mu_r = 0.1
-[wang.steel.steel]
-mu_r = 0.02
-[walls]
-box = bottom left right
-material = steel
-[scene]
-type = random
-count = 200
-materials = glass steel
-material_fractions = 0.5 0.5
-material_by = area
-material_radius_min = 0.0015 0.002
-material_radius_max = 0.0025 0.003
-seed = 11
-vy = -0.5
-)";
-  check_scene("two-material hertz", ini, 8000, 500, true);
-}
-
 TEST(RankInvariance, RoughShearCellBitwiseEqualToOneRank) {
   std::string ini = periodic_ini();
   const std::string from = "periodic_y = true";

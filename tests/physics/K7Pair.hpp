@@ -134,7 +134,7 @@ K7Result run_k7(const ContactParams& p, double Omega, double dw1, double dw2, do
     const double dist = std::sqrt(dot(d, d));
     const ContactKinematics k = disc_disc_kinematics(d, dist, R[0], R[1], s.v[0], s.v[1], s.w[0], s.w[1]);
     if (k.u_n <= 0.0) out.in_contact = false;
-    const double F_n = NormalLinear::force(ContactInput{p, bodies, k});
+    const double F_n = NormalLinear::force(ContactInput{p, bodies, k}).F_n;
     const ContactInput in{p, bodies, k, F_n, h, s.w[0], s.w[1], M1_prev};
     const TangentialForce Ft = TangentialCoulomb::force(in, t_hist);
     const RollingCouple M = Rolling::moment(in, r_hist);

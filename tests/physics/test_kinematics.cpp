@@ -146,7 +146,7 @@ Integrated integrate(const Motion& m, const Frame& f = {}) {
     const Instant& s = r.s;
     r.k = kinematics(s);
     const ContactBodies b = bodies(s);
-    r.F_n = NormalLinear::force(ContactInput{p, b, r.k});
+    r.F_n = NormalLinear::force(ContactInput{p, b, r.k}).F_n;
     const ContactInput in{p, b, r.k, r.F_n, dt, s.w1, s.w2};
     r.F_t = TangentialCoulomb::force(in, {xi}).F_t;
     r.xi = xi;

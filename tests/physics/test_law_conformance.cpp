@@ -27,6 +27,7 @@
 #include "K7Pair.hpp"
 #include "OneContactRig.hpp"
 #include "physics/LawRows.hpp"
+#include "physics/PairConstants.hpp"
 
 namespace rondel {
 namespace {
@@ -115,23 +116,26 @@ Seen seen(const Motion& m, const Frame& f) {
 
 // Every step's force, couples and history of a law run `steps` times on the frozen motion.
 struct Trace {
-  std::vector<double> values;  // per step: F_n, F_t, M1, M2, then the history slots
+  std::vector<double> values;  // per step: F_n, F_t, M1, M2, then the history slots (tangential, rolling, normal)
   double scale = 0.0;          // the largest |value| of each kind, summed (the tolerance's scale)
   double largest_M1 = 0.0;
 };
 template <class N, class T, class R>
 Trace trace(const ContactParams& p, const Motion& m, const Frame& f, int steps, double dt) {
   const Seen s = seen(m, f);
-  std::vector<double> t_slots(T::slots.size() + 1, 0.0), r_slots(R::slots.size() + 1, 0.0);
-  std::vector<double*> t_cols, r_cols;
+  std::vector<double> t_slots(T::slots.size() + 1, 0.0), r_slots(R::slots.size() + 1, 0.0),
+      n_slots(N::slots.size() + 1, 0.0);
+  std::vector<double*> t_cols, r_cols, n_cols;
   for (double& v : t_slots) t_cols.push_back(&v);
   for (double& v : r_slots) r_cols.push_back(&v);
+  for (double& v : n_slots) n_cols.push_back(&v);
   const auto th = history_row<typename T::History, T::slots.size()>(t_cols.data(), 0);
   const auto rh = history_row<typename R::History, R::slots.size()>(r_cols.data(), 0);
+  const auto nh = history_row<typename N::History, N::slots.size()>(n_cols.data(), 0);
   Trace out;
   double M1_prev = 0.0, max_F = 0.0, max_M = 0.0;
   for (int n = 0; n < steps; ++n) {
-    const double F_n = N::force(ContactInput{p, s.b, s.k});
+    const double F_n = N::force(ContactInput{p, s.b, s.k}, nh).F_n;
     const ContactInput in{p, s.b, s.k, F_n, dt, s.w1, s.w2, M1_prev};
     const TangentialForce F_t = T::force(in, th);
     const RollingCouple M =
@@ -140,6 +144,7 @@ Trace trace(const ContactParams& p, const Motion& m, const Frame& f, int steps, 
     for (double v : {F_n, F_t.F_t, M.M1, M.M2}) out.values.push_back(v);
     for (std::size_t k = 0; k < T::slots.size(); ++k) out.values.push_back(t_slots[k]);
     for (std::size_t k = 0; k < R::slots.size(); ++k) out.values.push_back(r_slots[k]);
+    for (std::size_t k = 0; k < N::slots.size(); ++k) out.values.push_back(n_slots[k]);
     max_F = std::max({max_F, std::fabs(F_n), std::fabs(F_t.F_t)});
     max_M = std::max({max_M, std::fabs(M.M1), std::fabs(M.M2)});
     out.largest_M1 = std::max(out.largest_M1, std::fabs(M.M1));
@@ -225,7 +230,7 @@ TYPED_TEST(RollingConformance, TheCoupleNeverExceedsTheCapAndActs) {
     Motion m;
     m.wall = wall, m.w1 = 20.0, m.w2 = -10.0;  // drives every spring to its cap within a few dozen steps
     const Seen s = seen(m, {});
-    const double F_n = NormalLinear::force(ContactInput{p, s.b, s.k});
+    const double F_n = NormalLinear::force(ContactInput{p, s.b, s.k}).F_n;
     const double cap = R::cap(ContactInput{p, s.b, s.k, F_n});
     const Trace t = trace<NormalLinear, TangentialCoulomb, R>(p, m, {}, 400, 1e-5);
     EXPECT_LE(t.largest_M1, cap * (1.0 + 1e-12)) << "cap " << cap;
@@ -350,14 +355,16 @@ void with_its_normal(F&& f) {
     f.template operator()<NormalLinear>();
 }
 
-// The example parameters with an elastic normal law's pair constants (glass on glass) where the law needs them.
+// The example parameters with the constants the set-up derives from them (resolve_pair_constants: an elastic
+// normal law's pair constants, glass on glass; walton_braun's K2).
 template <class N, class T>
 ContactParams tangential_params() {
-  ContactParams p = example_params<N, T, RollingNone>();
-  p.E_star = 7e10 / (2.0 * (1.0 - 0.25 * 0.25));
-  p.G_star = 7e10 / (4.0 * (2.0 - 0.25) * (1.0 + 0.25));
-  p.beta = std::log(p.e_n > 0.0 ? p.e_n : 1.0) / std::hypot(std::log(p.e_n > 0.0 ? p.e_n : 1.0), std::numbers::pi);
-  return p;
+  Material glass;
+  glass.name = "glass", glass.youngs_modulus = 7e10, glass.poisson_ratio = 0.25;
+  ContactParamTable table(1);
+  table.pair(0, 0) = example_params<N, T, RollingNone>();
+  resolve_pair_constants(table, {glass});
+  return table.pair(0, 0);
 }
 
 TYPED_TEST(TangentialConformance, ARotatedFrameOrASuperposedSpinChangesNothing) {
@@ -383,10 +390,9 @@ TYPED_TEST(TangentialConformance, TheForceNeverExceedsMuFn) {
     const ContactParams p = tangential_params<N, T>();
     Motion m;
     m.v1 = {0.5, -0.3};  // slides hard
-    const Seen s = seen(m, {});
-    const double F_n = N::force(ContactInput{p, s.b, s.k});
+    const double F_n = trace<N, T, RollingNone>(p, m, {}, 1, 1e-5).values[0];
     const Trace t = trace<N, T, RollingNone>(p, m, {}, 400, 1e-5);
-    for (std::size_t i = 0; i + 1 < t.values.size(); i += 4 + T::slots.size())
+    for (std::size_t i = 0; i + 1 < t.values.size(); i += 4 + T::slots.size() + N::slots.size())
       ASSERT_LE(std::fabs(t.values[i + 1]), p.mu * F_n * (1.0 + 1e-12)) << "step " << i;
   });
 }
@@ -403,10 +409,16 @@ TYPED_TEST(NormalConformance, NoTensionAndAFrameFreeForce) {
   Motion m;
   m.v1 = {-3.0, -2.0};  // the discs part fast: a dashpot would pull
   const Trace base = trace<N, TangentialNone, RollingNone>(p, m, {}, 3, 1e-5);
-  for (std::size_t i = 0; i < base.values.size(); i += 4) EXPECT_GE(base.values[i], 0.0) << "no tension";
+  for (std::size_t i = 0; i < base.values.size(); i += 4 + N::slots.size())
+    EXPECT_GE(base.values[i], 0.0) << "no tension";
   EXPECT_EQ(differ(base, trace<N, TangentialNone, RollingNone>(p, m, {37.0 * kDeg, 5.0}, 3, 1e-5), 1e-10), "");
   const Seen s = seen(Motion{}, {});
-  EXPECT_GT(N::stored(ContactInput{p, s.b, s.k}), 0.0) << "an overlapping contact stores energy";
+  std::vector<double> fresh(N::slots.size() + 1, 0.0);  // a new contact's history
+  std::vector<double*> columns;
+  for (double& v : fresh) columns.push_back(&v);
+  EXPECT_GT(N::stored(ContactInput{p, s.b, s.k}, history_row<typename N::History, N::slots.size()>(columns.data(), 0)),
+            0.0)
+      << "an overlapping contact stores energy";
 }
 
 }  // namespace
