@@ -47,6 +47,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 from rondel import CheckFailed  # noqa: E402
+from rondel.study import run_command  # noqa: E402
 from rondel.cli import ArgumentParser, add_figure_options, check_figure_options, pyplot, run_tool, save_figure  # noqa: E402,E501
 
 TOOL = "biaxial_sensitivity"
@@ -152,8 +153,7 @@ def prepare_direct(a, sub, opts, prep, seeds):
         cmd = [sys.executable, os.path.join(HERE, "undercompaction.py"), "--out", d, "--rondel", a.rondel,
                "--pressure", "200000", "--layers", str(a.layers), "--e", e, "--seed", str(seed), "--count", count,
                "--width", width, "--extra=--run.max_overlap=0.2"] + prep
-        with open(d + ".log", "w") as f:
-            rc = subprocess.call(cmd, stdout=f, stderr=subprocess.STDOUT, cwd=ROOT)
+        rc, _ = run_command(cmd, d + ".log", ROOT)
         print(f"prepare {d}: rc {rc}", flush=True)
         if rc:
             raise CheckFailed(f"the preparation {d} failed: see {d}.log")
@@ -191,8 +191,7 @@ def study(a):
         if prep is not None or sub == "n4000":
             prepare_direct(a, sub, opts, prep or [], vseeds)
         log = os.path.join(a.out, f"{factor}_{sub}_{rate:g}_{damping:g}.log")
-        with open(log, "w") as f:
-            rc = subprocess.call(sweep_cmd(a, sub, opts, n), stdout=f, stderr=subprocess.STDOUT, cwd=ROOT)
+        rc, _ = run_command(sweep_cmd(a, sub, opts, n), log, ROOT)
         print(f"{factor}: {label}: rc {rc} ({log})", flush=True)
         if rc:
             failed.append(label)

@@ -33,7 +33,6 @@ DIR/angle_vs_mu_r.png. The rolling law's parameters: wang k_r = 2.857e5 N/m (inp
 constant_torque mu_r (f_lim its default 0.08); any other law takes its parameters from --set LAW.KEY=VALUE.
 Exit status: 0 done, 1 a missing or unreadable input or a bad option, 2 nothing measurable or a run failed.
 """
-import concurrent.futures as cf
 import csv
 import math
 import os
@@ -284,10 +283,6 @@ def run_dir_name(law, mu_r):
     return "none" if mu_r == 0.0 else f"{law}_mu{mu_r:g}"
 
 
-def launch(cmd, d, log):
-    return (d,) + study.run_command(cmd, log, ROOT)
-
-
 def main_sweep(args):
     try:
         laws = [s for s in args.laws.split(",") if s]
@@ -317,13 +312,8 @@ def main_sweep(args):
         if args.steps:
             cmd.append(f"--run.steps={args.steps}")
         cmd += law_args(law, mu, args.set) + list(args.rondel_arg)
-        todo.append((cmd, d, d + ".log"))
-    failed = []
-    with cf.ThreadPoolExecutor(max_workers=args.jobs) as pool:
-        for d, rc, secs in pool.map(lambda c: launch(*c), todo):
-            print(f"{os.path.basename(d)}: {'done' if rc == 0 else f'FAILED (exit {rc}, see {d}.log)'} in {secs:.0f} s")
-            if rc != 0:
-                failed.append(d)
+        todo.append([study.Job(name, cmd, d)])
+    failed = study.run_chains(todo, args.jobs, ROOT) if todo else {}
     table = []
     for name, (law, mu) in cases.items():
         d = os.path.join(args.out, name)
@@ -332,7 +322,7 @@ def main_sweep(args):
         rows, summary, t_from, last = measure_run(d, args.t_from)
         write_outputs(os.path.join(d, "drum"), rows, summary, t_from, last, args, f"{law}, mu_r = {mu:g}")
         for shown_law in (laws if mu == 0.0 else [law]):
-            table.append((shown_law, mu, summary, t_from, wall_time(d)))
+            table.append((shown_law, mu, summary, t_from, study.wall_seconds(d)))
     if not table:
         raise MeasureError("no run of the sweep finished")
     table.sort(key=lambda r: (r[0], r[1]))
@@ -340,15 +330,8 @@ def main_sweep(args):
     if not args.no_plot:
         sweep_plot(args.out, table, args)
     if failed:
-        raise CheckFailed(f"{len(failed)} run(s) failed: " + ", ".join(failed))
+        raise CheckFailed(f"{len(failed)} run(s) failed: " + ", ".join(os.path.join(args.out, n) for n in failed))
     return 0
-
-
-def wall_time(d):
-    try:
-        return float(open_run(d).summary()["wall_seconds"])
-    except (RondelError, KeyError, TypeError, ValueError):
-        return float("nan")
 
 
 def write_table(out, table):

@@ -64,7 +64,6 @@ of discharge, a snapshot every 2,500 steps, a checkpoint every 25,000, --drift 0
 Exit status: 0 done, 1 a missing or unreadable input or a bad option, 2 no pile could be measured in the final
 frame of a run, or a run of the sweep failed (the table holds the others).
 """
-import concurrent.futures as cf
 import csv
 import math
 import os
@@ -77,7 +76,8 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 from rondel import CheckFailed, Config, RondelFileError, UsageError, open_file, open_run, step_of_name  # noqa: E402
 from rondel.cli import ArgumentParser, add_figure_options, check_figure_options, pyplot, run_tool, save_figure  # noqa: E402,E501
-from rondel.study import complete as done, run_command, wall_seconds  # noqa: E402
+from rondel import study  # noqa: E402
+from rondel.study import complete as done, wall_seconds  # noqa: E402
 import repose  # noqa: E402
 
 TOOL = "sandpile"
@@ -423,8 +423,14 @@ def reached(d):
     return step_of_name(cps[-1]) if cps else -1
 
 
+def finished_at(target):
+    """A run's test of being finished (rondel.study.Job's DONE): complete, with its newest checkpoint at TARGET or
+    beyond."""
+    return lambda d: done(d) and reached(d) >= target
+
+
 def stage(a, name, d, fresh_cmd, target, redo=False):
-    """(job or None, what): the rondel call that brings run D to TARGET steps. Reused when it is complete at
+    """(study.Job or None, what): the rondel call that brings run D to TARGET steps. Reused when it is complete at
     TARGET (or beyond) and REDO is not set; resumed (rondel --resume D --run.steps=TARGET, the contact history
     kept) when it holds a checkpoint below TARGET: a run stopped by a signal, or killed, or complete at fewer
     steps (extended); otherwise run afresh into D."""
@@ -435,27 +441,19 @@ def stage(a, name, d, fresh_cmd, target, redo=False):
     if not redo and 0 <= step < target:
         cmd = prefix + ["--resume", d, f"--run.steps={target}", "--run.progress=false",
                         f"--output.checkpoint_every={a.checkpoint_every}"] + a.rondel_arg
-        return (cmd, d + ".log", d), f"{name}: resumed from step {step} to {target}"
+        return (study.Job(name, cmd, d, done=finished_at(target), output=False),  # --resume D writes into D
+                f"{name}: resumed from step {step} to {target}")
     cmd = prefix + fresh_cmd + [f"--run.output={d}", "--run.overwrite=true", "--run.progress=false",
                                 f"--run.steps={target}", f"--output.checkpoint_every={a.checkpoint_every}"]
-    return (cmd, d + ".log", d), f"{name}: run afresh ({target} steps)"
+    return study.Job(name, cmd, d, done=finished_at(target), again=redo), f"{name}: run afresh ({target} steps)"
 
 
 def launch_all(jobs, n, failed):
-    """Run JOBS [(cmd, log, dir)] N at a time; a run that exits non-zero or ends without 'status: complete'
-    is reported and added to FAILED."""
-    if not jobs:
-        return
-    with cf.ThreadPoolExecutor(n) as ex:
-        futures = {ex.submit(run_command, cmd, log, ROOT): (log, d) for cmd, log, d in jobs}
-        for fu in cf.as_completed(futures):
-            log, d = futures[fu]
-            rc, secs = fu.result()
-            ok = rc == 0 and done(d)
-            print(f"{os.path.basename(d)}: {'done' if ok else 'FAILED'} (exit {rc}) in {secs:.1f} s"
-                  + ("" if ok else f": see {log}"), flush=True)
-            if not ok:
-                failed.append(d)
+    """Run JOBS (study.Job) N at a time (rondel.study); a run that exits non-zero or does not finish at its step
+    is reported and its directory added to FAILED."""
+    if jobs:
+        bad = study.run_chains([[j] for j in jobs], n, ROOT)
+        failed.extend(j.out for j in jobs if j.name in bad)
 
 
 def check_preset(out, preset, write=True):

@@ -30,7 +30,6 @@ OUT/summary.txt. Exit status: 0 done, 1 bad input or usage, 2 a rondel run faile
 import math
 import os
 import random
-import subprocess
 import sys
 
 import numpy as np
@@ -38,7 +37,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
-from rondel import CheckFailed, open_run  # noqa: E402
+from rondel import CheckFailed, open_run, study  # noqa: E402
 from rondel.cli import ArgumentParser, run_tool  # noqa: E402
 
 TOOL = "undercompaction"
@@ -111,9 +110,7 @@ def band_areas(x, y, r, edges):
 
 
 def run(cmd, log):
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    with open(log, "w") as f:
-        rc = subprocess.call(cmd, stdout=f, stderr=subprocess.STDOUT, env=env, cwd=ROOT)
+    rc, _ = study.run_command(cmd, log, ROOT)
     if rc:
         tail = open(log).read().strip().splitlines()[-1:] or [""]
         raise CheckFailed(f"rondel exited with code {rc} ({log}): {tail[0]}")

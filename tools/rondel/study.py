@@ -73,37 +73,41 @@ def probe_dt(cmd, outdir, cwd=None, fallback=None):
 
 class Job:
     """One run: NAME (for the messages), CMD (the whole command line), OUT its run directory, LOG its output
-    (default OUT.log). DONE(out) says whether it finished (default: complete). With OUTPUT (default) a rondel
-    command without --run.output gets --run.output=OUT --run.overwrite=true; a command of another program (a
-    tool that runs rondel itself) passes OUTPUT=False."""
+    (default OUT.log). DONE(out) says whether it finished (default: complete); AGAIN runs it even so (what it
+    started from has changed). With OUTPUT (default) a rondel command without --run.output gets
+    --run.output=OUT --run.overwrite=true; a command of another program (a tool that runs rondel itself) passes
+    OUTPUT=False."""
 
-    def __init__(self, name, cmd, out, log=None, done=complete, output=True):
-        self.name, self.out, self.log, self.done = name, out, log or out + ".log", done
+    def __init__(self, name, cmd, out, log=None, done=complete, output=True, again=False):
+        self.name, self.out, self.log, self.done, self.again = name, out, log or out + ".log", done, again
         named = any(str(c).startswith("--run.output=") for c in cmd)
         self.cmd = cmd if named or not output else cmd + [f"--run.output={out}", "--run.overwrite=true"]
 
 
 def run_chains(chains, workers=1, cwd=None, say=print):
     """Run the jobs of CHAINS (lists of Job, each job after the one before it), WORKERS chains at a time, in
-    the order given; finished jobs are skipped. Returns {name: log} of the jobs that failed or could not run
-    because one before them in their chain failed."""
+    the order given; finished jobs are skipped. Says 'NAME: done (exit 0) in S s' or 'NAME: FAILED (exit N) in S s:
+    see LOG' as each ends (a run that exits 0 without finishing fails too). Returns {name: log} of the jobs that
+    failed or could not run because one before them in their chain failed."""
     failed = {}
 
     def go(chain):
         for k, job in enumerate(chain):
-            if job.done(job.out):
+            if not job.again and job.done(job.out):
                 continue
             os.makedirs(os.path.dirname(os.path.abspath(job.out)), exist_ok=True)
             rc, seconds = run_command([str(c) for c in job.cmd], job.log, cwd)
-            say(f"{job.name}: exit {rc}, {seconds:.1f} s", flush=True)
-            if rc or not job.done(job.out):
+            ok = rc == 0 and job.done(job.out)
+            say(f"{job.name}: {'done' if ok else 'FAILED'} (exit {rc}) in {seconds:.1f} s"
+                + ("" if ok else f": see {job.log}"), flush=True)
+            if not ok:
                 failed[job.name] = job.log
                 for rest in chain[k + 1:]:
                     failed[rest.name] = f"not run: {job.name} failed (see {job.log})"
                 return
 
     chains = [c for c in chains if c]
-    todo = sum(1 for c in chains for j in c if not j.done(j.out))
+    todo = sum(1 for c in chains for j in c if j.again or not j.done(j.out))
     say(f"{todo} run(s) to go, {sum(len(c) for c in chains) - todo} finished before", flush=True)
     with cf.ThreadPoolExecutor(max(1, workers)) as ex:
         list(ex.map(go, chains))
