@@ -159,7 +159,7 @@ struct ContactKernel {
           t(history_row<THistory, kTSlots>(this->tp.data(), 0)),
           r(history_row<RHistory, kRSlots>(this->rp.data(), 0)),
           n(history_row<NHistory, kNSlots>(this->np.data(), 0)) {}
-    ScratchHistory(const ScratchHistory&) = delete;  // t and r refer into this object
+    ScratchHistory(const ScratchHistory&) = delete;  // t, r and n refer into this object
   };
   template <bool kCommit>
   using History = std::conditional_t<kCommit, CommittedHistory, ScratchHistory>;
@@ -292,7 +292,7 @@ struct ContactKernel {
     double W_w = 0.0, E_r_break = 0.0;
     double W_cell = 0.0;
     double D_n_hyst = 0.0;
-    // Into this pass's ledger terms, with the works' factor dt/2.
+    // Onto the step's ledger terms, with the works' factor dt/2.
     void book(double dt, LedgerStep& L) const {
       const double half_dt = 0.5 * dt;
       L.W_n += half_dt * work[0], L.W_t += half_dt * work[1], L.W_r += half_dt * roll[0];

@@ -135,8 +135,8 @@ TEST(BondParallel, ARotatedFrameAndASuperposedSpinChangeNoForce) {
                                      std::pair{137.0 * std::numbers::pi / 180.0, -11.0}}) {
     const std::vector<double> other = trace(angle, Omega);
     for (std::size_t i = 0; i < base.size(); ++i)
-      ASSERT_NEAR(other[i], base[i], 1e-12 * std::max(1.0, std::fabs(base[i]))) << "value " << i << ", angle " << angle
-                                                                              << ", Omega " << Omega;
+      ASSERT_NEAR(other[i], base[i], 1e-12 * std::max(1.0, std::fabs(base[i])))
+          << "value " << i << ", angle " << angle << ", Omega " << Omega;
   }
 }
 

@@ -10,7 +10,7 @@
 //  - its a-priori spring for the critical step bounds the stiffness it shows (docs/physics.md section 4);
 //  - stored energy against the ledger: a disc rolling on a wall keeps kinetic + stored energy + the ledger's
 //    dissipation (slip, rolling plastic and dashpot work, brittle releases) constant to 1e-3, unless the law
-//    declares unsplit_work;
+//    declares unsplit_work, on the linear normal law and on walton_braun;
 //  - no history committed at the first evaluation (KernelOps::initial, the forces of t = 0);
 // and the checkpoint round trip, which needs HDF5: tests/regression/test_law_files.cpp.
 #include <gtest/gtest.h>
@@ -301,9 +301,15 @@ struct LedgerGap {
   double gap = 0.0, work = 0.0, yielded = 0.0;
 };
 template <class R>
-LedgerGap rolling_ledger(double omega, double slip, int steps) {
-  const ContactParams p = example_params<NormalLinear, TangentialCoulomb, R>();
-  testing_rig::OneContactRig rig({"linear", "coulomb", R::name}, p, kR1, INFINITY, kOverlap, p.k_n * kOverlap);
+LedgerGap rolling_ledger(double omega, double slip, int steps, const char* normal = "linear") {
+  ContactParams p = example_params<NormalLinear, TangentialCoulomb, R>();
+  registry::NormalLaws::with(normal, [&]<class N>() {
+    ContactParamTable table(1);  // the normal law's examples, with what the set-up derives from them (K2)
+    table.pair(0, 0) = N::block->with_examples(p);
+    resolve_pair_constants(table, {Material{}});
+    p = table.pair(0, 0);
+  });
+  testing_rig::OneContactRig rig({normal, "coulomb", R::name}, p, kR1, INFINITY, kOverlap, p.k_n * kOverlap);
   rig.discs().omega[0] = omega;
   rig.discs().velocity[0] = -(1.0 - slip) * omega * wall_lever(kR1, kR1 - kOverlap) * rig.t;
   rig.start(1e-5);
@@ -337,6 +343,10 @@ TYPED_TEST(RollingConformance, ItsStoredEnergyAndDissipationCloseTheLedger) {
     const LedgerGap plastic = rolling_ledger<R>(80.0, 0.25, 3000);
     EXPECT_LE(plastic.gap, 1e-3) << "at the cap (work " << plastic.work << " J)";
     EXPECT_GT(plastic.yielded, 0.0) << "the couple yielded or broke";
+    // The same on walton_braun (its K1 the rolling laws' k_n; the preload holds the disc on its loading line).
+    const LedgerGap wb = rolling_ledger<R>(80.0, 0.25, 3000, "walton_braun");
+    EXPECT_LE(wb.gap, 1e-3) << "at the cap on walton_braun (work " << wb.work << " J)";
+    EXPECT_GT(wb.yielded, 0.0) << "the couple yielded or broke on walton_braun";
   }
 }
 
