@@ -69,6 +69,11 @@ void read_block(const Reader& r, const LawKind& kind, const std::string& law, co
   }
 }
 
+// The pair block of a law at walls, for a message: "[coulomb.MATERIAL.wall.WALL_MATERIAL]".
+std::string wall_block_hint(const LawBlock* block) {
+  return std::string(block ? block->section : "BLOCK") + ".MATERIAL.wall.WALL_MATERIAL";
+}
+
 // [wall_contact]: the disc-disc parameters p with the keys given here replacing theirs. A key needs a selected
 // law whose block has the parameter of that name.
 ContactParams read_wall_contact(const LawCatalog& laws, const Reader& r, const Config& c, const ContactParams& p) {
@@ -87,7 +92,9 @@ ContactParams read_wall_contact(const LawCatalog& laws, const Reader& r, const C
     if (!spec)
       throw ConfigError("key '" + key + "' needs a selected law with the parameter " + name +
                         " (contact.normal = " + c.normal_law + ", contact.tangential = " + c.tangential_law +
-                        "; hertz and mindlin take theirs from the materials' E and nu, and [hertz.A.wall.W] e)");
+                        "); every key of a law's block can be given at walls in its pair block, [" +
+                        wall_block_hint(std::string(name) == "k_s" || std::string(name) == "mu" ? tangential : normal) +
+                        "]");
     w.*spec->target = r.get<double>(key);
     // The damping given replaces the disc-disc one: the other damping keys return to "not given".
     if (block->in_one_of(name))
