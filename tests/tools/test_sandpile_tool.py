@@ -45,6 +45,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 TOOL = os.path.join(HERE, "..", "..", "tools", "sandpile.py")
 sys.path.insert(0, os.path.dirname(TOOL))
 import sandpile  # noqa: E402
+import sandpile_sweep  # noqa: E402
 PY = sys.executable or "/usr/bin/python3"
 R = 2.5e-3
 FLOOR, CEILING = -0.57, -0.22
@@ -268,12 +269,12 @@ LAWS = ["jiang_plastic", "constant_torque"]
 def sweep_options():
     laws = LAWS
     default = {"jiang_plastic": 750000, "constant_torque": 750000}
-    check("--steps '': the scenes' steps", sandpile.parse_steps("", laws, default) == default)
-    got = sandpile.parse_steps("constant_torque=1750000,1000", laws, default)
+    check("--steps '': the scenes' steps", sandpile_sweep.parse_steps("", laws, default) == default)
+    got = sandpile_sweep.parse_steps("constant_torque=1750000,1000", laws, default)
     check("--steps LAW=N wins over N in any order", got == {"jiang_plastic": 1000, "constant_torque": 1750000}, got)
     for bad in ("wang=5", "x", "0", "jiang_plastic=-3"):
         try:
-            sandpile.parse_steps(bad, laws, default)
+            sandpile_sweep.parse_steps(bad, laws, default)
             check(f"--steps '{bad}' refused", False, "accepted")
         except sandpile.UsageError:
             check(f"--steps '{bad}' refused", True)
