@@ -83,18 +83,23 @@ ContactParams read_wall_contact(const LawCatalog& laws, const Reader& r, const C
   const LawBlock* tangential = selected_block(laws, c, laws.tangential);
   if (r.vm.count("wall_contact.zeta") && r.vm.count("wall_contact.e"))
     throw ConfigError("keys 'wall_contact.zeta' and 'wall_contact.e': give at most one");
-  for (const char* name : {"k_n", "zeta", "e", "k_s", "mu"}) {
+  // The keys [wall_contact] takes, and the kind of law whose block has them.
+  struct WallKey {
+    const char* name;
+    bool normal;
+  };
+  for (const WallKey& wk :
+       {WallKey{"k_n", true}, WallKey{"zeta", true}, WallKey{"e", true}, WallKey{"k_s", false}, WallKey{"mu", false}}) {
+    const char* name = wk.name;
     const std::string key = std::string("wall_contact.") + name;
     if (!r.vm.count(key)) continue;
-    const bool is_normal = normal && normal->find(name);
-    const LawBlock* block = is_normal ? normal : tangential;
+    const LawBlock* block = wk.normal ? normal : tangential;
     const ParamSpec* spec = block ? block->find(name) : nullptr;
     if (!spec)
       throw ConfigError("key '" + key + "' needs a selected law with the parameter " + name +
                         " (contact.normal = " + c.normal_law + ", contact.tangential = " + c.tangential_law +
                         "); every key of a law's block can be given at walls in its pair block, [" +
-                        wall_block_hint(std::string(name) == "k_s" || std::string(name) == "mu" ? tangential : normal) +
-                        "]");
+                        wall_block_hint(block) + "]");
     w.*spec->target = r.get<double>(key);
     // The damping given replaces the disc-disc one: the other damping keys return to "not given".
     if (block->in_one_of(name))
