@@ -6,8 +6,8 @@
 // nanoseconds per contact and step, a STREAM-like triad's memory bandwidth (measured before the simulation is
 // built; --no-stream skips it), the model of the bytes a step moves per disc (traffic_model,
 // BenchSupport.hpp) and the bound on disc-steps per second that the two give.
-//   rondel_bench [--discs 10000 x k] [--steps 5000] [--warmup 1000] [--rolling LAW] [--file PATH] [--no-stream]
-//                [--skin S] [--against LAW [--chunk 100]] [--shear RATE] [--locked]
+//   rondel_bench [--discs 10000 x k] [--steps 5000] [--warmup 1000] [--rolling LAW] [--normal LAW] [--file PATH]
+//                [--no-stream] [--skin S] [--against LAW [--chunk 100]] [--shear RATE] [--locked]
 // Without --file it reads bench/jammed10k.csv of the working directory (a clone's root) and, when that is
 // missing, the one of the source tree it was built from (RONDEL_SOURCE_DIR, set by CMakeLists.txt), so it runs
 // from a build directory as well; the packing is described in bench/README.md. With --file, --discs counts
@@ -26,7 +26,9 @@
 // sheared cell at I = 1e-3 against today's periodic box (docs/benchmarks.md). --locked makes every contact of
 // both simulations stick: coulomb.mu and the rolling laws' caps (wang, force_proportional, constant_torque and
 // displacement_damping mu_r, iwashita_oda eta) raised to 1e6, so that a sheared packing's contacts neither slide
-// nor yield in rolling, as a jammed one's: what a cell costs apart from the physics of a flow.
+// nor yield in rolling, as a jammed one's: what a cell costs apart from the physics of a flow. --normal walton_braun
+// runs both simulations with the hysteretic normal law instead of the linear one (K1 = the linear k_n, and the
+// restitution the linear law's zeta = 0.3 gives, 0.37: K2 = 7.3 K1).
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -45,6 +47,7 @@
 #include "core/Format.hpp"
 #include "parallel/Communicator.hpp"
 #include "physics/LawRegistry.hpp"
+#include "physics/Restitution.hpp"
 
 namespace {
 
@@ -52,10 +55,11 @@ struct Options {
   long discs = 10000, steps = 5000, warmup = 1000;
   std::string file;  // empty: the default packing (default_packing)
   std::string rolling = "none";
-  std::string skin;     // empty: neighbour.skin's default
-  std::string against;  // a second rolling law run beside the first, in alternating chunks (empty: none run)
-  std::string shear;    // cell.rate_xy of the first simulation (empty: its cell stands still)
-  long chunk = -1;      // steps per chunk with --against (-1: 100, or --steps when fewer)
+  std::string normal = "linear";  // linear or walton_braun
+  std::string skin;               // empty: neighbour.skin's default
+  std::string against;            // a second rolling law run beside the first, in alternating chunks (empty: none run)
+  std::string shear;              // cell.rate_xy of the first simulation (empty: its cell stands still)
+  long chunk = -1;                // steps per chunk with --against (-1: 100, or --steps when fewer)
   bool no_stream = false;
   bool locked = false;  // contacts that neither slide nor yield in rolling (the caps raised to kLockedCap)
 };
@@ -67,6 +71,7 @@ Options parse(int argc, char** argv) {
                                {"--steps", &o.steps},
                                {"--warmup", &o.warmup},
                                {"--rolling", &o.rolling},
+                               {"--normal", &o.normal},
                                {"--file", &o.file},
                                {"--no-stream", &o.no_stream},
                                {"--skin", &o.skin},
@@ -78,6 +83,9 @@ Options parse(int argc, char** argv) {
     throw rondel::ConfigError("rondel_bench: --steps must be at least 1, not " + std::to_string(o.steps));
   if (o.warmup < 0)
     throw rondel::ConfigError("rondel_bench: --warmup must be 0 or more, not " + std::to_string(o.warmup));
+  if (o.normal != "linear" && o.normal != "walton_braun")
+    throw rondel::ConfigError("rondel_bench: --normal '" + o.normal +
+                              "' is not a normal law the benchmark sets up (linear | walton_braun)");
   if (o.chunk == -1) o.chunk = std::min(100L, o.steps);
   if (!o.against.empty() && (o.chunk <= 0 || o.chunk > o.steps))
     throw rondel::ConfigError("rondel_bench: --chunk must be between 1 and --steps (" + std::to_string(o.steps) +
@@ -139,13 +147,13 @@ constexpr const char* kLockedCap = "1e6";
 constexpr const char* kCapKeys[] = {"wang.mu_r", "iwashita_oda.eta", "force_proportional.mu_r", "constant_torque.mu_r",
                                     "displacement_damping.mu_r"};
 
-// The [contact] rolling line and the law's parameter block, from the law's parameter list.
-std::string rolling_block(const std::string& law, const char* option, bool locked) {
+// The [contact] normal and rolling lines and the rolling law's parameter block, from the law's parameter list.
+std::string rolling_block(const std::string& law, const char* option, bool locked, const std::string& normal) {
   const rondel::LawInfo* info = rondel::law_catalog().rolling.find(law);
   if (!info)
     throw rondel::ConfigError("rondel_bench: " + std::string(option) + " '" + law + "' is not a rolling law (" +
                               rondel::law_catalog().rolling.keywords() + ")");
-  std::string text = "[contact]\nrolling = " + law + "\n";
+  std::string text = "[contact]\nnormal = " + normal + "\nrolling = " + law + "\n";
   if (!info->block) return text;
   text += "[" + std::string(info->block->section) + "]\n";
   for (const rondel::ParamSpec& p : info->block->params) {
@@ -209,12 +217,17 @@ std::string bench_ini(const Options& o, long nx, long ny, double lo, double hi) 
   char ini[4096];
   std::snprintf(ini, sizeof ini,
                 "[run]\ndt = 3e-4\nsteps = 0\n[domain]\nxlo = %.17g\nxhi = %.17g\nylo = %.17g\nyhi = %.17g\n"
-                "periodic_x = true\nperiodic_y = true\n[material]\ndensity = 1\n[linear]\nk_n = 1e5\nzeta = 0.3\n"
+                "periodic_x = true\nperiodic_y = true\n[material]\ndensity = 1\n"
                 "[coulomb]\nk_s = 28571.43\nmu = %s\n[scene]\ntype = csv\nfile = %s\nreplicate_x = %ld\n"
                 "replicate_y = %ld\nmax_initial_overlap = 0.2\n",
                 lo, lo + static_cast<double>(nx) * L, lo, lo + static_cast<double>(ny) * L,
                 o.locked ? kLockedCap : "0.5", o.file.c_str(), nx, ny);
-  return std::string(ini) + (o.skin.empty() ? "" : "[neighbour]\nskin = " + o.skin + "\n");
+  // The normal law: linear k_n = 1e5 with zeta = 0.3, or walton_braun with K1 = that k_n and that restitution.
+  const std::string normal =
+      o.normal == "linear"
+          ? "[linear]\nk_n = 1e5\nzeta = 0.3\n"
+          : "[walton_braun]\nK1 = 1e5\ne = " + rondel::fmt(rondel::restitution_from_zeta(0.3), 17) + "\n";
+  return std::string(ini) + normal + (o.skin.empty() ? "" : "[neighbour]\nskin = " + o.skin + "\n");
 }
 
 // The timed steps: of `sim` alone, or with --against alternating with `other` in chunks, A B B A A B ..., so that a
@@ -295,6 +308,7 @@ void print_report(const Options& o, long nx, long ny, const rondel::Simulation& 
                   bool against) {
   const int ranks = sim.state().comm.size();
   const double n = m.n, rate = n * static_cast<double>(o.steps) / t.secs;
+  if (o.normal != "linear") std::printf("rondel_bench: normal law %s\n", o.normal.c_str());
   std::printf(
       "rondel_bench: %ld discs (%ld x %ld copies), rolling %s, %ld timed steps (after %ld warm-up), dt %.3g s "
       "(critical %.3g s, %s mode), %d rank(s)\n"
@@ -360,7 +374,7 @@ int bench(int argc, char** argv, const rondel::Communicator& comm) {
   const double bandwidth = measure_bandwidth(o, comm, peak_reset);
   const std::string ini = bench_ini(o, nx, ny, lo, hi);
   const auto config_of = [&](const std::string& law, const char* option, bool sheared) {
-    return rondel::parse_config_text(ini + rolling_block(law, option, o.locked) +
+    return rondel::parse_config_text(ini + rolling_block(law, option, o.locked, o.normal) +
                                      (sheared && !o.shear.empty() ? "[cell]\nrate_xy = " + o.shear + "\n" : ""));
   };
   rondel::Simulation sim(config_of(o.rolling, "--rolling", true), comm, false);
