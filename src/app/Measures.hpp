@@ -8,7 +8,7 @@
 #include "core/Domain.hpp"
 #include "core/Wall.hpp"
 #include "parallel/Communicator.hpp"
-#include "physics/ContactKernel.hpp"
+#include "physics/ContactPass.hpp"
 
 namespace rondel {
 

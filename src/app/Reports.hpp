@@ -8,7 +8,7 @@
 #include "core/ExactSum.hpp"
 #include "core/Wall.hpp"
 #include "parallel/Communicator.hpp"
-#include "physics/ContactKernel.hpp"
+#include "physics/ContactPass.hpp"
 #include "physics/EnergyLedger.hpp"
 
 namespace rondel {

@@ -10,7 +10,7 @@
 #include "app/RunState.hpp"
 #include "core/Diagnostics.hpp"
 #include "parallel/Communicator.hpp"
-#include "physics/ContactKernel.hpp"
+#include "physics/ContactPass.hpp"
 #include "physics/CriticalTimeStep.hpp"
 
 namespace rondel {

@@ -38,38 +38,11 @@
 #include "core/Wall.hpp"
 #include "physics/CellCrossings.hpp"
 #include "physics/ContactKinematics.hpp"
+#include "physics/ContactPass.hpp"
 #include "physics/LawConcepts.hpp"
 #include "physics/LawTypes.hpp"
 
 namespace rondel {
-
-// The worst overlap above the context's limit (u_n / smaller radius; 0 when none), and where.
-struct WorstOverlap {
-  double worst_overlap = 0.0;
-  ContactKey worst_key;
-  bool worst_at_wall = false;
-};
-
-// This step's ledger terms: the kernel books those of kTermKernel (the rest stay zero), and the step's worst
-// overlap.
-struct LedgerStep : LedgerTerms, WorstOverlap {};
-
-// The contacts now: energy held by their springs [J per thickness], how many carry load, how many slide
-// (|F_t| at mu F_n) and how many have yielded in rolling (|M| at the law's cap). Booked rows only.
-struct ContactSummary {
-  double normal = 0.0, tangential = 0.0, rolling = 0.0;
-  std::int64_t contacts = 0, wall_contacts = 0, sliding = 0, rolling_yield = 0;
-  double total() const { return normal + tangential + rolling; }
-};
-
-struct KernelContext {
-  const DiscStore& discs;
-  const Domain& domain;
-  const WallSet& walls;
-  const ContactParamTable& params;
-  double dt;
-  double overlap_limit = INFINITY;  // report overlaps above this fraction of the smaller radius
-};
 
 template <class Normal, class Tangential, class Rolling>
 struct ContactKernel {
@@ -306,10 +279,12 @@ struct ContactKernel {
   // The ledger's share of a booked row: the trapezoid of last and this step's force and couples, and the
   // laws' dissipation.
   template <bool kWall>
-  [[gnu::always_inline]] static void book_work(const ContactTable& tab, std::size_t r, const Row& row, double F_n,
-                                               const TangentialForce& T, const RollingCouple& M, Vec2 f1, PassSums& S) {
+  [[gnu::always_inline]] static void book_work(const ContactTable& tab, std::size_t r, const Row& row,
+                                               const NormalForce& N, const TangentialForce& T, const RollingCouple& M,
+                                               Vec2 f1, PassSums& S) {
     const ContactKinematics& k = row.k;
-    S.work += Pair{(tab.F_n[r] + F_n) * k.v_n, (tab.F_t[r] + T.F_t) * k.V_s};
+    S.work += Pair{(tab.F_n[r] + N.F_n) * k.v_n, (tab.F_t[r] + T.F_t) * k.V_s};
+    if constexpr (hysteretic<Normal>()) S.D_n_hyst += N.hysteresis;
     double W_r = 0.0;
     if constexpr (kCouples > 1 && !kWall)
       W_r = (tab.M1[r] + M.M1) * row.w1 + (tab.M2[r] + M.M2) * row.w2;
@@ -455,10 +430,7 @@ struct ContactKernel {
       const TangentialForce T = Tangential::force(in, hist.t);
       const RollingCouple M = couple(in, tab, r, row, hist);
       const Vec2 f1 = T.F_t * k.t - F_n * k.n;
-      if (book) {
-        book_work<kWall>(tab, r, row, F_n, T, M, f1, S);
-        if constexpr (hysteretic<Normal>()) S.D_n_hyst += N.hysteresis;
-      }
+      if (book) book_work<kWall>(tab, r, row, N, T, M, f1, S);
       store_row<kWall>(tab, r, F_n, T, M, f1);
       add_to_sums<kWall>(tab, r, i, k, T, M, f1, sum_F, sum_T);
     }

@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "core/LedgerTerms.hpp"
-#include "physics/ContactKernel.hpp"
+#include "physics/ContactPass.hpp"
 
 namespace rondel {
 

@@ -10,8 +10,9 @@
 #include "core/Config.hpp"
 #include "core/ContactParams.hpp"
 #include "core/ContactTable.hpp"
+#include "core/ForceAssembly.hpp"
 #include "core/LawSpec.hpp"
-#include "physics/ContactKernel.hpp"
+#include "physics/ContactPass.hpp"
 #include "physics/LawTypes.hpp"
 
 namespace rondel {

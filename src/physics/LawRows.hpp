@@ -10,6 +10,7 @@
 
 #include "core/Errors.hpp"
 #include "core/LawSpec.hpp"
+#include "physics/ContactKernel.hpp"
 #include "physics/LawConcepts.hpp"
 #include "physics/LawRegistry.hpp"
 #include "physics/NormalHertz.hpp"
