@@ -4,42 +4,22 @@
 //   rondel --version | --help
 #include <mpi.h>
 
-#include <algorithm>
 #include <cstring>
 #include <exception>
 #include <iostream>
 #include <string>
 #include <vector>
 
-#include "app/Checkpointing.hpp"
-#include "app/OutputNames.hpp"
+#include "app/Launch.hpp"
 #include "app/Simulation.hpp"
 #include "core/Errors.hpp"
 #include "core/ExitCodes.hpp"
-#include "core/FaultInjection.hpp"
 #include "core/StopSignal.hpp"
 #include "parallel/Agreement.hpp"
 #include "parallel/Communicator.hpp"
-#include "parallel/StateFile.hpp"
 #include "rondel/Version.hpp"
 
 namespace {
-
-// The --resume directory, if any, and whether an INI file was named.
-std::string resume_directory(int argc, char** argv, bool& has_file) {
-  std::string dir;
-  has_file = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--resume" && i + 1 < argc)  // read before the configuration, which it may come from
-      dir = argv[++i];
-    else if (a.rfind("--resume=", 0) == 0)
-      dir = a.substr(9);
-    else if (a.rfind("--", 0) != 0)
-      has_file = true;
-  }
-  return dir;
-}
 
 bool version_requested(int argc, char** argv) {
   for (int i = 1; i < argc; ++i)
@@ -47,63 +27,10 @@ bool version_requested(int argc, char** argv) {
   return false;
 }
 
-// A resumed run has work to do only below run.steps: at it there is nothing to do (true: say so and stop),
-// above it the configuration is wrong.
-bool nothing_to_resume(const rondel::Config& config, const std::string& checkpoint, std::int64_t step) {
-  if (config.steps > step) return false;
-  if (config.steps < step)
-    throw rondel::ConfigError("run.steps = " + std::to_string(config.steps) + " is below the step " +
-                              std::to_string(step) + " of the checkpoint '" + checkpoint +
-                              "' to resume from; run.steps counts from the start of the run: set run.steps > " +
-                              std::to_string(step) + " to continue it");
-  return true;
-}
-
-// The set-up before the Simulation: the checkpoint to resume from and the configuration, each step agreed
-// among the ranks (an error on one rank, a file it cannot read, stops every rank before the next collective).
-struct Setup {
-  rondel::Config config;
-  std::string checkpoint;
-  bool nothing_to_do = false;
-};
-
-Setup set_up(int argc, char** argv, const rondel::Communicator& comm) {
-  Setup s;
-  bool has_file = false;
-  const std::string resume = resume_directory(argc, argv, has_file);
-  rondel::StateHeader header;
-  if (!resume.empty()) {
-    std::vector<std::string> skipped;
-    rondel::agree(comm, [&] { s.checkpoint = rondel::Checkpointing::newest_checkpoint(resume, comm, &skipped); });
-    if (comm.root())
-      for (const auto& k : skipped) std::cerr << "rondel: skipping " << k << '\n';
-    rondel::agree(comm, [&] { header = rondel::read_state_header(s.checkpoint, comm); });
-  }
-  // A fault-injection hook that injects nothing is refused before any work (core/FaultInjection.hpp).
-  rondel::agree(comm, [] { rondel::check_fault_injection(rondel::output::kTextFiles); });
-  rondel::agree(comm, [&] {
-    if (!resume.empty() && !has_file) {
-      // No INI: the configuration stored in the checkpoint, with the command line's overrides.
-      // It continues in DIR itself, unless the command line names another run.output.
-      std::vector<std::string> args(argv + 1, argv + argc);
-      const bool named =
-          std::any_of(args.begin(), args.end(), [](const std::string& a) { return a.rfind("--run.output", 0) == 0; });
-      if (!named) args.push_back("--run.output=" + resume);
-      s.config = rondel::parse_config_text(header.config, args);
-    } else {
-      s.config = rondel::parse_config(argc, argv);
-    }
-    s.nothing_to_do = !resume.empty() && nothing_to_resume(s.config, s.checkpoint, header.step);
-  });
-  return s;
-}
-
 int run(int argc, char** argv, const rondel::Communicator& comm) {
-  Setup s = set_up(argc, argv, comm);
+  rondel::Launch s = rondel::prepare_launch({std::vector<std::string>(argv + 1, argv + argc)}, comm);
   if (s.nothing_to_do) {
-    if (comm.root())
-      std::cout << "rondel: nothing to do: the checkpoint '" << s.checkpoint << "' is at step " << s.config.steps
-                << " = run.steps already (the run is complete); raise run.steps (--run.steps=N) to continue it\n";
+    if (comm.root()) std::cout << rondel::nothing_to_do_message(s) << '\n';
     return rondel::kExitDone.code;
   }
   rondel::Simulation sim(std::move(s.config), comm, true, s.checkpoint);

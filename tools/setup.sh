@@ -39,10 +39,11 @@ PACKAGES=(
   libhdf5-openmpi-dev hdf5-tools
   libboost-program-options-dev
   python3-h5py python3-numpy python3-matplotlib
+  python3-dev python3-pybind11 python3-mpi4py
 )
 # Needed by the test suite only; ParaView for its ParaView test (tests/tools/test_paraview.py).
 if [ "$testing" = ON ]; then
-  PACKAGES+=(libeigen3-dev libgtest-dev)
+  PACKAGES+=(libeigen3-dev libgtest-dev python3-pytest)
   [ "$paraview" = ON ] && PACKAGES+=(paraview python3-paraview xvfb)
 fi
 

@@ -93,7 +93,7 @@ void Runner::thermo(const DiagnosticsRow& row) {
   thermo_clock_ = now;
 }
 
-void Runner::checkpoint() {
+std::string Runner::checkpoint() {
   files_.add_wall_seconds(seconds_since(last_checkpoint_));
   last_checkpoint_ = std::chrono::steady_clock::now();
   // The tables' rows up to this step reach their files first: a run killed after the checkpoint and resumed
@@ -104,6 +104,7 @@ void Runner::checkpoint() {
     files_.check_log();
   });
   checkpointed_ = sim_.state().step;
+  return sum_.last_checkpoint;
 }
 
 void Runner::snapshot() {
@@ -122,21 +123,22 @@ std::int64_t Runner::stop_flags() {
   return 2 * static_cast<std::int64_t>(StopSignal::received()) + (timed ? 1 : 0);
 }
 
-int Runner::loop(ProgressLine& progress, std::int64_t first) {
+int Runner::loop(std::int64_t end) {
   const Config& config = sim_.state().config;
   // The steps up to the next one that something looks at (diagnostics, a snapshot, a checkpoint, the end)
   // run as one advance (Simulation::advance: a pass over the discs less per step); a stop agreed in a step's
   // reduction ends it early.
   const auto next_multiple = [](std::int64_t step, std::int64_t every) { return (step / every + 1) * every; };
-  while (sim_.state().step < config.steps) {
+  while (sim_.state().step < end) {
     const std::int64_t now = sim_.state().step;
-    std::int64_t until = std::min(config.steps, next_multiple(now, config.diag_every));
+    std::int64_t until = std::min(end, next_multiple(now, config.diag_every));
+    if (now < config.steps) until = std::min(until, config.steps);  // run.steps has its row (a driver steps past it)
     if (files_.has_directory() && config.snapshot_every > 0)
       until = std::min(until, next_multiple(now, config.snapshot_every));
     if (files_.has_directory() && config.checkpoint_every > 0)
       until = std::min(until, next_multiple(now, config.checkpoint_every));
     sim_.advance_steps(until - now, [&] {
-      progress.update(sim_.state().step - first);
+      progress_->update(sim_.state().step - first_);
       return stop_flags();
     });
     const std::int64_t step = sim_.state().step;
@@ -151,7 +153,7 @@ int Runner::loop(ProgressLine& progress, std::int64_t first) {
         (signal != 0 || timed_any || (config.checkpoint_every > 0 && step % config.checkpoint_every == 0)))
       checkpoint();
     phases_.lap(PhaseTimes::output);
-    progress.update(step - first);
+    progress_->update(step - first_);
     phases_.lap(PhaseTimes::other);
     if (signal != 0) {
       files_.log(std::string("stopped by ") + StopSignal::name(static_cast<int>(signal)) + " at step " +
@@ -162,40 +164,77 @@ int Runner::loop(ProgressLine& progress, std::int64_t first) {
   return 0;
 }
 
-RunSummary Runner::run() {
-  const auto n_discs = sim_.state().comm.sum(static_cast<std::int64_t>(sim_.state().discs.n_owned()));
-  log_start(n_discs);
+Runner::~Runner() {
+  if (progress_) files_.set_progress(nullptr);
+}
+
+void Runner::failed(const std::exception& e) {
+  // An instability, an I/O error: log.txt says so (rank 0).
+  progress_->finish(sim_.state().step - first_);
+  files_.set_progress(nullptr);
+  files_.log(std::string("FAILED: ") + e.what());
+  throw;
+}
+
+void Runner::start() {
+  n_discs_ = sim_.state().comm.sum(static_cast<std::int64_t>(sim_.state().discs.n_owned()));
+  log_start(n_discs_);
   const Config& config = sim_.state().config;
-  const std::int64_t first = sim_.state().step, remaining = std::max<std::int64_t>(0, config.steps - first);
-  ProgressLine progress(remaining, n_discs, files_.has_directory() && config.progress && sim_.state().comm.root());
-  files_.set_progress(&progress);
+  first_ = sim_.state().step;
+  const std::int64_t remaining = std::max<std::int64_t>(0, config.steps - first_);
+  progress_ = std::make_unique<ProgressLine>(remaining, n_discs_,
+                                             files_.has_directory() && config.progress && sim_.state().comm.root());
+  files_.set_progress(progress_.get());
   StopSignal::install();
   start_ = last_checkpoint_ = thermo_clock_ = std::chrono::steady_clock::now();
-  const PhaseTimes at_start = phases_;
+  at_start_ = phases_;
   try {
     phases_.restart();
-    if (first == 0) record();
-    if (first == 0 && files_.has_directory() && config.snapshot_every > 0) snapshot();  // the initial state
+    if (first_ == 0) record();
+    if (first_ == 0 && files_.has_directory() && config.snapshot_every > 0) snapshot();  // the initial state
     phases_.lap(PhaseTimes::output);
-    sum_.stop_signal = loop(progress, first);
+  } catch (const std::exception& e) {
+    failed(e);
+  }
+}
+
+int Runner::advance(std::int64_t n) {
+  try {
+    const int signal = loop(sim_.state().step + n);
+    if (signal != 0) sum_.stop_signal = signal;
+    return signal;
+  } catch (const std::exception& e) {
+    failed(e);
+  }
+}
+
+RunSummary Runner::run() {
+  start();
+  const std::int64_t remaining = sim_.state().config.steps - sim_.state().step;
+  if (remaining > 0) advance(remaining);
+  return finish();
+}
+
+RunSummary Runner::finish() {
+  const Config& config = sim_.state().config;
+  try {
     sim_.settle_errors();  // a rank's error found since the last reduction stops the run here
     if (files_.has_directory() && config.checkpoint_at_end && sum_.stop_signal == 0 &&
         checkpointed_ != sim_.state().step)
       checkpoint();
     phases_.lap(PhaseTimes::output);
-  } catch (const std::exception& e) {  // an instability, an I/O error: log.txt says so (rank 0)
-    progress.finish(sim_.state().step - first);
-    files_.set_progress(nullptr);
-    files_.log(std::string("FAILED: ") + e.what());
-    throw;
+  } catch (const std::exception& e) {
+    failed(e);
   }
-  progress.finish(sim_.state().step - first);
+  progress_->finish(sim_.state().step - first_);
   files_.set_progress(nullptr);
-  finish(first, n_discs, at_start);
+  summarise();
   return sum_;
 }
 
-void Runner::finish(std::int64_t first, std::int64_t n_discs, const PhaseTimes& at_start) {
+void Runner::summarise() {
+  const std::int64_t first = first_, n_discs = n_discs_;
+  const PhaseTimes& at_start = at_start_;
   const CriticalStep& critical = sim_.critical();
   const double dt = sim_.state().dt;
   RunSummary& sum = sum_;
@@ -237,7 +276,7 @@ void Runner::finish(std::int64_t first, std::int64_t n_discs, const PhaseTimes& 
   });
   sim_.write_final(files_.final_path());  // every rank its block, in gid order (agreed inside)
   agree(sim_.state().comm, [&] {
-    files_.write_results(s.str() + "\n" + phases, summary_json(at_start), sum.stop_signal != 0);
+    files_.write_results(s.str() + "\n" + phases, summary_json(at_start_), sum.stop_signal != 0);
     files_.log("results in " + output +
                "/ (config.ini, log.txt, diagnostics.csv, measures.csv, final.csv, summary.txt, summary.json" +
                (sum.last_checkpoint.empty() ? std::string(")") : ", checkpoint_*.h5)"));

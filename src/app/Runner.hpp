@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "app/Measures.hpp"
@@ -66,10 +67,26 @@ class RunTarget {
 // diagnostics, measures, snapshots and checkpoints, the signals (every rank agrees on the step of a stop),
 // the progress and thermo lines, and the summary with its phase times (log.txt, summary.txt, summary.json,
 // final.csv).
+//
+// A run to run.steps is run(); a driver that steps in its own chunks (the Python module) calls start(), then
+// advance() as often as it likes, then finish(): the same schedules, files and bits.
 class Runner {
  public:
   explicit Runner(RunTarget& target);
+  ~Runner();
   RunSummary run();
+  // The opening log lines and, at step 0, the first diagnostics row and snapshot.
+  void start();
+  // n steps (past run.steps too) with the schedules of diagnostics, snapshots and checkpoints; returns the
+  // signal that stopped them after its checkpoint (0: none).
+  int advance(std::int64_t n);
+  // The end of the run: the pending errors, the checkpoint at the end, the summary and final.csv.
+  RunSummary finish();
+  bool started() const { return progress_ != nullptr; }
+  // Collective and agreed, like every output of the run: an error on one rank stops every rank. A checkpoint
+  // comes after the tables' rows up to its step; returns its path.
+  std::string checkpoint();
+  void snapshot();
 
  private:
   void log_start(std::int64_t n_discs);
@@ -80,14 +97,13 @@ class Runner {
   std::string summary_json(const PhaseTimes& at_start) const;
   // Diagnostics and measures of the present step, and the stability check.
   void record();
-  // Collective and agreed, like every output of the run: an error on one rank stops every rank.
-  void checkpoint();
-  void snapshot();
   // One reduction: the signal received on any rank, and whether rank 0's clock says a checkpoint is due.
   std::int64_t stop_flags();
-  // The steps after `first`; returns the signal that stopped them (0: none).
-  int loop(ProgressLine& progress, std::int64_t first);
-  void finish(std::int64_t first, std::int64_t n_discs, const PhaseTimes& at_start);
+  // The steps up to `end`; returns the signal that stopped them (0: none).
+  int loop(std::int64_t end);
+  // The log of a failure (rank 0), then the error again.
+  [[noreturn]] void failed(const std::exception& e);
+  void summarise();
 
   RunTarget& sim_;
   RunFiles& files_;
@@ -97,6 +113,9 @@ class Runner {
   std::int64_t thermo_step_ = -1;    // the step of the last thermo line (-1: none yet)
   double d_other_peak_ = -HUGE_VAL;  // the largest D_other of this run's diagnostics rows (Reports::check_stability)
   std::int64_t checkpointed_ = -1;
+  std::int64_t first_ = 0, n_discs_ = 0;  // the step and the discs at start()
+  PhaseTimes at_start_;
+  std::unique_ptr<ProgressLine> progress_;  // from start()
 };
 
 }  // namespace rondel

@@ -103,6 +103,12 @@ class Simulation final : public RunTarget {
   // reductions), including waiting for other ranks.
   double comm_seconds() const { return phases_.seconds(PhaseTimes::communication); }
   RunFiles& files() override { return files_; }
+  // A script's writes between steps (the Python module, app/Steering.hpp). `edit` changes this rank's owned discs
+  // and returns the kinetic energy it added here, booked as W_driver; the list of fixed discs follows and the next
+  // step reduces (the motion bound of the last reduction no longer holds).
+  void edit_discs(const std::function<double(DiscStore&)>& edit);
+  // The walls, for a script's control of their velocities and servo targets (from the next step on).
+  WallSet& steered_walls() { return walls_; }
   // Collective: writes a checkpoint into the output directory now; returns its path.
   std::string write_checkpoint() override;
   // Collective: a snapshot into the output directory now.

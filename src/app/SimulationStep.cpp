@@ -46,6 +46,12 @@ void Simulation::rebuild() {
   phases_.lap(PhaseTimes::neighbour);
 }
 
+void Simulation::edit_discs(const std::function<double(DiscStore&)>& edit) {
+  core_.ledger().W_driver += edit(discs_);
+  assembly_.build(discs_);
+  reduction_.motion_changed();
+}
+
 void Simulation::close_step() {
   phases_.restart();
   core_.close(step_inputs(false));

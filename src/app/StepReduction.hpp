@@ -70,6 +70,9 @@ class StepReduction {
     rebalance_due_ = false;
     base_disp_ = predicted_ = 0.0;
   }
+  // The discs' motion was changed from outside the step (a script's writes): the next step reduces, since the bound
+  // of the last reduction no longer holds.
+  void motion_changed() { bounds_known_ = false; }
   // The max over mean work per rank at the last balance check.
   double imbalance() const { return imbalance_; }
 

@@ -32,7 +32,8 @@ struct LedgerTermInfo {
 struct LedgerTerms {
   double KE0 = 0.0;  // kinetic energy at the start
   double W_g = 0.0, W_w = 0.0, W_n = 0.0, W_t = 0.0, W_r = 0.0;
-  double W_cell = 0.0;  // of a deforming periodic cell on the discs (docs/physics.md section 10; 0 in a standing box)
+  double W_cell = 0.0;    // of a deforming periodic cell on the discs (docs/physics.md section 10; 0 in a standing box)
+  double W_driver = 0.0;  // of a script on the discs: the kinetic energy its writes changed (docs/python.md; else 0)
   double D_slip = 0.0, D_r_plastic = 0.0, D_r_dashpot = 0.0, E_r_break = 0.0;
   double D_n_hyst = 0.0;  // the hysteresis of a normal law whose unloading is stiffer (walton_braun; else 0)
   double D_damping = 0.0;
@@ -53,6 +54,7 @@ struct LedgerTerms {
     visit(LedgerTermInfo{"W_t", "W_tangential", kKernelWork}, terms.W_t...);
     visit(LedgerTermInfo{"W_r", "W_rolling", kKernelWork}, terms.W_r...);
     visit(LedgerTermInfo{"W_cell", "W_cell", kKernelWork}, terms.W_cell...);
+    visit(LedgerTermInfo{"W_driver", "W_driver", kWorkShare}, terms.W_driver...);
     visit(LedgerTermInfo{"D_slip", "D_slip", kKernelLoss}, terms.D_slip...);
     visit(LedgerTermInfo{"D_r_plastic", "D_rolling_plastic", kKernelLoss}, terms.D_r_plastic...);
     visit(LedgerTermInfo{"D_r_dashpot", "D_rolling_dashpot", kKernelLoss}, terms.D_r_dashpot...);

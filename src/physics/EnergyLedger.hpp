@@ -38,11 +38,14 @@ struct EnergyLedger : LedgerTerms {
     return other;
   }
   // D_damping last: with the damping off it adds +0, which leaves every bit of the difference as it was.
-  // W_cell after W_w: in a standing box it subtracts +0, which changes no bit.
-  double absolute_residual(double KE) const { return std::fabs(KE - KE0 - W_g - W_w - W_cell - W_c() + D_damping); }
+  // W_cell after W_w, W_driver after it: in a standing box and without a script they subtract +0, which changes no
+  // bit.
+  double absolute_residual(double KE) const {
+    return std::fabs(KE - KE0 - W_g - W_w - W_cell - W_driver - W_c() + D_damping);
+  }
   // Updates the energy scale with the present state and returns the relative residual.
   double relative_residual(double KE) {
-    scale = std::max({scale, KE, std::fabs(W_g), std::fabs(W_w), std::fabs(W_cell)});
+    scale = std::max({scale, KE, std::fabs(W_g), std::fabs(W_w), std::fabs(W_cell), std::fabs(W_driver)});
     return scale > 0.0 ? absolute_residual(KE) / scale : 0.0;
   }
 };

@@ -37,8 +37,8 @@ TEST(LedgerTerms, CheckpointNamesAreTheFileFormats) {
   std::vector<std::string> names;
   LedgerTerms{}.for_each_term([&](const LedgerTermInfo& t, double) { names.emplace_back(t.name); });
   EXPECT_EQ(names,
-            (std::vector<std::string>{"KE0", "W_g", "W_w", "W_n", "W_t", "W_r", "W_cell", "D_slip", "D_r_plastic",
-                                      "D_r_dashpot", "E_r_break", "D_n_hyst", "D_damping", "scale"}));
+            (std::vector<std::string>{"KE0", "W_g", "W_w", "W_n", "W_t", "W_r", "W_cell", "W_driver", "D_slip",
+                                      "D_r_plastic", "D_r_dashpot", "E_r_break", "D_n_hyst", "D_damping", "scale"}));
   EXPECT_EQ(std::set<std::string>(names.begin(), names.end()).size(), names.size()) << "a name appears twice";
 }
 
@@ -56,11 +56,11 @@ TEST(LedgerTerms, EachColumnAppearsOnceInTheDiagnosticsHeader) {
 }
 
 TEST(LedgerTerms, DiagnosticsHeaderIsTheFileFormats) {
-  EXPECT_EQ(
-      DiagnosticsWriter::header(),
-      "step,time,ke_trans,ke_rot,contacts,wall_contacts,coordination,max_overlap_ratio,W_gravity,W_walls,"
-      "W_normal,W_tangential,W_rolling,W_cell,E_stored,D_slip,D_rolling_plastic,D_rolling_dashpot,E_rolling_break,"
-      "D_normal_hysteresis,D_damping,D_other,ledger_residual,imbalance,ghost_fraction,migrated");
+  EXPECT_EQ(DiagnosticsWriter::header(),
+            "step,time,ke_trans,ke_rot,contacts,wall_contacts,coordination,max_overlap_ratio,W_gravity,W_walls,"
+            "W_normal,W_tangential,W_rolling,W_cell,W_driver,E_stored,D_slip,D_rolling_plastic,D_rolling_dashpot,E_"
+            "rolling_break,"
+            "D_normal_hysteresis,D_damping,D_other,ledger_residual,imbalance,ghost_fraction,migrated");
 }
 
 TEST(LedgerTerms, ATermsValueLandsInItsOwnDiagnosticsColumn) {

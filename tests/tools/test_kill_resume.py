@@ -32,7 +32,8 @@ SCENE = [os.path.join(ROOT, "inputs", "deposition.ini"), f"--run.steps={STEPS}",
 # diagnostics.csv columns that depend on the decomposition, and the ledger's columns.
 DECOMPOSITION = {"imbalance", "ghost_fraction", "migrated"}
 LEDGER = {"W_gravity", "W_walls", "W_normal", "W_tangential", "W_rolling", "E_stored", "D_slip", "D_rolling_plastic",
-          "D_rolling_dashpot", "E_rolling_break", "D_normal_hysteresis", "D_other", "ledger_residual"}
+          "D_rolling_dashpot", "E_rolling_break", "D_normal_hysteresis", "W_cell", "W_driver", "D_other",
+          "ledger_residual"}
 
 
 def command(rondel, mpiexec, ranks, args):

@@ -1,0 +1,49 @@
+"""A scene stepped from Python the way the tests compare it with the executable (tests/python/test_driver.py).
+
+    mpirun -n P python3 drive_scene.py OUT STEPS CHUNK [--resume DIR] [--steer] [--forever] [--section.key=value ...]
+
+Steps the deposition scene (inputs/deposition.ini) to STEPS in chunks of CHUNK with run.output = OUT, then finish().
+--steer: at step 600 fixes discs 0-9, gives discs 10-59 an upward velocity and a spin, frees discs 0-4 at step 1200
+(the same calls on every rank). --forever: steps until a signal stops the script (rondel.Stopped, exit 10).
+"""
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+import rondel  # noqa: E402
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+
+
+def main(argv):
+    out, steps, chunk = argv[0], int(argv[1]), int(argv[2])
+    rest = argv[3:]
+    steer = "--steer" in rest
+    forever = "--forever" in rest
+    resume = None
+    if "--resume" in rest:
+        resume = rest[rest.index("--resume") + 1]
+    overrides = [a for a in rest if a.startswith("--") and "=" in a]
+    overrides += [f"--run.steps={steps}", f"--run.output={out}", "--run.progress=false"]
+    config = None if resume else os.path.join(ROOT, "inputs", "deposition.ini")
+    sim = rondel.Simulation(config, resume=resume, overrides=overrides)
+    while forever or sim.step_count < steps:
+        n = chunk if forever else min(chunk, steps - sim.step_count)
+        if steer and sim.step_count == 600:
+            sim.fix(range(10))
+            gids = np.arange(10, 60)
+            sim.set_velocity(gids, np.tile([0.0, 0.3], (len(gids), 1)))
+            sim.set_omega(gids, np.full(len(gids), 5.0))
+        if steer and sim.step_count == 1200:
+            sim.free(range(5))
+        if steer:
+            n = min(n, 600 - sim.step_count % 600)
+        sim.step(n)
+    sim.finish()
+    sim.close()
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
