@@ -5,6 +5,7 @@
 Steps the deposition scene (inputs/deposition.ini) to STEPS in chunks of CHUNK with run.output = OUT, then finish().
 --steer: at step 600 fixes discs 0-9, gives discs 10-59 an upward velocity and a spin, frees discs 0-4 at step 1200
 (the same calls on every rank). --forever: steps until a signal stops the script (rondel.Stopped, exit 10).
+--self: each rank runs a simulation of its own on MPI.COMM_SELF, into OUT.rank<r>.
 """
 import os
 import sys
@@ -26,9 +27,13 @@ def main(argv):
     if "--resume" in rest:
         resume = rest[rest.index("--resume") + 1]
     overrides = [a for a in rest if a.startswith("--") and "=" in a]
+    comm = None
+    if "--self" in rest:
+        from mpi4py import MPI
+        comm, out = MPI.COMM_SELF, f"{out}.rank{MPI.COMM_WORLD.rank}"
     overrides += [f"--run.steps={steps}", f"--run.output={out}", "--run.progress=false"]
     config = None if resume else os.path.join(ROOT, "inputs", "deposition.ini")
-    sim = rondel.Simulation(config, resume=resume, overrides=overrides)
+    sim = rondel.Simulation(config, resume=resume, overrides=overrides, comm=comm)
     while forever or sim.step_count < steps:
         n = chunk if forever else min(chunk, steps - sim.step_count)
         if steer and sim.step_count == 600:

@@ -2,6 +2,7 @@
 
 - the deposition scene stepped from Python in chunks of 100 on 1, 2 and 3 ranks: final.csv, diagnostics.csv and
   measures.csv byte for byte those of the executable on as many ranks, and final.csv that of 1 rank;
+- a communicator passed in (MPI.COMM_SELF on each of 2 ranks): each rank's run is the executable's on 1 rank;
 - resumed from Python (on 2 ranks) from the executable's checkpoint: the uninterrupted run's final.csv;
 - a script's writes (fixing, freeing, velocities and spins by gid) give the same final.csv on 1 and 3 ranks, and
   their energy is booked (W_driver), so the ledger still closes;
@@ -79,6 +80,14 @@ def test_script_gives_the_executables_bits(tmp, one_rank, ranks):
     for name in ("final.csv", "diagnostics.csv", "measures.csv"):
         assert read(os.path.join(py, name)) == read(os.path.join(exe, name)), f"{name} differs on {ranks} ranks"
     assert read(os.path.join(py, "final.csv")) == read(os.path.join(one_rank, "final.csv"))
+
+
+def test_a_communicator_passed_in(tmp, one_rank):
+    """Two ranks, each with a simulation of its own on MPI.COMM_SELF: each is the executable's run on 1 rank."""
+    out = os.path.join(tmp, "self")
+    ok(script(2, out, STEPS, 100, "--self"))
+    for r in (0, 1):
+        assert read(f"{out}.rank{r}/final.csv") == read(os.path.join(one_rank, "final.csv"))
 
 
 def test_resumed_script_gives_the_uninterrupted_bits(tmp, one_rank):

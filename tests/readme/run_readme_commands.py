@@ -5,7 +5,7 @@ It reads every ```sh block of README.md (continuation lines joined, comments dro
 in one scratch directory, each line that starts with `mpirun`, `build/`, `python3 tools/` or
 `/usr/bin/python3 tools/`; `export` lines set the environment of the next ones. Everything else (the set-up
 commands `bash tools/...`, `ctest`, `cmake`, `xvfb-run`, ...) is listed as not run. The scratch directory
-holds copies of inputs/ and tools/ and a link build -> the build directory, so that the commands run as
+holds copies of inputs/, tools/ and examples/ and a link build -> the build directory, so that the commands run as
 written from a repository root and write nowhere in the checkout.
 
 Long runs are shortened: a rondel run of an INI file without --run.steps gets --run.steps=200 (and a snapshot
@@ -34,6 +34,7 @@ SHORTEN = {
     "build/rondel_bench_io": ["--discs", "2000", "--steps", "5", "--warmup", "1", "--repeat", "1"],
     # the prepare stage runs whole (its analysis needs a confined sample; about 10 s), the shear stages short
     "tools/biaxial_sweep.py": ["--steps", "2000"],
+    "examples/python/cyclic_biaxial.py": ["--quick"],
 }
 
 # (regular expression on the command, why it cannot run after shortened runs)
@@ -117,7 +118,7 @@ def classify(line):
 def make_scratch(source, build, work):
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
-    for d in ("inputs", "tools"):
+    for d in ("inputs", "tools", "examples"):
         shutil.copytree(os.path.join(source, d), os.path.join(work, d),
                         ignore=shutil.ignore_patterns("__pycache__"))
     os.symlink(os.path.abspath(build), os.path.join(work, "build"))

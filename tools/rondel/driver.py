@@ -15,10 +15,21 @@ same arguments) except the views and the read-only properties.
 """
 import os
 import signal as _signal
+import sys
 
 import numpy as np
 
 from .errors import RondelError
+
+# MPI as the executable has it: without MPI_THREAD_MULTIPLE, whose locks cost Open MPI's messages about 2 % of a
+# 2-rank step (bench/python_overhead.py). Only when this import comes before mpi4py.MPI's; "serialized" still lets
+# a script's threads make MPI calls one at a time.
+if "mpi4py.MPI" not in sys.modules:
+    try:
+        import mpi4py
+        mpi4py.rc.thread_level = "serialized"
+    except ImportError:  # the reader does not need it; Simulation() says so
+        pass
 
 EXIT_STOPPED = 10  # core/ExitCodes.hpp: a run stopped by a signal after its checkpoint
 
