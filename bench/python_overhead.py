@@ -62,7 +62,7 @@ def main():
     work = tempfile.mkdtemp(prefix="rondel-pybench-")
     try:
         ini = packing_ini(os.path.join(work, "bench.ini"))
-        overrides = {"run.steps": a.steps, "run.progress": False, "diagnostics.every": a.steps,
+        overrides = {"run.steps": a.steps, "run.progress": False, "diagnostics.every": 1000,
                      "output.thermo_every": 0, "output.checkpoint_at_end": False, "run.overwrite": True}
         mpi = ["mpirun", "--oversubscribe", "-n", str(a.ranks)]
         pairs = []
