@@ -34,6 +34,9 @@ class CellControl {
         max_rate_(c.cell_servo_max_rate),
         thickness_(c.thickness) {}
 
+  // The target of a component (0 xx, 1 yy; 0: rate-controlled) and a script's new one for a stress-controlled one.
+  double target(int k) const { return target_[static_cast<std::size_t>(k)]; }
+  void set_target(int k, double stress) { target_[static_cast<std::size_t>(k)] = stress; }
   // Whether any component is stress-controlled (then the step reduces every step).
   bool active() const { return target_[0] > 0.0 || target_[1] > 0.0; }
   static CellStressSums local_sums(const DiscStore& discs, const Domain& domain, const ContactTable& pairs);

@@ -7,6 +7,7 @@
 
 #include "app/Boundaries.hpp"
 #include "app/CellControl.hpp"
+#include "app/DriverForces.hpp"
 #include "app/Measures.hpp"
 #include "app/PhaseTimes.hpp"
 #include "app/RunFiles.hpp"
@@ -109,6 +110,14 @@ class Simulation final : public RunTarget {
   void edit_discs(const std::function<double(DiscStore&)>& edit);
   // The walls, for a script's control of their velocities and servo targets (from the next step on).
   WallSet& steered_walls() { return walls_; }
+  // A script's body forces on some discs (DriverForces.hpp), from the next step on.
+  void set_driver_forces(const std::vector<std::int64_t>& gids, const std::vector<Vec2>& forces) {
+    driver_forces_.set(gids, forces, discs_);
+  }
+  const DriverForces& driver_forces() const { return driver_forces_; }
+  // The cell (the domain), for a script's control of its rates, and its stress control's targets.
+  Domain& steered_cell() { return config_.domain; }
+  CellControl& steered_cell_control() { return cell_control_; }
   // Collective: writes a checkpoint into the output directory now; returns its path.
   std::string write_checkpoint() override;
   // Collective: a snapshot into the output directory now.
@@ -208,6 +217,7 @@ class Simulation final : public RunTarget {
   Boundaries boundaries_{0.2, 0.1};
   BoxGeometry box0_;            // the box at the start of the run (reference of the strains)
   ContactSummary summary_;      // of the last diagnostics
+  DriverForces driver_forces_;  // a script's body forces (empty in a run of the executable)
   CellControl cell_control_;    // the servo of a stress-controlled cell
   StepReduction reduction_;     // the step's one reduction (docs/scaling.md)
   WallLoads loads_;             // this rank's part of the controlled walls' loads, of the last step

@@ -42,6 +42,7 @@ void Simulation::rebuild() {
   phases_.lap(PhaseTimes::communication);
   neighbours_.build(discs_, config_.domain, walls_, config_.params, pairs_, wall_rows_);
   assembly_.build(discs_);
+  if (!driver_forces_.empty()) driver_forces_.locate(discs_);
   reduction_.rebuilt();
   phases_.lap(PhaseTimes::neighbour);
 }
@@ -179,6 +180,8 @@ void Simulation::walls_and_neighbours(const Integrator::Drift& drift) {
 }
 
 void Simulation::after_kernel(LedgerStep& work) {
+  // A script's body forces after the contacts (the same sum on any rank count), their work booked now.
+  if (!driver_forces_.empty()) core_.ledger().W_driver += driver_forces_.apply(discs_, dt_);
   // An overlap beyond run.max_overlap is this rank's error until the next reduction (or output) agrees on it; on
   // one rank it stops the step at once.
   if (work.worst_overlap > 0.0 && !reduction_.failed()) reduction_.keep(overlap_error(work));

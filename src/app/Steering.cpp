@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "app/CellControl.hpp"
 #include "app/Simulation.hpp"
 #include "core/Errors.hpp"
 #include "core/Format.hpp"
@@ -131,6 +132,57 @@ void set_fixed(Simulation& sim, const std::vector<std::int64_t>& gids, bool fixe
     }
     return added;
   });
+}
+
+void set_body_force(Simulation& sim, const std::vector<std::int64_t>& gids, const std::vector<Vec2>& forces) {
+  check_sizes(gids.size(), forces.size(), "force");
+  for (std::size_t k = 0; k < forces.size(); ++k)
+    check_finite("force", k, forces[k].x), check_finite("force", k, forces[k].y);
+  const std::vector<std::ptrdiff_t> index = owned_indices(sim, gids);
+  refuse_flagged(sim, gids, index, kFlagFixed, kFixedRefusal);
+  sim.set_driver_forces(gids, forces);
+}
+
+void set_cell_rates(Simulation& sim, double xx, double yy, double xy) {
+  if (!sim.config().cell_deforms())
+    throw InputError(
+        "the cell does not deform in this run: its rates are set by a scene with [cell] rates or "
+        "stresses (a standing box stays one)");
+  Domain& cell = sim.steered_cell();
+  const double given[3] = {xx, yy, xy};
+  const char* names[3] = {"xx", "yy", "xy"};
+  for (int k = 0; k < 3; ++k) {
+    if (std::isnan(given[k])) continue;
+    if (!std::isfinite(given[k]))
+      throw InputError(std::string("cell rate ") + names[k] + " = " + fmt(given[k]) + " must be finite [1/s]");
+    if (k < 2 && sim.steered_cell_control().target(k) > 0.0)
+      throw InputError(std::string("cell rate ") + names[k] + ": the component is stress-controlled (cell.stress_" +
+                       names[k] + "); set its target stress instead");
+  }
+  if (!std::isnan(xx)) cell.L.xx = xx;
+  if (!std::isnan(yy)) cell.L.yy = yy;
+  if (!std::isnan(xy)) cell.L.xy = xy;
+  cell.rates();
+  sim.edit_discs([](DiscStore&) { return 0.0; });  // the motion bound changes: the next step reduces
+}
+
+void set_cell_stress(Simulation& sim, double xx, double yy) {
+  const double given[2] = {xx, yy};
+  const char* names[2] = {"xx", "yy"};
+  CellControl& control = sim.steered_cell_control();
+  for (int k = 0; k < 2; ++k) {
+    if (std::isnan(given[k])) continue;
+    if (control.target(k) <= 0.0)
+      throw InputError(std::string("cell stress ") + names[k] +
+                       ": the component is not stress-controlled in this run "
+                       "(cell.stress_" +
+                       names[k] + " not set); set its rate instead");
+    if (!(std::isfinite(given[k]) && given[k] > 0.0))
+      throw InputError(std::string("cell stress ") + names[k] + " = " + fmt(given[k]) +
+                       " must be a finite number > 0 [Pa]");
+  }
+  for (int k = 0; k < 2; ++k)
+    if (!std::isnan(given[k])) control.set_target(k, given[k]);
 }
 
 void set_wall_velocity(Simulation& sim, std::size_t wall, Vec2 v) {

@@ -23,6 +23,13 @@ void set_omega(Simulation& sim, const std::vector<std::int64_t>& gids, const std
 // Fixes the discs (at rest, not integrated; their kinetic energy is booked as W_driver) or frees them (from rest).
 // A disc glued to a wall is refused: it moves with its wall.
 void set_fixed(Simulation& sim, const std::vector<std::int64_t>& gids, bool fixed);
+// Body forces [N] on the discs `gids` beside gravity, from the next step on (a zero force removes one); their work is
+// booked as W_driver (app/DriverForces.hpp). A fixed disc is refused.
+void set_body_force(Simulation& sim, const std::vector<std::int64_t>& gids, const std::vector<Vec2>& forces);
+// A deforming cell's rates [1/s] (the components given: 0 xx, 1 yy, 2 xy; NaN: unchanged), for components that are
+// not stress-controlled; a stress-controlled component's target stress [Pa] (> 0; NaN: unchanged).
+void set_cell_rates(Simulation& sim, double xx, double yy, double xy);
+void set_cell_stress(Simulation& sim, double xx, double yy);
 // A velocity-controlled, translating wall's velocity [m/s]; a servo wall's target stress [Pa] (> 0).
 void set_wall_velocity(Simulation& sim, std::size_t wall, Vec2 v);
 void set_wall_stress(Simulation& sim, std::size_t wall, double stress);

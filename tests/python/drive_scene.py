@@ -3,8 +3,8 @@
     mpirun -n P python3 drive_scene.py OUT STEPS CHUNK [--resume DIR] [--steer] [--forever] [--section.key=value ...]
 
 Steps the deposition scene (inputs/deposition.ini) to STEPS in chunks of CHUNK with run.output = OUT, then finish().
---steer: at step 600 fixes discs 0-9, gives discs 10-59 an upward velocity and a spin, frees discs 0-4 at step 1200
-(the same calls on every rank). --forever: steps until a signal stops the script (rondel.Stopped, exit 10).
+--steer: at step 600 fixes discs 0-9, gives discs 10-59 an upward velocity and a spin and discs 60-99 a body force
+of twice their weight upwards; at step 1200 frees discs 0-4 and ends the body forces (the same calls on every rank). --forever: steps until a signal stops the script (rondel.Stopped, exit 10).
 --self: each rank runs a simulation of its own on MPI.COMM_SELF, into OUT.rank<r>.
 """
 import os
@@ -41,8 +41,11 @@ def main(argv):
             gids = np.arange(10, 60)
             sim.set_velocity(gids, np.tile([0.0, 0.3], (len(gids), 1)))
             sim.set_omega(gids, np.full(len(gids), 5.0))
+            lift = np.arange(60, 100)
+            sim.set_body_force(lift, np.tile([0.0, 0.2], (len(lift), 1)))
         if steer and sim.step_count == 1200:
             sim.free(range(5))
+            sim.set_body_force(np.arange(60, 100), np.zeros((40, 2)))
         if steer:
             n = min(n, 600 - sim.step_count % 600)
         sim.step(n)

@@ -103,6 +103,73 @@ def test_a_wall_velocity_set_from_python_moves_the_wall(out):
     sim.close()
 
 
+def test_a_body_force_that_cancels_gravity_holds_a_disc_exactly(out):
+    sim = deposition(out)
+    d = sim.discs
+    top = np.argsort(np.asarray(d.position)[:, 1])[-10:]  # nothing is above them to fall onto them
+    gids, m = np.asarray(d.gid)[top], np.asarray(d.mass)[top]
+    x0 = np.asarray(d.position)[top].copy()
+    sim.set_body_force(gids, np.column_stack([np.zeros(10), 9.81 * m]))  # -m g exactly: m (-9.81) + 9.81 m = 0
+    sim.step(300)
+    d = sim.discs
+    rows = np.searchsorted(np.asarray(d.gid), gids)
+    assert np.array_equal(np.asarray(d.position)[rows], x0) and not np.any(np.asarray(d.velocity)[rows])
+    assert sim.ledger()["W_driver"] == 0.0
+    with pytest.raises(ValueError, match="force"):
+        sim.set_body_force(gids[:1], [[math.nan, 0.0]])
+    sim.close()
+
+
+def test_a_body_forces_work_is_booked_as_velocity_verlet_does_it(out):
+    sim = deposition(out)
+    d = sim.discs
+    k = int(np.argmax(np.asarray(d.position)[:, 1]))
+    gid, m = int(np.asarray(d.gid)[k]), float(np.asarray(d.mass)[k])
+    a = 5.0  # m/s^2 sideways, gravity cancelled
+    sim.set_body_force([gid], [[a * m, 9.81 * m]])
+    n = 50
+    sim.step(n)
+    d = sim.discs
+    v = np.asarray(d.velocity)[np.asarray(d.gid) == gid][0]
+    assert v[1] == 0.0 and v[0] == pytest.approx(a * n * sim.dt, rel=1e-12)
+    ke = 0.5 * m * v[0] ** 2
+    # From the first opening kick on, a constant force: the booked work F . x is the kinetic energy
+    W = sim.ledger()["W_driver"]
+    assert W == pytest.approx(ke, rel=1e-9)
+    sim.set_body_force([gid], [[0.0, 0.0]])  # gone from the next opening kick: the disc falls again, no more work
+    sim.step(5)
+    d = sim.discs
+    v5 = np.asarray(d.velocity)[np.asarray(d.gid) == gid][0]
+    assert v5[0] == v[0] and v5[1] == pytest.approx(-9.81 * 5 * sim.dt, rel=1e-12)
+    assert sim.ledger()["W_driver"] == W
+    sim.close()
+
+
+def test_the_cell_from_python(out):
+    overrides = {"run.output": out, "run.steps": 100, "run.progress": False, "scene.count": 300}
+    sim = rondel.Simulation(os.path.join(ROOT, "inputs", "periodic_prepare.ini"), overrides=overrides)
+    c = sim.cell()
+    assert c["deforms"] and c["target_stress"] == (1e5, 1e5) and c["tilt"] == 0.0
+    sim.set_cell_stress(yy=2e5)
+    assert sim.cell()["target_stress"] == (1e5, 2e5)
+    with pytest.raises(ValueError, match="stress-controlled"):
+        sim.set_cell_rates(xx=0.1)
+    with pytest.raises(ValueError, match="> 0"):
+        sim.set_cell_stress(xx=-1.0)
+    sim.set_cell_rates(xy=0.5)
+    sim.step(100)
+    c = sim.cell()
+    assert c["rate"][2] == 0.5 and c["tilt"] > 0.0
+    assert c["tilt"] == pytest.approx(0.5 * c["length"][1] * 100 * sim.dt, rel=0.05)
+    sim.close()
+    dep = deposition(out + "2")
+    with pytest.raises(ValueError, match="does not deform"):
+        dep.set_cell_rates(xy=0.1)
+    with pytest.raises(ValueError, match="not stress-controlled"):
+        dep.set_cell_stress(xx=1e5)
+    dep.close()
+
+
 def test_setup_from_text_or_dict_and_a_bad_key(out):
     text = open(SCENE).read()
     sim = rondel.Simulation(text=text, overrides={"run.output": out, "run.steps": 10, "run.progress": False})

@@ -263,6 +263,26 @@ class Simulation:
         """Frees fixed discs (from rest)."""
         self._d.set_fixed(_gids(gids), False)
 
+    def set_body_force(self, gids, force):
+        """Body forces (n, 2) [N] on free discs by gid beside gravity, from the next step on; a zero force removes
+        one. Their work is booked as W_driver. Not in checkpoints: a resumed script sets them again."""
+        self._d.set_body_force(_gids(gids), np.asarray(force, dtype=float).reshape(-1, 2))
+
+    def cell(self):
+        """The periodic cell: deforms, lo, length, tilt, rate (xx, yy, xy) [1/s], target_stress (xx, yy) [Pa, 0:
+        rate-controlled]."""
+        return self._d.cell()
+
+    def set_cell_rates(self, xx=None, yy=None, xy=None):
+        """A deforming cell's rates [1/s] from the next step (the components given; not the stress-controlled ones)."""
+        nan = float("nan")
+        self._d.set_cell_rates(*(nan if v is None else float(v) for v in (xx, yy, xy)))
+
+    def set_cell_stress(self, xx=None, yy=None):
+        """A stress-controlled cell's target stresses [Pa] from the next step (the components given)."""
+        nan = float("nan")
+        self._d.set_cell_stress(*(nan if v is None else float(v) for v in (xx, yy)))
+
     def walls(self):
         """Every wall (a list of dicts: control, velocity, target_stress, strain_rate, force, normal_force, contacts,
         p0, p1),

@@ -239,6 +239,11 @@ void bind_writes(DriverClass& c) {
              steering::set_fixed(d.sim(), gids, fixed);
              d.touched();
            })
+      .def("set_body_force", [](Driver& d, std::vector<std::int64_t> gids,
+                                py::array_t<double> f) { steering::set_body_force(d.sim(), gids, vec2s(f, "force")); })
+      .def("set_cell_rates",
+           [](Driver& d, double xx, double yy, double xy) { steering::set_cell_rates(d.sim(), xx, yy, xy); })
+      .def("set_cell_stress", [](Driver& d, double xx, double yy) { steering::set_cell_stress(d.sim(), xx, yy); })
       .def("set_wall_velocity",
            [](Driver& d, std::size_t wall, double vx, double vy) {
              steering::set_wall_velocity(d.sim(), wall, {vx, vy});
@@ -273,6 +278,20 @@ void bind_tables(DriverClass& c) {
           }
           return out;
         })
+      .def("cell",
+           [](Driver& d) {
+             Simulation& s = d.sim();
+             const Domain& c = s.config().domain;
+             py::dict x;
+             x["deforms"] = s.config().cell_deforms();
+             x["lo"] = py::make_tuple(c.xlo, c.ylo);
+             x["length"] = py::make_tuple(c.length_x(), c.length_y());
+             x["tilt"] = c.tilt;
+             x["rate"] = py::make_tuple(c.L.xx, c.L.yy, c.L.xy);
+             x["target_stress"] =
+                 py::make_tuple(s.steered_cell_control().target(0), s.steered_cell_control().target(1));
+             return x;
+           })
       .def("ledger",
            [](Driver& d) {
              const EnergyLedger g = d.sim().global_ledger();
