@@ -64,6 +64,19 @@ if(NOT last_output MATCHES "run\\.steps")
   message(FATAL_ERROR "install.package: 'rondel --help' does not list run.steps:\n${last_output}")
 endif()
 run_checked("installed tools/h5info.py --help" /usr/bin/python3 ${prefix}/share/rondel/tools/h5info.py --help)
+# The Python driver, when it was built, beside the reader: PYTHONPATH=<prefix>/share/rondel/tools (docs/python.md).
+file(GLOB driver ${prefix}/share/rondel/tools/rondel/_driver*.so)
+if(PYTHON_DRIVER AND NOT driver)
+  message(FATAL_ERROR "install.package: the Python driver was built but not installed beside the reader")
+endif()
+if(driver)
+  run_checked("the installed Python driver steps a scene" ${CMAKE_COMMAND} -E env
+              PYTHONPATH=${prefix}/share/rondel/tools --unset=RONDEL_DRIVER_DIR /usr/bin/python3 -c
+              "import rondel\ns = rondel.Simulation('${prefix}/share/rondel/inputs/two_disc_impact.ini', files=False)\ns.step(10)\nprint('driver', s.step_count, rondel.__path__)")
+  if(NOT last_output MATCHES "driver 10 \\['${prefix}/share/rondel/tools/rondel'\\]")
+    message(FATAL_ERROR "install.package: unexpected output of the installed driver:\n${last_output}")
+  endif()
+endif()
 
 # A project of its own finds the package in the prefix (and nowhere else) and links Rondel::app.
 set(consumer ${WORK_DIR}/consumer-build)
