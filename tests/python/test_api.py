@@ -204,3 +204,15 @@ def test_import_without_the_compiled_part_reads_and_explains():
         assert "MISSING:" in p.stdout and "tools/setup.sh" in p.stdout and "python3-pybind11" in p.stdout
     finally:
         shutil.rmtree(work, ignore_errors=True)
+
+
+def test_the_scripts_signal_handlers_come_back_after_the_run(out):
+    import signal
+    sim = deposition(out)
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    sim.step(1)
+    sim.finish()
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    with pytest.raises(KeyboardInterrupt):
+        signal.raise_signal(signal.SIGINT)
+    sim.close()

@@ -192,6 +192,9 @@ class Simulation:
         if resume is not None:
             args += ["--resume", os.fspath(resume)]
         args += _override_args(overrides)
+        # The script's handlers of the stop signals, given back at finish() and close(): from the first step on the
+        # run's own take them (a stop at an agreed step, after a checkpoint).
+        self._handlers = {s: _signal.getsignal(s) for s in (_signal.SIGTERM, _signal.SIGINT, _signal.SIGUSR1)}
         self._d = driver.Driver(args, text, comm.py2f(), bool(files))
         self.rank, self.ranks = comm.Get_rank(), comm.Get_size()  # also after close()
 
@@ -204,7 +207,7 @@ class Simulation:
         A stop signal ends them at a step every rank agrees on, after a checkpoint: finish() runs, then Stopped."""
         signal = self._d.step(int(n))
         if signal != 0:
-            summary = self._d.finish()
+            summary = self.finish()
             raise Stopped(_signal.Signals(signal).name, self.step_count, summary["last_checkpoint"])
 
     def run(self):
@@ -217,11 +220,20 @@ class Simulation:
     def finish(self):
         """The end of the run: the checkpoint at the end (output.checkpoint_at_end), summary.txt, summary.json and
         final.csv, as the executable writes them. No steps after it. Returns the summary (a dict)."""
-        return self._d.finish()
+        try:
+            return self._d.finish()
+        finally:
+            self._give_back_signals()
 
     def close(self):
         """Frees the simulation and its communicator (collective). finish() first if the files should be complete."""
         self._d.close()
+        self._give_back_signals()
+
+    def _give_back_signals(self):
+        for s, handler in self._handlers.items():
+            if handler is not None:  # None: a handler not installed from Python, which Python cannot put back
+                _signal.signal(s, handler)
 
     def __enter__(self):
         return self
