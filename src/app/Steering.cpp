@@ -71,6 +71,31 @@ void refuse_flagged(const Simulation& sim, const std::vector<std::int64_t>& gids
   if (first >= 0) throw InputError("disc " + std::to_string(first) + " " + message);
 }
 
+void check_value(const char* what, std::size_t k, double v) { check_finite(what, k, v); }
+void check_value(const char* what, std::size_t k, Vec2 v) { check_finite(what, k, v.x), check_finite(what, k, v.y); }
+
+// The checks of a write of one value per disc, on every rank alike: as many values as gids, finite numbers, each gid
+// owned by one rank and given once, no fixed disc. Returns the local index of each gid on this rank (or -1).
+template <class Value>
+std::vector<std::ptrdiff_t> checked_free_discs(const Simulation& sim, const std::vector<std::int64_t>& gids,
+                                               const std::vector<Value>& values, const char* what) {
+  check_sizes(gids.size(), values.size(), what);
+  for (std::size_t k = 0; k < values.size(); ++k) check_value(what, k, values[k]);
+  std::vector<std::ptrdiff_t> index = owned_indices(sim, gids);
+  refuse_flagged(sim, gids, index, kFlagFixed, kFixedRefusal);
+  return index;
+}
+
+// write(i, k) on each owned disc i of the list (k its place in the list); the sum of what the writes return (the
+// kinetic energy they added on this rank).
+template <class Write>
+double each_owned(const std::vector<std::ptrdiff_t>& index, Write&& write) {
+  double sum = 0.0;
+  for (std::size_t k = 0; k < index.size(); ++k)
+    if (index[k] >= 0) sum += write(static_cast<std::size_t>(index[k]), k);
+  return sum;
+}
+
 const Wall& checked_wall(const Simulation& sim, std::size_t wall) {
   if (wall >= sim.walls().size())
     throw InputError("wall " + std::to_string(wall) + " does not exist; the walls are 0 to " +
@@ -81,36 +106,24 @@ const Wall& checked_wall(const Simulation& sim, std::size_t wall) {
 }  // namespace
 
 void set_velocity(Simulation& sim, const std::vector<std::int64_t>& gids, const std::vector<Vec2>& v) {
-  check_sizes(gids.size(), v.size(), "velocity");
-  for (std::size_t k = 0; k < v.size(); ++k) check_finite("velocity", k, v[k].x), check_finite("velocity", k, v[k].y);
-  const std::vector<std::ptrdiff_t> index = owned_indices(sim, gids);
-  refuse_flagged(sim, gids, index, kFlagFixed, kFixedRefusal);
+  const std::vector<std::ptrdiff_t> index = checked_free_discs(sim, gids, v, "velocity");
   sim.edit_discs([&](DiscStore& d) {
-    double added = 0.0;
-    for (std::size_t k = 0; k < gids.size(); ++k) {
-      const std::ptrdiff_t i = index[k];
-      if (i < 0) continue;
-      added += 0.5 * d.mass[i] * (dot(v[k], v[k]) - dot(d.velocity[i], d.velocity[i]));
+    return each_owned(index, [&](std::size_t i, std::size_t k) {
+      const double added = 0.5 * d.mass[i] * (dot(v[k], v[k]) - dot(d.velocity[i], d.velocity[i]));
       d.velocity[i] = v[k];
-    }
-    return added;
+      return added;
+    });
   });
 }
 
 void set_omega(Simulation& sim, const std::vector<std::int64_t>& gids, const std::vector<double>& omega) {
-  check_sizes(gids.size(), omega.size(), "omega");
-  for (std::size_t k = 0; k < omega.size(); ++k) check_finite("omega", k, omega[k]);
-  const std::vector<std::ptrdiff_t> index = owned_indices(sim, gids);
-  refuse_flagged(sim, gids, index, kFlagFixed, kFixedRefusal);
+  const std::vector<std::ptrdiff_t> index = checked_free_discs(sim, gids, omega, "omega");
   sim.edit_discs([&](DiscStore& d) {
-    double added = 0.0;
-    for (std::size_t k = 0; k < gids.size(); ++k) {
-      const std::ptrdiff_t i = index[k];
-      if (i < 0) continue;
-      added += 0.5 * d.inertia[i] * (omega[k] * omega[k] - d.omega[i] * d.omega[i]);
+    return each_owned(index, [&](std::size_t i, std::size_t k) {
+      const double added = 0.5 * d.inertia[i] * (omega[k] * omega[k] - d.omega[i] * d.omega[i]);
       d.omega[i] = omega[k];
-    }
-    return added;
+      return added;
+    });
   });
 }
 
@@ -119,27 +132,21 @@ void set_fixed(Simulation& sim, const std::vector<std::int64_t>& gids, bool fixe
   refuse_flagged(sim, gids, index, kFlagAttached,
                  "is glued to a rough wall (walls.rough): it moves with its wall and cannot be fixed or freed");
   sim.edit_discs([&](DiscStore& d) {
-    double added = 0.0;
-    for (std::size_t k = 0; k < gids.size(); ++k) {
-      const std::ptrdiff_t i = index[k];
-      if (i < 0) continue;
+    return each_owned(index, [&](std::size_t i, std::size_t) {
+      double added = 0.0;
       if (fixed && !(d.flags[i] & kFlagFixed)) {
-        added -= 0.5 * d.mass[i] * dot(d.velocity[i], d.velocity[i]) + 0.5 * d.inertia[i] * d.omega[i] * d.omega[i];
+        added = -(0.5 * d.mass[i] * dot(d.velocity[i], d.velocity[i]) + 0.5 * d.inertia[i] * d.omega[i] * d.omega[i]);
         d.velocity[i] = {};
         d.omega[i] = 0.0;
       }
       d.flags[i] = fixed ? (d.flags[i] | kFlagFixed) : (d.flags[i] & ~static_cast<std::uint32_t>(kFlagFixed));
-    }
-    return added;
+      return added;
+    });
   });
 }
 
 void set_body_force(Simulation& sim, const std::vector<std::int64_t>& gids, const std::vector<Vec2>& forces) {
-  check_sizes(gids.size(), forces.size(), "force");
-  for (std::size_t k = 0; k < forces.size(); ++k)
-    check_finite("force", k, forces[k].x), check_finite("force", k, forces[k].y);
-  const std::vector<std::ptrdiff_t> index = owned_indices(sim, gids);
-  refuse_flagged(sim, gids, index, kFlagFixed, kFixedRefusal);
+  checked_free_discs(sim, gids, forces, "force");
   sim.set_driver_forces(gids, forces);
 }
 
