@@ -61,13 +61,14 @@ inline void parse_bench_options(const std::string& command, int argc, char** arg
   }
 }
 
-// Peak resident set size of this process [KiB] (VmHWM of /proc/self/status; 0 when unavailable).
-inline long peak_rss_kib() {
+// A size of this process [KiB] from /proc/self/status: `field` is the kernel's name ("VmHWM:" the peak resident
+// set, "VmRSS:" the resident set now); 0 when unavailable.
+inline long status_kib(const std::string& field) {
   std::ifstream in("/proc/self/status");
   std::string key;
   long value = 0;
   while (in >> key) {
-    if (key == "VmHWM:") {  // the kernel's name of the peak resident set in /proc/self/status
+    if (key == field) {
       in >> value;
       return value;
     }
@@ -75,6 +76,8 @@ inline long peak_rss_kib() {
   }
   return 0;
 }
+inline long peak_rss_kib() { return status_kib("VmHWM:"); }
+inline long resident_kib() { return status_kib("VmRSS:"); }
 
 // Resets the peak resident set size (VmHWM) to the present one (Linux 4.0 and later: "5" into
 // /proc/self/clear_refs), so that peak_rss_kib() measures what comes after; false when that is not possible.

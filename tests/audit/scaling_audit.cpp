@@ -1,7 +1,9 @@
 // rondel_scaling_audit: runs one scene on the ranks it is started on and prints, on rank 0, one JSON line
 // with the largest per-rank byte counts of the parallel structures and what the steps asked of MPI
-// (tests/audit/scaling_audit.py runs it on 1, 2, 4 and 8 ranks and checks the scaling; docs/scaling.md).
-//   mpirun -n P rondel_scaling_audit SCENE.ini STEPS OUTPUT_DIR [--section.key=value ...]
+// (tests/audit/scaling_audit.py runs it on 1, 2, 4 and 8 ranks and checks the scaling; docs/scaling.md), and
+// what the set-up took on the largest rank: the growth of its resident set (peak during the set-up less the
+// resident set before it) and its seconds (tests/audit/setup_audit.py).
+//   mpirun -n P rondel_scaling_audit SCENE.ini STEPS OUTPUT_DIR [--resume DIR] [--section.key=value ...]
 #include <cstdint>
 #include <cstdio>
 #include <exception>
@@ -9,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "BenchSupport.hpp"
+#include "app/Launch.hpp"
 #include "app/Simulation.hpp"
 #include "parallel/Communicator.hpp"
 #include "parallel/StateFile.hpp"
@@ -22,14 +26,20 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    std::vector<std::string> args{"--run.output=" + std::string(argv[3]), "--run.progress=false",
+    std::vector<std::string> args{argv[1], "--run.output=" + std::string(argv[3]), "--run.progress=false",
                                   "--run.overwrite=true"};
     for (int i = 4; i < argc; ++i) args.emplace_back(argv[i]);
-    std::vector<const char*> cargs{argv[0], argv[1]};
-    for (const auto& a : args) cargs.push_back(a.c_str());
-    rondel::Config config = rondel::parse_config(static_cast<int>(cargs.size()), cargs.data());
     const std::int64_t steps = std::stoll(argv[2]);
-    rondel::Simulation sim(std::move(config), comm, true);
+    // The set-up as the executable does it (app/Launch.hpp, then the Simulation), from a reset peak.
+    comm.barrier();
+    const bool peak_reset = rondel::reset_peak_rss();
+    const long rss0 = rondel::resident_kib();
+    const double t0 = MPI_Wtime();
+    rondel::Launch launch = rondel::prepare_launch({args}, comm);
+    rondel::Simulation sim(std::move(launch.config), comm, true, launch.checkpoint);
+    const double setup_seconds = comm.max(MPI_Wtime() - t0);
+    const std::int64_t setup_bytes =
+        peak_reset ? comm.max(static_cast<std::int64_t>(rondel::peak_rss_kib() - rss0) * 1024) : -1;
     for (std::int64_t s = 0; s < steps; ++s) sim.step();
     sim.settle_errors();
     const auto before = comm.stats();
@@ -49,12 +59,13 @@ int main(int argc, char** argv) {
           "{\"ranks\": %d, \"discs\": %lld, \"steps\": %lld, \"max_owned\": %lld, \"max_ghosts\": %lld, "
           "\"decomposition_bytes\": %lld, \"exchange_bytes\": %lld, \"neighbour_bytes\": %lld, "
           "\"checkpoint_bytes\": %lld, \"step_collectives\": %lld, \"step_messages\": %lld, \"step_bytes\": %lld, "
-          "\"checkpoint_collectives\": %lld, \"neighbour_builds\": %lld}\n",
+          "\"checkpoint_collectives\": %lld, \"neighbour_builds\": %lld, \"setup_bytes\": %lld, "
+          "\"setup_seconds\": %.6g}\n",
           comm.size(), static_cast<long long>(total_discs), static_cast<long long>(n), static_cast<long long>(owned),
           static_cast<long long>(ghosts), static_cast<long long>(dec), static_cast<long long>(exch),
           static_cast<long long>(neigh), static_cast<long long>(ckpt), static_cast<long long>(coll),
           static_cast<long long>(msgs), static_cast<long long>(bytes), static_cast<long long>(ckpt_coll),
-          static_cast<long long>(sim.counts().neighbour_builds));
+          static_cast<long long>(sim.counts().neighbour_builds), static_cast<long long>(setup_bytes), setup_seconds);
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "rondel_scaling_audit: " << e.what() << '\n';

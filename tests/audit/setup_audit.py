@@ -1,0 +1,125 @@
+#!/usr/bin/env python3
+"""The set-up audit (docs/scaling.md, "Set-up"): what the set-up of a run takes on its largest rank, on 1, 2, 4 and
+8 ranks (oversubscribed), for a generated scene, the same discs read from a CSV file, and a restart from a checkpoint
+(strong: 160,000 discs), and for a generated scene of 20,000 discs per rank (weak). Bytes are the growth of the
+largest rank's resident set during the set-up (its peak less what it held before), seconds the slowest rank's.
+
+    /usr/bin/python3 tests/audit/setup_audit.py --exe build/tests/rondel_scaling_audit --work /tmp/setup-audit
+
+It prints a table and the ratio of each row's bytes to the 1-rank row's; it checks nothing (issue 31 is to make the
+strong rows fall as 1/P and the weak ones stay flat). Exit 0 when every run completed.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+RANKS = [1, 2, 4, 8]
+LATTICE = """[run]
+steps = 1
+[domain]
+xlo = 0
+xhi = {xhi}
+ylo = 0
+yhi = {yhi}
+periodic_x = true
+periodic_y = true
+[material]
+density = 2650
+[linear]
+k_n = 2e6
+e = 0.5
+[coulomb]
+k_s = 1.5e6
+mu = 0.5
+[scene]
+"""
+GENERATED = """type = lattice_square
+nx = {nx}
+ny = {ny}
+radius = 0.00049
+spacing = 0.001
+x0 = 0.0005
+y0 = 0.0005
+"""
+CSV = """type = csv
+file = {file}
+"""
+
+
+def run(args, ranks, ini, out, extra=()):
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    cmd = [args.mpiexec, "-n", str(ranks), "--oversubscribe", args.exe, ini, "1", out] + list(extra)
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=900)
+    if p.returncode != 0:
+        sys.exit("setup_audit.py: %s exited %d\n%s\n%s" % (" ".join(cmd), p.returncode, p.stdout, p.stderr))
+    for line in p.stdout.splitlines():
+        if line.startswith("{"):
+            return json.loads(line)
+    sys.exit("setup_audit.py: no result line from %s\n%s" % (" ".join(cmd), p.stdout))
+
+
+def write(path, text):
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+def scene(args, name, nx, ny, body):
+    return write(os.path.join(args.work, name + ".ini"), LATTICE.format(xhi=nx * 0.001, yhi=ny * 0.001) + body)
+
+
+def lattice_csv(path, nx, ny):
+    with open(path, "w") as f:
+        f.write("id,x,y,radius\n")
+        for j in range(ny):
+            for i in range(nx):
+                f.write("%d,%r,%r,0.00049\n" % (j * nx + i, 0.0005 + 0.001 * i, 0.0005 + 0.001 * j))
+    return path
+
+
+def table(title, rows):
+    print(title)
+    print("  %5s %9s %13s %9s %12s %10s" % ("ranks", "discs", "set-up bytes", "x 1 rank", "bytes/disc", "seconds"))
+    base = rows[0]["setup_bytes"]
+    for r in rows:
+        print("  %5d %9d %13d %9.3f %12.1f %10.3f" % (r["ranks"], r["discs"], r["setup_bytes"], r["setup_bytes"] / base,
+                                                      r["setup_bytes"] / r["discs"], r["setup_seconds"]))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--exe", required=True)
+    ap.add_argument("--work", required=True)
+    ap.add_argument("--mpiexec", default="mpirun")
+    ap.add_argument("--side", type=int, default=400, help="the strong lattice is SIDE x SIDE discs (default 400)")
+    args = ap.parse_args()
+    os.makedirs(args.work, exist_ok=True)
+    n = args.side
+    generated = scene(args, "generated", n, n, GENERATED.format(nx=n, ny=n))
+    csv_file = lattice_csv(os.path.join(args.work, "lattice.csv"), n, n)
+    from_csv = scene(args, "csv", n, n, CSV.format(file=csv_file))
+    strong, csv_rows, restart = [], [], []
+    for p in RANKS:
+        out = os.path.join(args.work, "generated-%d" % p)
+        strong.append(run(args, p, generated, out))
+        csv_rows.append(run(args, p, from_csv, os.path.join(args.work, "csv-%d" % p)))
+    checkpoint_dir = os.path.join(args.work, "generated-1")  # its checkpoint at step 1
+    for p in RANKS:
+        restart.append(run(args, p, generated, os.path.join(args.work, "restart-%d" % p),
+                           ["--resume", checkpoint_dir, "--run.steps=2"]))
+    table("strong, %d discs generated (lattice_square):" % (n * n), strong)
+    table("strong, the same discs read from a CSV file:", csv_rows)
+    table("strong, a restart from the 1-rank run's checkpoint:", restart)
+    weak = []
+    sizes = {1: (200, 100), 2: (200, 200), 4: (400, 200), 8: (400, 400)}
+    for p in RANKS:
+        ini = scene(args, "weak%d" % p, *sizes[p], GENERATED.format(nx=sizes[p][0], ny=sizes[p][1]))
+        weak.append(run(args, p, ini, os.path.join(args.work, "weak-%d" % p)))
+    table("weak, 20,000 discs per rank generated:", weak)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
