@@ -38,10 +38,8 @@ def main():
     sim = rondel.Simulation(os.path.join(ROOT, "inputs", "deposition.ini"), overrides=scene)
     comm = MPI.COMM_WORLD
     # Every rank needs the same list (the writes are collective): the reservoir's discs in height order.
-    d = sim.discs
-    mine = np.column_stack([np.asarray(d.position)[:, 1], np.asarray(d.gid)])
-    everyone = np.concatenate(comm.allgather(mine))
-    queue = everyone[np.lexsort((everyone[:, 1], everyone[:, 0]))][:, 1].astype(np.int64)
+    gids, position = sim.gather("position", everywhere=True)
+    queue = gids[np.lexsort((gids, position[:, 1]))]
     sim.fix(queue)
     released, owed, rows, chunk = 0, 0.0, [], 200
     end = 0.8 if a.quick else 1.0

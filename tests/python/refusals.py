@@ -1,5 +1,6 @@
 """Under mpirun (tests/python/test_bits.py): every setter of rondel.Simulation refuses bad values on every rank
-alike, naming them, and changes nothing. Exits 0 when every check holds (an AssertionError otherwise).
+alike, naming them, and changes nothing; gather() brings every rank's discs together in gid order. Exits 0 when
+every check holds (an AssertionError otherwise).
 
     mpirun -n 2 python3 refusals.py OUT
 """
@@ -53,6 +54,20 @@ def main(out):
         raise AssertionError("a view could be written")
     sim.step(10)
     d = sim.discs
+    gids, x = sim.gather("position", everywhere=True)
+    assert np.array_equal(gids, np.arange(5000)) and x.shape == (5000, 2)
+    mine = np.asarray(d.gid)
+    assert np.array_equal(x[mine], np.asarray(d.position)), "gather is not the views' values"
+    rooted = sim.gather("omega")
+    assert (rooted is None) == (sim.rank != 0)
+    if rooted is not None:
+        assert np.array_equal(rooted[0], gids) and rooted[1].shape == (5000,)
+    try:
+        sim.gather("speed")
+    except rondel.RondelError as e:
+        assert "no column 'speed'" in str(e)
+    else:
+        raise AssertionError("gather of an unknown column")
     assert d.fixed.sum() == (1 if 5 in set(np.asarray(d.gid).tolist()) else 0)
     sim.close()
 

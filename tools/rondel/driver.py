@@ -197,6 +197,7 @@ class Simulation:
         self._handlers = {s: _signal.getsignal(s) for s in (_signal.SIGTERM, _signal.SIGINT, _signal.SIGUSR1)}
         self._d = driver.Driver(args, text, comm.py2f(), bool(files))
         self.rank, self.ranks = comm.Get_rank(), comm.Get_size()  # also after close()
+        self._comm = comm
 
     def _generation(self):
         return self._d.generation
@@ -257,6 +258,23 @@ class Simulation:
     def discs(self):
         """This rank's discs as views (Discs), valid until the next step or write."""
         return Discs(self)
+
+    def gather(self, column, everywhere=False):
+        """Collective: one column of every rank's discs, in ascending gid, as (gids, values) on rank 0 (None on the
+        others) or, with everywhere=True, on every rank. A copy of the whole scene's column: for analysis and for
+        decisions every rank must take alike, not for every step of a large run."""
+        if column not in Discs.COLUMNS:
+            raise RondelError(f"gather: no column '{column}' (columns: {', '.join(Discs.COLUMNS)})")
+        d = self.discs
+        mine = (np.asarray(d.gid).copy(), np.asarray(getattr(d, column)).copy())
+        comm = self._comm
+        parts = comm.allgather(mine) if everywhere else comm.gather(mine, root=0)
+        if parts is None:
+            return None
+        gids = np.concatenate([p[0] for p in parts])
+        values = np.concatenate([p[1] for p in parts])
+        order = np.argsort(gids, kind="stable")
+        return gids[order], values[order]
 
     # --- writes (collective: every rank passes the same gids and values) --------------------------------------
     def set_velocity(self, gids, velocity):
