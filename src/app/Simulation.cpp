@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <thread>
 
@@ -59,9 +60,10 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
     agree(comm_, [&] {
       resolve_time_step();
       start_checks::check_cell(config_, cell_sizing(), neighbours_.range(R_max_), dt_);
-      check_initial_state();
+      start_checks::check_initial_motion(config_, discs_);
     });
     distribute_discs();
+    check_initial_overlaps();
   }
   setup_boundaries();
   if (write_files_) {
@@ -105,7 +107,7 @@ void Simulation::keep_rough_walls(const std::string& path) {
 
 void Simulation::build_discs() {
   agree(comm_, [&] { add_scene_discs(); });
-  measure_radii();  // every rank holds the whole scene here
+  measure_radii();  // every rank holds the whole scene here, or its block of it (scene::in_blocks)
   if (boundaries_.rough()) {
     Boundaries::glue(discs_, walls_, config_.rough_depth > 0.0 ? config_.rough_depth : 2.0 * R_max_);
     assign_rough_materials();
@@ -117,9 +119,11 @@ void Simulation::build_discs() {
 void Simulation::add_scene_discs() {
   const std::string dir = config_.source_file.empty() ? "" : fs::path(config_.source_file).parent_path().string();
   const FileScene files(config_, walls_, config_.domain);
-  const auto scene = build_scene(SceneInputs{config_.scene, config_.domain, dir, &files});
-  box0_ = Boundaries::box(walls_, config_.domain);  // a file scene may have moved the box walls
-  if (scene.empty())
+  const SceneInputs in{config_.scene, config_.domain, dir, &files};
+  const auto scene =
+      scene::in_blocks(config_.scene) ? build_scene_block(in, comm_.rank(), comm_.size()) : build_scene(in);
+  box0_ = Boundaries::box(walls_, config_.domain);        // a file scene may have moved the box walls
+  if (scene.empty() && !scene::in_blocks(config_.scene))  // a block may be empty (more ranks than discs)
     throw InputError(config_.scene.type->source != SceneType::Source::keys
                          ? "scene.file '" + config_.scene.file + "' holds no discs: the scene is empty"
                          : std::string("the scene has no discs (scene.type = ") + config_.scene.type->name + ")");
@@ -149,12 +153,12 @@ void Simulation::assign_rough_materials() {
 }
 
 void Simulation::warn_unused_materials() const {
-  // Every rank holds the whole scene here. A material that no disc and no wall has is most likely a typo.
+  // A material that no disc (on any rank) and no wall has is most likely a typo.
   std::vector<bool> used(config_.materials.size(), false);
   for (std::size_t i = 0; i < discs_.n_owned(); ++i) used[static_cast<std::size_t>(discs_.material[i])] = true;
   for (const Wall& w : walls_) used[static_cast<std::size_t>(w.material)] = true;
   for (std::size_t m = 0; m < used.size(); ++m)
-    if (!used[m] && comm_.root())
+    if (!comm_.any(used[m]) && comm_.root())
       std::cerr << "rondel: warning: material '" << config_.materials[m].name << "' ([material."
                 << config_.materials[m].name << "]) is used by no disc and no wall\n";
 }
@@ -204,12 +208,29 @@ void Simulation::check_periodic_lengths() const {
 }
 
 void Simulation::distribute_discs() {
+  if (scene::in_blocks(config_.scene)) {  // each rank built its block: the discs go to their owners
+    route_to_owners();
+    return;
+  }
   // Every rank built the whole scene; each keeps the discs of its cells.
   make_decomposition(true);
   std::vector<bool> elsewhere(discs_.n_owned());
   for (std::size_t i = 0; i < discs_.n_owned(); ++i)
     elsewhere[i] = decomposition_->owner(discs_.position[i]) != comm_.rank();
   discs_.remove_owned(elsewhere);
+}
+
+void Simulation::route_to_owners() {
+  // Blocks of discs (of a file, of a scene) go to the owners of an equal-cell cut (any rank), then to the cut
+  // weighted by their work.
+  make_decomposition(false);
+  ContactTable no_pairs = make_contact_table(laws_, false), no_walls = make_contact_table(laws_, true);
+  exchange_.migrate(discs_, no_pairs, no_walls, *decomposition_, comm_, true);
+  decomposition_->migrated();
+  if (decomposition_->repartition(discs_, no_pairs)) {
+    exchange_.migrate(discs_, no_pairs, no_walls, *decomposition_, comm_);
+    decomposition_->migrated();
+  }
 }
 
 Domain Simulation::cell_sizing() const {
@@ -321,34 +342,56 @@ void Simulation::resume_time_step(double file_dt, const std::string& path) {
                       "or run.force_dt = true");
 }
 
-void Simulation::check_initial_state() {
-  start_checks::check_initial_motion(config_, discs_);
+void Simulation::check_initial_overlaps() {
+  // After the discs reached their owners: this rank's discs with their ghosts, each pair counted by the rank that
+  // owns its lower gid and each wall contact by the disc's owner; the count summed, the worst taken over the ranks
+  // (ties: the lowest key), so that the message is the same on any rank count. Collective and agreed.
+  exchange_.build_ghosts(discs_, *decomposition_, comm_);
   ContactTable pairs = make_contact_table(laws_, false), walls = make_contact_table(laws_, true);
   NeighbourList probe(neighbours_.skin());
   probe.build(discs_, config_.domain, walls_, config_.params, pairs, walls);
   std::int64_t count = 0;
   double worst = 0.0;
-  std::string where;
-  auto consider = [&](double u_n, double R, const std::string& what) {
+  ContactKey worst_key{-1, -1};
+  bool worst_wall = false;
+  auto consider = [&](double u_n, double R, ContactKey key, bool wall) {
     const double ratio = u_n / R;
     if (ratio <= config_.scene.max_initial_overlap) return;
     ++count;
-    if (ratio > worst) worst = ratio, where = what;
+    if (ratio > worst || (ratio == worst && (wall < worst_wall || (wall == worst_wall && key < worst_key))))
+      worst = ratio, worst_key = key, worst_wall = wall;
   };
+  const std::size_t owned = discs_.n_owned();
   for (std::size_t r = 0; r < pairs.size(); ++r) {
     const auto i = static_cast<std::size_t>(pairs.i1[r]), j = static_cast<std::size_t>(pairs.i2[r]);
+    const std::size_t lower = discs_.gid[i] < discs_.gid[j] ? i : j;
+    if (lower >= owned) continue;
     consider(RowGeometry::pair(discs_, config_.domain, i, j).u_n, std::min(discs_.radius[i], discs_.radius[j]),
-             "discs " + std::to_string(discs_.gid[i]) + " and " + std::to_string(discs_.gid[j]));
+             pairs.key[r], false);
   }
   for (std::size_t r = 0; r < walls.size(); ++r) {
     const auto i = static_cast<std::size_t>(walls.i1[r]);
-    consider(RowGeometry::wall(discs_, walls_[walls.i2[r]], i).u_n, discs_.radius[i],
-             "disc " + std::to_string(discs_.gid[i]) + " and wall " + std::to_string(walls.i2[r]));
+    if (i >= owned) continue;
+    consider(RowGeometry::wall(discs_, walls_[walls.i2[r]], i).u_n, discs_.radius[i], walls.key[r], true);
   }
-  if (count > 0)
+  discs_.truncate_to_owned();
+  count = comm_.sum(count);
+  if (count == 0) return;
+  const double global = comm_.max(worst);
+  // The lowest key among the ranks' worst of that ratio: pairs before wall contacts, then by key.
+  const bool mine = worst == global;
+  const std::int64_t wall = -comm_.max(mine ? -static_cast<std::int64_t>(worst_wall) : -2);
+  const bool candidate = mine && static_cast<std::int64_t>(worst_wall) == wall;
+  const std::int64_t lo = -comm_.max(candidate ? -worst_key.lo : std::numeric_limits<std::int64_t>::min());
+  const std::int64_t hi =
+      -comm_.max(candidate && worst_key.lo == lo ? -worst_key.hi : std::numeric_limits<std::int64_t>::min());
+  const std::string where = wall != 0 ? "disc " + std::to_string(lo) + " and wall " + std::to_string(hi)
+                                      : "discs " + std::to_string(lo) + " and " + std::to_string(hi);
+  agree(comm_, [&] {
     throw InputError(std::to_string(count) + " initial overlaps exceed scene.max_initial_overlap = " +
-                     fmt(config_.scene.max_initial_overlap) + " of the smaller radius; the worst is " + fmt(worst) +
+                     fmt(config_.scene.max_initial_overlap) + " of the smaller radius; the worst is " + fmt(global) +
                      " between " + where + " (from " + start_checks::scene_keys(config_) + ")");
+  });
 }
 
 void Simulation::stop_if_signalled(const std::string& restart_file) const {
@@ -391,15 +434,7 @@ void Simulation::load_checkpoint(const std::string& path) {
   });
   step_ = h.step;
   time_ = h.time;
-  make_decomposition(false);
-  // Discs read by file block go to the owners of an equal-cell cut (any rank), then to the weighted cut.
-  ContactTable no_pairs = make_contact_table(laws_, false), no_walls = make_contact_table(laws_, true);
-  exchange_.migrate(discs_, no_pairs, no_walls, *decomposition_, comm_, true);
-  decomposition_->migrated();
-  if (decomposition_->repartition(discs_, no_pairs)) {
-    exchange_.migrate(discs_, no_pairs, no_walls, *decomposition_, comm_);
-    decomposition_->migrated();
-  }
+  route_to_owners();  // the discs read by file block
   agree(comm_, [&] { file->read_rows(pairs_, wall_rows_, discs_); });
   agree(comm_, [&] { file->read_ledger(core_.ledger()); });
 }

@@ -88,6 +88,18 @@ std::string resolve(const std::string& file, const std::string& config_dir) {
 
 }  // namespace scene
 
+namespace scene {
+bool in_blocks(const SceneConfig& s) { return s.type->block != nullptr && s.materials.size() <= 1; }
+}  // namespace scene
+
+std::vector<SceneDisc> build_scene_block(const SceneInputs& in, int rank, int ranks) {
+  const std::int64_t n = in.scene.type->total(in.scene);
+  // floor(N r / P) = q r + floor(rem r / P) for N = q P + rem: no product above 2^62.
+  const std::int64_t q = n / ranks, rem = n % ranks;
+  const auto first_of = [&](int r) { return q * r + rem * r / ranks; };
+  return in.scene.type->block(in, first_of(rank), first_of(rank + 1) - first_of(rank));
+}
+
 std::vector<SceneDisc> build_scene(const SceneInputs& in) {
   std::vector<SceneDisc> discs = in.scene.type->build(in);
   std::sort(discs.begin(), discs.end(), [](const SceneDisc& a, const SceneDisc& b) { return a.gid < b.gid; });

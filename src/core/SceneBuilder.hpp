@@ -26,6 +26,9 @@ struct SceneInputs;
 // the rank count. Throws InputError naming the key or file when the scene cannot be built, or when two discs
 // have one id.
 std::vector<SceneDisc> build_scene(const SceneInputs& in);
+// This rank's block of the scene when it is built in blocks (scene::in_blocks): the gids [N r / P, N (r + 1) / P)
+// of its N discs, in ascending gid; the same discs as build_scene's.
+std::vector<SceneDisc> build_scene_block(const SceneInputs& in, int rank, int ranks);
 
 // A small, portable generator (splitmix64): the same numbers on every platform and compiler.
 class SceneRandom {
@@ -45,6 +48,9 @@ namespace scene {
 std::vector<std::size_t> material_slots(const SceneConfig& s, std::size_t n);
 // The material of a slot (0 without scene.materials).
 int slot_material(const SceneConfig& s, std::size_t slot);
+// Whether the scene is built in blocks, each rank its own: a type with a block builder and at most one material
+// (a mix of materials is shuffled over the whole scene by material_slots).
+bool in_blocks(const SceneConfig& s);
 // Numbers the discs 0, 1, ... in rows of height 2 R_max from `ylo` up, by x within a row (docs/design.md section 5).
 void number_in_rows(std::vector<SceneDisc>& discs, double ylo);
 // scene.type may use the material scene.numbering = placement only (random: rows too).

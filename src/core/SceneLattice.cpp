@@ -27,13 +27,12 @@ std::string lattice_keys(const SceneConfig&) {
 }
 std::string lattice_radius(const SceneConfig& s) { return "scene.radius = " + fmt(s.radius); }
 
-std::vector<SceneDisc> lattice(const SceneInputs& in, bool hex) {
+// The lattice's extent checked against the domain (its corners, the farthest row and column, the half shift of hex
+// rows); throws InputError naming the keys.
+void check_extent(const SceneInputs& in, bool hex) {
   const SceneConfig& s = in.scene;
   const Domain& domain = in.domain;
-  check_memory(static_cast<double>(s.nx) * s.ny, 0.0, 0.0, "scene.nx x scene.ny");
-  std::vector<SceneDisc> out;
   const double row = hex ? s.spacing * std::sqrt(3.0) / 2.0 : s.spacing;
-  // The corners of the lattice (the first disc, the farthest row and column, the half shift of hex rows).
   const double far_x = s.x0 + (s.nx - 1) * s.spacing + (hex && s.ny > 1 ? 0.5 * s.spacing : 0.0),
                far_y = s.y0 + (s.ny - 1) * row;
   const bool inside_x = domain.periodic_x || (s.x0 >= domain.xlo && far_x <= domain.xhi);
@@ -46,22 +45,45 @@ std::vector<SceneDisc> lattice(const SceneInputs& in, bool hex) {
       << "] x [" << domain.ylo << ", " << domain.yhi << "]";
     throw InputError(m.str());
   }
-  for (int j = 0; j < s.ny; ++j)
-    for (int i = 0; i < s.nx; ++i) {
-      const double shift = (hex && (j % 2 == 1)) ? 0.5 * s.spacing : 0.0;
-      out.push_back({static_cast<std::int64_t>(out.size()),
-                     {s.x0 + i * s.spacing + shift, s.y0 + j * row},
-                     s.radius,
-                     s.velocity,
-                     s.omega});
-    }
-  const auto slots = scene::material_slots(s, out.size());
-  for (std::size_t k = 0; k < out.size(); ++k) out[k].material = scene::slot_material(s, slots[k]);
+}
+
+// The site of gid k (row k / nx, column k % nx).
+SceneDisc site(const SceneConfig& s, bool hex, std::int64_t k) {
+  const double row = hex ? s.spacing * std::sqrt(3.0) / 2.0 : s.spacing;
+  const auto j = static_cast<int>(k / s.nx), i = static_cast<int>(k % s.nx);
+  const double shift = (hex && (j % 2 == 1)) ? 0.5 * s.spacing : 0.0;
+  return {k, {s.x0 + i * s.spacing + shift, s.y0 + j * row}, s.radius, s.velocity, s.omega};
+}
+
+std::int64_t sites(const SceneConfig& s) { return static_cast<std::int64_t>(s.nx) * s.ny; }
+
+// The sites [first, first + count), with one material (scene::in_blocks) or the whole lattice's shuffled slots.
+std::vector<SceneDisc> lattice_block(const SceneInputs& in, bool hex, std::int64_t first, std::int64_t count) {
+  const SceneConfig& s = in.scene;
+  check_memory(static_cast<double>(count), 0.0, 0.0, "scene.nx x scene.ny");
+  check_extent(in, hex);
+  std::vector<SceneDisc> out;
+  out.reserve(static_cast<std::size_t>(count));
+  for (std::int64_t k = first; k < first + count; ++k) out.push_back(site(s, hex, k));
+  if (scene::in_blocks(s)) {
+    for (auto& d : out) d.material = scene::slot_material(s, 0);
+  } else {
+    const auto slots = scene::material_slots(s, static_cast<std::size_t>(sites(s)));
+    for (auto& d : out) d.material = scene::slot_material(s, slots[static_cast<std::size_t>(d.gid)]);
+  }
   return out;
 }
 
+std::vector<SceneDisc> lattice(const SceneInputs& in, bool hex) { return lattice_block(in, hex, 0, sites(in.scene)); }
+
 std::vector<SceneDisc> square(const SceneInputs& in) { return lattice(in, false); }
 std::vector<SceneDisc> hexagonal(const SceneInputs& in) { return lattice(in, true); }
+std::vector<SceneDisc> square_block(const SceneInputs& in, std::int64_t first, std::int64_t count) {
+  return lattice_block(in, false, first, count);
+}
+std::vector<SceneDisc> hexagonal_block(const SceneInputs& in, std::int64_t first, std::int64_t count) {
+  return lattice_block(in, true, first, count);
+}
 
 }  // namespace
 
@@ -72,10 +94,13 @@ extern const SceneType kLatticeSquareScene{"lattice_square",
                                            lattice_radius,
                                            SceneType::Source::keys,
                                            false,
-                                           square};
+                                           square,
+                                           sites,
+                                           square_block};
 extern const SceneType kLatticeHexScene{"lattice_hex",  "scene.nx x scene.ny discs on a hexagonal lattice",
                                         check_lattice,  lattice_keys,
                                         lattice_radius, SceneType::Source::keys,
-                                        false,          hexagonal};
+                                        false,          hexagonal,
+                                        sites,          hexagonal_block};
 
 }  // namespace rondel

@@ -42,6 +42,11 @@ struct SceneType {
   // Its radii are drawn (scene.distribution): scene.material_radius_min/_max and scene.size_materials apply.
   bool draws_radii;
   std::vector<SceneDisc> (*build)(const SceneInputs& in);
+  // A scene whose every disc follows from its gid alone (a lattice) also gives its disc count and the discs of the
+  // gids [first, first + count): each rank builds its own block and nothing on a rank grows with the whole scene
+  // (scene::in_blocks says when; docs/scaling.md, "Set-up"). nullptr: every rank builds the whole scene.
+  std::int64_t (*total)(const SceneConfig& scene) = nullptr;
+  std::vector<SceneDisc> (*block)(const SceneInputs& in, std::int64_t first, std::int64_t count) = nullptr;
 };
 
 std::span<const SceneType* const> scene_types();

@@ -11,7 +11,11 @@ and checks that
   - the steps of the deposition and biaxial scenes make at most one collective call per step on average,
     and send a bounded number of messages per step;
   - the strong lattice in a sheared periodic cell with a servo on its height: the structures fall as 1/P as
-    above, with at most one collective call and a bounded number of messages per step.
+    above, with at most one collective call and a bounded number of messages per step;
+  - the set-up of a lattice (built in blocks, each rank its own): the growth of the largest rank's resident set
+    during the set-up on 8 ranks is at most half of 1 rank's at a fixed total size, and at most twice 1 rank's at
+    a fixed size per rank (a set-up that holds the whole scene on every rank gives 1 and 6; tests/audit/setup_audit.py
+    measures the other kinds of scene).
 usage: scaling_audit.py --exe rondel_scaling_audit --inputs DIR --work DIR [--mpiexec mpirun]
 Exit 0 when every check holds, 1 otherwise."""
 import argparse
@@ -92,14 +96,14 @@ def total(r):
 
 
 def table(title, rows):
-    print("%s\n  %5s %8s %9s %9s %8s %8s %8s %10s %9s %9s" % (title, "ranks", "discs", "max_owned", "ghosts", "decomp",
-                                                              "exchange", "neigh", "checkpoint", "coll/step",
-                                                              "msgs/step"))
+    print("%s\n  %5s %8s %9s %9s %8s %8s %8s %10s %9s %9s %10s" % (
+        title, "ranks", "discs", "max_owned", "ghosts", "decomp", "exchange", "neigh", "checkpoint", "coll/step",
+        "msgs/step", "set-up"))
     for r in rows:
-        print("  %5d %8d %9d %9d %8d %8d %8d %10d %9.3f %9.2f" % (
+        print("  %5d %8d %9d %9d %8d %8d %8d %10d %9.3f %9.2f %10d" % (
             r["ranks"], r["discs"], r["max_owned"], r["max_ghosts"], r["decomposition_bytes"], r["exchange_bytes"],
             r["neighbour_bytes"], r["checkpoint_bytes"], r["step_collectives"] / max(r["steps"], 1),
-            r["step_messages"] / max(r["steps"], 1)))
+            r["step_messages"] / max(r["steps"], 1), r["setup_bytes"]))
 
 
 def main():
@@ -124,6 +128,9 @@ def main():
     if total(strong[3]) > 0.5 * total(strong[1]):
         failures.append("strong: 8 ranks hold %d bytes each, not half or less of 2 ranks' %d" %
                         (total(strong[3]), total(strong[1])))
+    if 0 < strong[0]["setup_bytes"] and strong[3]["setup_bytes"] > 0.5 * strong[0]["setup_bytes"]:
+        failures.append("strong: the set-up of 8 ranks grew the largest rank by %d B, not half or less of 1 rank's %d B" %
+                        (strong[3]["setup_bytes"], strong[0]["setup_bytes"]))
     if strong[3]["checkpoint_bytes"] > 0.6 * strong[1]["checkpoint_bytes"]:
         failures.append("strong: the checkpoint structures of 8 ranks (%d B) are not 0.6 or less of 2 ranks' (%d B)" %
                         (strong[3]["checkpoint_bytes"], strong[1]["checkpoint_bytes"]))
@@ -157,6 +164,9 @@ def main():
     parallel = [total(r) for r in weak[1:]]
     if max(parallel) > 1.2 * min(parallel):
         failures.append("weak: 2, 4 and 8 ranks hold %s bytes: more than 20 %% apart" % parallel)
+    if 0 < weak[0]["setup_bytes"] and weak[3]["setup_bytes"] > 2.0 * weak[0]["setup_bytes"]:
+        failures.append("weak: the set-up of 8 ranks grew the largest rank by %d B, above twice 1 rank's %d B" %
+                        (weak[3]["setup_bytes"], weak[0]["setup_bytes"]))
     if max(parallel) > 1.5 * total(weak[0]):
         failures.append("weak: %d bytes on several ranks, above 1.5 x 1 rank's %d" % (max(parallel), total(weak[0])))
     for r in strong + weak:

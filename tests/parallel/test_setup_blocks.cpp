@@ -1,0 +1,116 @@
+// A scene built in blocks (scene::in_blocks: a lattice of one material; docs/scaling.md, "Set-up"): each rank builds
+// the discs of its block of gids and sends them to the owners of their cells. The run gives the bits of the 1-rank
+// run with every partitioner (check_scene), each rank holds only its block before the discs move, and the set-up's
+// refusals are the same on any rank count.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "ParallelTestUtil.hpp"
+#include "core/Config.hpp"
+#include "core/SceneBuilder.hpp"
+#include "core/SceneTypes.hpp"
+#include "physics/LawRegistry.hpp"
+
+namespace rondel {
+namespace {
+
+using namespace partest;
+
+// A hexagonal lattice of 30 x 24 discs with a drift falls into a box with rolling resistance: every disc crosses
+// rank borders on its way down.
+const char* kLattice = R"(
+[domain]
+xlo = 0
+xhi = 0.07
+ylo = 0
+yhi = 0.06
+[gravity]
+y = -9.81
+[linear]
+k_n = 1e6
+e = 0.4
+[coulomb]
+k_s = 7.5e5
+mu = 0.5
+[contact]
+rolling = wang
+[wang]
+k_r = 2e5
+mu_r = 0.1
+[walls]
+box = bottom left right
+[scene]
+type = lattice_hex
+nx = 30
+ny = 24
+radius = 0.00095
+spacing = 0.0021
+x0 = 0.003
+y0 = 0.004
+vx = 0.3
+vy = -0.2
+omega = 20
+)";
+
+TEST(SetupBlocks, ALatticeBuiltInBlocksGivesTheBitsOfOneRank) {
+  const Config c = parse_config_text(kLattice);
+  ASSERT_TRUE(scene::in_blocks(c.scene));
+  check_scene("lattice in blocks", kLattice, 4000, 500, true);
+}
+
+TEST(SetupBlocks, EachRankBuildsOnlyItsBlockAndTheBlocksMakeTheScene) {
+  const Config c = parse_config_text(kLattice);
+  const SceneInputs in{c.scene, c.domain, "", nullptr};
+  const auto whole = build_scene(in);
+  const int P = world_size();
+  std::size_t total = 0;
+  for (int r = 0; r < P; ++r) {
+    const auto block = build_scene_block(in, r, P);
+    EXPECT_LE(block.size(), whole.size() / static_cast<std::size_t>(P) + 1);
+    for (const auto& d : block) {
+      const auto& w = whole.at(static_cast<std::size_t>(d.gid));
+      EXPECT_TRUE(d.gid == w.gid && d.x.x == w.x.x && d.x.y == w.x.y && d.radius == w.radius && d.v.x == w.v.x &&
+                  d.material == w.material)
+          << "disc " << d.gid << " of block " << r;
+    }
+    if (!block.empty()) EXPECT_EQ(block.front().gid, static_cast<std::int64_t>(total)) << "blocks follow each other";
+    total += block.size();
+  }
+  EXPECT_EQ(total, whole.size());
+  // Two materials are shuffled over the whole scene: not in blocks.
+  const Config two =
+      parse_config_text(std::string(kLattice) + "[material.a]\ndensity = 2650\n[material.b]\ndensity = 7800\n",
+                        {"--scene.materials=a b", "--scene.material_fractions=0.5 0.5"});
+  EXPECT_FALSE(scene::in_blocks(two.scene));
+}
+
+TEST(SetupBlocks, InitialOverlapsAreRefusedWithTheSameMessageOnAnyRankCount) {
+  // Spacing 1.8 R: every neighbour pair overlaps 0.2 R. The count and the worst pair do not depend on the blocks.
+  const std::vector<std::string> args{"--scene.spacing=0.00171", "--scene.ny=6"};
+  std::string here, one;
+  bool threw = false;
+  try {
+    const Communicator world;
+    Simulation s(parse_config_text(kLattice, args), world, false);
+  } catch (const InputError& e) {
+    threw = true;
+    here = e.what();
+  }
+  EXPECT_TRUE(all_ranks(threw)) << "refused on some ranks only";
+  if (world_rank() == 0) {
+    const Communicator self(MPI_COMM_SELF);
+    try {
+      Simulation s(parse_config_text(kLattice, args), self, false);
+    } catch (const InputError& e) {
+      one = e.what();
+    }
+  }
+  one = broadcast(one);
+  EXPECT_FALSE(one.empty());
+  EXPECT_EQ(here, one);
+  EXPECT_NE(here.find("initial overlaps exceed scene.max_initial_overlap"), std::string::npos) << here;
+}
+
+}  // namespace
+}  // namespace rondel
