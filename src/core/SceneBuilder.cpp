@@ -30,9 +30,9 @@ double mean_square_radius(const SceneConfig& s, std::size_t k) {
 
 }  // namespace
 
-std::vector<std::size_t> material_slots(const SceneConfig& s, std::size_t n) {
+std::vector<std::size_t> material_counts(const SceneConfig& s, std::size_t n) {
   const std::size_t m = s.materials.size();
-  if (m == 0) return std::vector<std::size_t>(n, 0);
+  if (m == 0) return {n};
   std::vector<double> w(m);
   double total = 0.0;
   for (std::size_t k = 0; k < m; ++k)
@@ -49,8 +49,14 @@ std::vector<std::size_t> material_slots(const SceneConfig& s, std::size_t n) {
   }
   std::sort(remainder.begin(), remainder.end());
   for (std::size_t r = 0; given < n; ++r, ++given) ++count[remainder[r % m].second];
+  return count;
+}
+
+std::vector<std::size_t> material_slots(const SceneConfig& s, std::size_t n) {
+  if (s.materials.empty()) return std::vector<std::size_t>(n, 0);
+  const std::vector<std::size_t> count = material_counts(s, n);
   std::vector<std::size_t> out;
-  for (std::size_t k = 0; k < m; ++k) out.insert(out.end(), count[k], k);
+  for (std::size_t k = 0; k < count.size(); ++k) out.insert(out.end(), count[k], k);
   // Its own generator: the positions and radii draw the same numbers with or without materials.
   SceneRandom rng(static_cast<std::uint64_t>(s.seed) ^ 0x6d6174657269616cULL);  // "material"
   for (std::size_t i = out.size(); i > 1; --i) std::swap(out[i - 1], out[rng.next() % i]);
@@ -58,6 +64,35 @@ std::vector<std::size_t> material_slots(const SceneConfig& s, std::size_t n) {
 }
 
 int slot_material(const SceneConfig& s, std::size_t slot) { return s.materials.empty() ? 0 : s.materials[slot]; }
+
+std::uint64_t keyed_permutation(std::uint64_t k, std::uint64_t n, std::uint64_t key) {
+  // Four Feistel rounds over 2h bits, 2^(2h) >= n; a value at or above n is permuted again (cycle walking: fewer
+  // than four rounds on average, since 2^(2h) < 4 n).
+  int h = 1;
+  while ((std::uint64_t{1} << (2 * h)) < n) ++h;
+  const std::uint64_t mask = (std::uint64_t{1} << h) - 1;
+  const auto round = [&](std::uint64_t x) {
+    std::uint64_t left = x >> h, right = x & mask;
+    for (std::uint64_t r = 0; r < 4; ++r) {
+      SceneRandom f(key ^ (right * 0x9e3779b97f4a7c15ULL) ^ (r << 56));
+      const std::uint64_t next = left ^ (f.next() & mask);
+      left = right, right = next;
+    }
+    return (left << h) | right;
+  };
+  std::uint64_t y = round(k);
+  while (y >= n) y = round(y);
+  return y;
+}
+
+std::size_t material_slot_of(const SceneConfig& s, const std::vector<std::size_t>& counts, std::uint64_t n,
+                             std::uint64_t k) {
+  if (s.materials.empty()) return 0;
+  std::uint64_t place = keyed_permutation(k, n, static_cast<std::uint64_t>(s.seed) ^ 0x6d6174657269616cULL);
+  std::size_t slot = 0;
+  while (place >= counts[slot]) place -= counts[slot++];
+  return slot;
+}
 
 // The kernel reads the discs in id order (docs/design.md section 5): ids that follow space keep a disc's partners
 // a row of ids away, so its reads stream (docs/benchmarks.md, "The order of the ids"). Ties keep their order.
@@ -89,7 +124,7 @@ std::string resolve(const std::string& file, const std::string& config_dir) {
 }  // namespace scene
 
 namespace scene {
-bool in_blocks(const SceneConfig& s) { return s.type->block != nullptr && s.materials.size() <= 1; }
+bool in_blocks(const SceneConfig& s) { return s.type->block != nullptr; }
 }  // namespace scene
 
 std::vector<SceneDisc> build_scene_block(const SceneInputs& in, int rank, int ranks) {

@@ -46,10 +46,17 @@ namespace scene {
 // The material slot (index into scene.materials) of each of n discs: exact counts from the fractions (largest
 // remainder, ties to the lower slot), in an order shuffled by the scene's seed.
 std::vector<std::size_t> material_slots(const SceneConfig& s, std::size_t n);
+// The exact number of discs of each material slot among n (as material_slots counts them; {n} without materials).
+std::vector<std::size_t> material_counts(const SceneConfig& s, std::size_t n);
+// A bijection of [0, n) keyed by `key` (a Feistel network, cycle-walked into [0, n)): each element's image alone.
+std::uint64_t keyed_permutation(std::uint64_t k, std::uint64_t n, std::uint64_t key);
+// The material slot of disc k of n: the exact counts `counts` (material_counts) in the order of a permutation keyed
+// by the scene's seed, computed for one disc alone (a lattice built in blocks).
+std::size_t material_slot_of(const SceneConfig& s, const std::vector<std::size_t>& counts, std::uint64_t n,
+                             std::uint64_t k);
 // The material of a slot (0 without scene.materials).
 int slot_material(const SceneConfig& s, std::size_t slot);
-// Whether the scene is built in blocks, each rank its own: a type with a block builder and at most one material
-// (a mix of materials is shuffled over the whole scene by material_slots).
+// Whether the scene is built in blocks, each rank its own: a type with a block builder (a lattice).
 bool in_blocks(const SceneConfig& s);
 // Numbers the discs 0, 1, ... in rows of height 2 R_max from `ylo` up, by x within a row (docs/design.md section 5).
 void number_in_rows(std::vector<SceneDisc>& discs, double ylo);

@@ -57,19 +57,19 @@ SceneDisc site(const SceneConfig& s, bool hex, std::int64_t k) {
 
 std::int64_t sites(const SceneConfig& s) { return static_cast<std::int64_t>(s.nx) * s.ny; }
 
-// The sites [first, first + count), with one material (scene::in_blocks) or the whole lattice's shuffled slots.
+// The sites [first, first + count), each with its material slot from the keyed shuffle of the whole lattice's exact
+// counts (scene::material_slot_of: no list of every site).
 std::vector<SceneDisc> lattice_block(const SceneInputs& in, bool hex, std::int64_t first, std::int64_t count) {
   const SceneConfig& s = in.scene;
   check_memory(static_cast<double>(count), 0.0, 0.0, "scene.nx x scene.ny");
   check_extent(in, hex);
+  const auto n = static_cast<std::uint64_t>(sites(s));
+  const std::vector<std::size_t> counts = scene::material_counts(s, n);
   std::vector<SceneDisc> out;
   out.reserve(static_cast<std::size_t>(count));
-  for (std::int64_t k = first; k < first + count; ++k) out.push_back(site(s, hex, k));
-  if (scene::in_blocks(s)) {
-    for (auto& d : out) d.material = scene::slot_material(s, 0);
-  } else {
-    const auto slots = scene::material_slots(s, static_cast<std::size_t>(sites(s)));
-    for (auto& d : out) d.material = scene::slot_material(s, slots[static_cast<std::size_t>(d.gid)]);
+  for (std::int64_t k = first; k < first + count; ++k) {
+    out.push_back(site(s, hex, k));
+    out.back().material = scene::slot_material(s, scene::material_slot_of(s, counts, n, static_cast<std::uint64_t>(k)));
   }
   return out;
 }

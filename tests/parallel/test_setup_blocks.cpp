@@ -1,4 +1,4 @@
-// A scene built in blocks (scene::in_blocks: a lattice of one material; docs/scaling.md, "Set-up"): each rank builds
+// A scene built in blocks (scene::in_blocks: a lattice; docs/scaling.md, "Set-up"): each rank builds
 // the discs of its block of gids and sends them to the owners of their cells. The run gives the bits of the 1-rank
 // run with every partitioner (check_scene), each rank holds only its block before the discs move, and the set-up's
 // refusals are the same on any rank count.
@@ -78,11 +78,15 @@ TEST(SetupBlocks, EachRankBuildsOnlyItsBlockAndTheBlocksMakeTheScene) {
     total += block.size();
   }
   EXPECT_EQ(total, whole.size());
-  // Two materials are shuffled over the whole scene: not in blocks.
+  // Two materials: each site's from the keyed shuffle of the exact counts, the same in any block.
   const Config two =
       parse_config_text(std::string(kLattice) + "[material.a]\ndensity = 2650\n[material.b]\ndensity = 7800\n",
                         {"--scene.materials=a b", "--scene.material_fractions=0.5 0.5"});
-  EXPECT_FALSE(scene::in_blocks(two.scene));
+  ASSERT_TRUE(scene::in_blocks(two.scene));
+  const SceneInputs in2{two.scene, two.domain, "", nullptr};
+  const auto whole2 = build_scene(in2);
+  for (const auto& d : build_scene_block(in2, world_rank(), P))
+    EXPECT_EQ(d.material, whole2.at(static_cast<std::size_t>(d.gid)).material) << "disc " << d.gid;
 }
 
 TEST(SetupBlocks, InitialOverlapsAreRefusedWithTheSameMessageOnAnyRankCount) {
