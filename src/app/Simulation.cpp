@@ -63,15 +63,15 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
       start_checks::check_initial_motion(config_, discs_);
     });
     distribute_discs();
-    check_initial_overlaps();
   }
   setup_boundaries();
+  phases_.restart();
+  rebuild();
+  if (!restart) check_initial_overlaps();  // on the rows just built: every pair within reach
   if (write_files_) {
     stop_if_signalled(restart_file);
     files_.prepare(restart_file, step_);
   }
-  phases_.restart();
-  rebuild();
   if (restart) {
     // Forces, history and ledger come from the file (no recomputation before the first kick); the first
     // step's reduction sums the walls' loads from the rows read, as the interrupted run's step would have.
@@ -343,13 +343,11 @@ void Simulation::resume_time_step(double file_dt, const std::string& path) {
 }
 
 void Simulation::check_initial_overlaps() {
-  // After the discs reached their owners: this rank's discs with their ghosts, each pair counted by the rank that
-  // owns its lower gid and each wall contact by the disc's owner; the count summed, the worst taken over the ranks
-  // (ties: the lowest key), so that the message is the same on any rank count. Collective and agreed.
-  exchange_.build_ghosts(discs_, *decomposition_, comm_);
-  ContactTable pairs = make_contact_table(laws_, false), walls = make_contact_table(laws_, true);
-  NeighbourList probe(neighbours_.skin());
-  probe.build(discs_, config_.domain, walls_, config_.params, pairs, walls);
+  // On the first neighbour list (its rows join this rank's discs and their ghosts): each pair counted by the rank
+  // that owns its lower gid and each wall contact by the disc's owner; the count summed, the worst taken over the
+  // ranks (ties: the lowest key), so that the message is the same on any rank count. Collective and agreed.
+  const ContactTable& pairs = pairs_;
+  const ContactTable& walls = wall_rows_;
   std::int64_t count = 0;
   double worst = 0.0;
   ContactKey worst_key{-1, -1};
@@ -374,7 +372,6 @@ void Simulation::check_initial_overlaps() {
     if (i >= owned) continue;
     consider(RowGeometry::wall(discs_, walls_[walls.i2[r]], i).u_n, discs_.radius[i], walls.key[r], true);
   }
-  discs_.truncate_to_owned();
   count = comm_.sum(count);
   if (count == 0) return;
   const double global = comm_.max(worst);

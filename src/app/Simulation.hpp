@@ -167,7 +167,8 @@ class Simulation final : public RunTarget {
   // A resumed run's time step: run.dt when it differs from the checkpoint's, else the checkpoint's, checked
   // against this configuration's critical step.
   void resume_time_step(double file_dt, const std::string& path);
-  // The initial overlaps over every rank's discs (after distribute_discs): refused above scene.max_initial_overlap.
+  // The initial overlaps over every rank's discs (on the first neighbour list): refused above
+  // scene.max_initial_overlap.
   void check_initial_overlaps();
   // Blocks of discs (a scene built in blocks, a checkpoint read in blocks) to the ranks that own their cells.
   void route_to_owners();

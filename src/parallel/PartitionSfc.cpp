@@ -111,6 +111,7 @@ std::vector<std::uint64_t> SfcPartition::weighted_cuts(const Cells& cells, std::
   while (j < P && target(j) < offset) ++j;
   std::uint64_t acc = offset, pos = lo;
   auto cross_gap = [&](std::uint64_t end) {
+    if (end == pos) return;  // the next cell follows on the curve: no gap to count (the same cuts, no search)
     const std::uint64_t before = curve_.count_below(pos), gap = curve_.count_below(end) - before;
     for (; j < P && target(j) < acc + gap; ++j) cuts[j] = curve_.key_of_cell_number(before + (target(j) - acc));
     acc += gap;
