@@ -108,6 +108,8 @@ class Simulation final : public RunTarget {
   // and returns the kinetic energy it added here, booked as W_driver; the list of fixed discs follows and the next
   // step reduces (the motion bound of the last reduction no longer holds).
   void edit_discs(const std::function<double(DiscStore&)>& edit);
+  // A script changed the motion otherwise (the cell's rates): the next step reduces.
+  void motion_changed() { reduction_.motion_changed(); }
   // The walls, for a script's control of their velocities and servo targets (from the next step on).
   WallSet& steered_walls() { return walls_; }
   // A script's body forces on some discs (DriverForces.hpp), from the next step on.

@@ -50,7 +50,7 @@ void Simulation::rebuild() {
 void Simulation::edit_discs(const std::function<double(DiscStore&)>& edit) {
   core_.ledger().W_driver += edit(discs_);
   assembly_.build(discs_);
-  reduction_.motion_changed();
+  motion_changed();
 }
 
 void Simulation::close_step() {

@@ -170,7 +170,7 @@ void set_cell_rates(Simulation& sim, double xx, double yy, double xy) {
   if (!std::isnan(yy)) cell.L.yy = yy;
   if (!std::isnan(xy)) cell.L.xy = xy;
   cell.rates();
-  sim.edit_discs([](DiscStore&) { return 0.0; });  // the motion bound changes: the next step reduces
+  sim.motion_changed();  // the motion bound changes: the next step reduces
 }
 
 void set_cell_stress(Simulation& sim, double xx, double yy) {

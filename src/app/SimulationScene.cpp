@@ -1,0 +1,169 @@
+// The discs of a new scene (Simulation's set-up, Simulation.cpp): built whole on every rank or, for a lattice, each
+// rank its block (scene::in_blocks); measured over the ranks; glued to rough walls; sent to the owners of their cells;
+// and checked for initial overlaps on the first neighbour list, the same message on any rank count.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <string>
+
+#include "app/Restart.hpp"
+#include "app/RowGeometry.hpp"
+#include "app/Simulation.hpp"
+#include "app/StartChecks.hpp"
+#include "core/Errors.hpp"
+#include "core/ExactSum.hpp"
+#include "core/Format.hpp"
+#include "core/SceneBuilder.hpp"
+#include "parallel/Agreement.hpp"
+
+namespace rondel {
+
+namespace fs = std::filesystem;
+
+void Simulation::build_discs() {
+  agree(comm_, [&] { add_scene_discs(); });
+  measure_radii();  // every rank holds the whole scene here, or its block of it (scene::in_blocks)
+  if (boundaries_.rough()) {
+    Boundaries::glue(discs_, walls_, config_.rough_depth > 0.0 ? config_.rough_depth : 2.0 * R_max_);
+    assign_rough_materials();
+  }
+  warn_unused_materials();
+  setup_neighbours();
+}
+
+void Simulation::add_scene_discs() {
+  const std::string dir = config_.source_file.empty() ? "" : fs::path(config_.source_file).parent_path().string();
+  const FileScene files(config_, walls_, config_.domain);
+  const SceneInputs in{config_.scene, config_.domain, dir, &files};
+  const auto scene =
+      scene::in_blocks(config_.scene) ? build_scene_block(in, comm_.rank(), comm_.size()) : build_scene(in);
+  box0_ = Boundaries::box(walls_, config_.domain);        // a file scene may have moved the box walls
+  if (scene.empty() && !scene::in_blocks(config_.scene))  // a block may be empty (more ranks than discs)
+    throw InputError(config_.scene.type->source != SceneType::Source::keys
+                         ? "scene.file '" + config_.scene.file + "' holds no discs: the scene is empty"
+                         : std::string("the scene has no discs (scene.type = ") + config_.scene.type->name + ")");
+  discs_.reserve(scene.size());
+  for (const auto& d : scene) {
+    Vec2 x = d.x;
+    config_.domain.wrap(x);
+    if (!config_.domain.contains(x))
+      throw InputError("disc " + std::to_string(d.gid) + " at (" + fmt(d.x.x) + ", " + fmt(d.x.y) +
+                       ") lies outside the domain [" + fmt(config_.domain.xlo) + ", " + fmt(config_.domain.xhi) +
+                       "] x [" + fmt(config_.domain.ylo) + ", " + fmt(config_.domain.yhi) + "] (from " +
+                       start_checks::scene_keys(config_) + ")");
+    // In a moving cell the discs start with the mean flow's velocity added (cell.flow_start).
+    const Vec2 v = config_.cell_flow_start && config_.domain.moving ? d.v + config_.domain.flow(x) : d.v;
+    discs_.add(d.gid, d.material, d.radius, config_.materials[static_cast<std::size_t>(d.material)], x, v, d.omega);
+  }
+}
+
+void Simulation::assign_rough_materials() {
+  // walls.rough_materials: the discs glued to a box wall take that wall's material (mass and inertia too).
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) {
+    if (!is_attached(discs_.flags[i])) continue;
+    const int side = walls_[attached_wall(discs_.flags[i])].box_side;
+    const int mat = side >= 0 ? config_.scene.rough_materials.at(static_cast<std::size_t>(side)) : -1;
+    if (mat >= 0) discs_.set_material(i, mat, config_.materials[static_cast<std::size_t>(mat)]);
+  }
+}
+
+void Simulation::warn_unused_materials() const {
+  // A material that no disc (on any rank) and no wall has is most likely a typo.
+  std::vector<bool> used(config_.materials.size(), false);
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i) used[static_cast<std::size_t>(discs_.material[i])] = true;
+  for (const Wall& w : walls_) used[static_cast<std::size_t>(w.material)] = true;
+  for (std::size_t m = 0; m < used.size(); ++m)
+    if (!comm_.any(used[m]) && comm_.root())
+      std::cerr << "rondel: warning: material '" << config_.materials[m].name << "' ([material."
+                << config_.materials[m].name << "]) is used by no disc and no wall\n";
+}
+
+void Simulation::measure_radii() {
+  double R_min = INFINITY, R_max = 0.0;
+  ExactSum R_sum;
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i)
+    R_min = std::min(R_min, discs_.radius[i]), R_max = std::max(R_max, discs_.radius[i]), R_sum += discs_.radius[i];
+  R_min_ = -comm_.max(-R_min);
+  R_max_ = comm_.max(R_max);
+  R_total_ = comm_.exact_sum(R_sum);
+  n_discs_ = comm_.sum(static_cast<std::int64_t>(discs_.n_owned()));
+}
+
+void Simulation::distribute_discs() {
+  if (scene::in_blocks(config_.scene)) {  // each rank built its block: the discs go to their owners
+    route_to_owners();
+    return;
+  }
+  // Every rank built the whole scene; each keeps the discs of its cells.
+  make_decomposition(true);
+  std::vector<bool> elsewhere(discs_.n_owned());
+  for (std::size_t i = 0; i < discs_.n_owned(); ++i)
+    elsewhere[i] = decomposition_->owner(discs_.position[i]) != comm_.rank();
+  discs_.remove_owned(elsewhere);
+}
+
+void Simulation::route_to_owners() {
+  // Blocks of discs (of a file, of a scene) go to the owners of an equal-cell cut (any rank), then to the cut
+  // weighted by their work.
+  make_decomposition(false);
+  ContactTable no_pairs = make_contact_table(laws_, false), no_walls = make_contact_table(laws_, true);
+  exchange_.migrate(discs_, no_pairs, no_walls, *decomposition_, comm_, true);
+  decomposition_->migrated();
+  if (decomposition_->repartition(discs_, no_pairs)) {
+    exchange_.migrate(discs_, no_pairs, no_walls, *decomposition_, comm_);
+    decomposition_->migrated();
+  }
+}
+
+void Simulation::check_initial_overlaps() {
+  // On the first neighbour list (its rows join this rank's discs and their ghosts): each pair counted by the rank
+  // that owns its lower gid and each wall contact by the disc's owner; the count summed, the worst taken over the
+  // ranks (ties: the lowest key), so that the message is the same on any rank count. Collective and agreed.
+  const ContactTable& pairs = pairs_;
+  const ContactTable& walls = wall_rows_;
+  std::int64_t count = 0;
+  double worst = 0.0;
+  ContactKey worst_key{-1, -1};
+  bool worst_wall = false;
+  auto consider = [&](double u_n, double R, ContactKey key, bool wall) {
+    const double ratio = u_n / R;
+    if (ratio <= config_.scene.max_initial_overlap) return;
+    ++count;
+    if (ratio > worst || (ratio == worst && (wall < worst_wall || (wall == worst_wall && key < worst_key))))
+      worst = ratio, worst_key = key, worst_wall = wall;
+  };
+  const std::size_t owned = discs_.n_owned();
+  for (std::size_t r = 0; r < pairs.size(); ++r) {
+    const auto i = static_cast<std::size_t>(pairs.i1[r]), j = static_cast<std::size_t>(pairs.i2[r]);
+    const std::size_t lower = discs_.gid[i] < discs_.gid[j] ? i : j;
+    if (lower >= owned) continue;
+    consider(RowGeometry::pair(discs_, config_.domain, i, j).u_n, std::min(discs_.radius[i], discs_.radius[j]),
+             pairs.key[r], false);
+  }
+  for (std::size_t r = 0; r < walls.size(); ++r) {
+    const auto i = static_cast<std::size_t>(walls.i1[r]);
+    if (i >= owned) continue;
+    consider(RowGeometry::wall(discs_, walls_[walls.i2[r]], i).u_n, discs_.radius[i], walls.key[r], true);
+  }
+  count = comm_.sum(count);
+  if (count == 0) return;
+  const double global = comm_.max(worst);
+  // The lowest key among the ranks' worst of that ratio: pairs before wall contacts, then by key.
+  const bool mine = worst == global;
+  const std::int64_t wall = -comm_.max(mine ? -static_cast<std::int64_t>(worst_wall) : -2);
+  const bool candidate = mine && static_cast<std::int64_t>(worst_wall) == wall;
+  const std::int64_t lo = -comm_.max(candidate ? -worst_key.lo : std::numeric_limits<std::int64_t>::min());
+  const std::int64_t hi =
+      -comm_.max(candidate && worst_key.lo == lo ? -worst_key.hi : std::numeric_limits<std::int64_t>::min());
+  const std::string where = wall != 0 ? "disc " + std::to_string(lo) + " and wall " + std::to_string(hi)
+                                      : "discs " + std::to_string(lo) + " and " + std::to_string(hi);
+  agree(comm_, [&] {
+    throw InputError(std::to_string(count) + " initial overlaps exceed scene.max_initial_overlap = " +
+                     fmt(config_.scene.max_initial_overlap) + " of the smaller radius; the worst is " + fmt(global) +
+                     " between " + where + " (from " + start_checks::scene_keys(config_) + ")");
+  });
+}
+
+}  // namespace rondel
