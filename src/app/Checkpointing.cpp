@@ -61,7 +61,8 @@ std::string Checkpointing::file_name(const char* prefix, std::int64_t step) {
 }
 
 std::string Checkpointing::write_checkpoint(const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
-                                            const ContactTable& wall_rows, const WallSet& walls, double wall_seconds) {
+                                            const ContactTable& wall_rows, const WallSet& walls, double wall_seconds,
+                                            const ContactTable* bonds) {
   const fs::path final_path = fs::path(dir_) / file_name(output::kCheckpoint, header.step);
   // Hidden and never matched by checkpoint_*.h5 until complete; a name of its own per attempt (rank 0's
   // process id and a counter), so that nothing a killed attempt left behind (the file, or an MPI-IO lock
@@ -75,7 +76,7 @@ std::string Checkpointing::write_checkpoint(const StateHeader& header, DiscStore
   part_name += ".part";
   const fs::path part = fs::path(dir_) / part_name;
   try {
-    writer_.write(part.string(), header, discs, pairs, wall_rows, walls, comm_, {}, wall_seconds);
+    writer_.write(part.string(), header, discs, pairs, wall_rows, walls, comm_, {}, wall_seconds, bonds);
     // Known good before it replaces anything: what the disk holds is what was meant (an MPI-IO layer may
     // not report a failed write on every rank, or at all).
     if (verify_) {

@@ -25,7 +25,8 @@ class Checkpointing {
   // Collective. Returns the path written. A failure (IoError, on every rank: the disk, or a file that does
   // not read back as written) removes the partial file and keeps the previous checkpoints.
   std::string write_checkpoint(const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
-                               const ContactTable& wall_rows, const WallSet& walls, double wall_seconds);
+                               const ContactTable& wall_rows, const WallSet& walls, double wall_seconds,
+                               const ContactTable* bonds = nullptr);
   std::string write_snapshot(const StateHeader& header, DiscStore& discs, const WallSet& walls, std::int64_t n_discs);
 
   // The newest checkpoint of `directory` that passes verify_state_file (collective): it opens, is complete,

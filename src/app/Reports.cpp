@@ -92,6 +92,7 @@ DiagnosticsRow Reports::diagnostics(const ContactSummary& stored, double& scale)
   const double ghosts = comm_.sum(static_cast<double>(state_.ghosts));
   row.ghost_fraction = n > 0 ? ghosts / n : 0.0;
   row.migrated = comm_.sum(static_cast<std::int64_t>(state_.migrated));
+  row.bonds = comm_.sum(stored.bonds);
   row.D_other = g.D_other(row.E_stored);
   row.residual = g.relative_residual(row.ke_trans + row.ke_rot);
   static_cast<LedgerTerms&>(row) = g;  // the run's ledger terms, scale updated

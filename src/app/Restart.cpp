@@ -158,11 +158,13 @@ void Restart::read_walls(WallSet& into) const {
   }
 }
 
-void Restart::read_rows(ContactTable& pairs, ContactTable& wall_rows, const DiscStore& discs) const {
+void Restart::read_rows(ContactTable& pairs, ContactTable& wall_rows, const DiscStore& discs,
+                        ContactTable* bonds) const {
   if (!same_laws()) return;
-  read_state_rows(path_, pairs, wall_rows, comm_);
+  read_state_rows(path_, pairs, wall_rows, comm_, bonds);
   route_rows_to_owners(pairs, true, discs, comm_);
   route_rows_to_owners(wall_rows, false, discs, comm_);
+  if (bonds) route_rows_to_owners(*bonds, true, discs, comm_);
 }
 
 void Restart::read_ledger(EnergyLedger& ledger) const {

@@ -32,7 +32,9 @@ class Restart {
   // Wall positions and loads from the file, controls from the configuration (the counts must agree).
   void read_walls(WallSet& walls) const;
   // The contact rows, routed to the owners of their discs (distributed already); none when the laws differ.
-  void read_rows(ContactTable& pairs, ContactTable& wall_rows, const DiscStore& discs) const;
+  // `bonds` (a configuration with bonds): the file's bonds too, each to the owners of its two discs.
+  void read_rows(ContactTable& pairs, ContactTable& wall_rows, const DiscStore& discs,
+                 ContactTable* bonds = nullptr) const;
   // The ledger continues: every rank carries the scale, rank 0 the integrals.
   void read_ledger(EnergyLedger& ledger) const;
 

@@ -252,8 +252,8 @@ void RunFiles::write_measures(const MeasuresRow& row) {
 }
 
 std::string RunFiles::write_checkpoint(const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
-                                       const ContactTable& wall_rows, const WallSet& walls) {
-  const std::string path = checkpoints_->write_checkpoint(header, discs, pairs, wall_rows, walls, wall_seconds_);
+                                       const ContactTable& wall_rows, const WallSet& walls, const ContactTable* bonds) {
+  const std::string path = checkpoints_->write_checkpoint(header, discs, pairs, wall_rows, walls, wall_seconds_, bonds);
   log("checkpoint at step " + std::to_string(header.step) + ": " + path);
   return path;
 }

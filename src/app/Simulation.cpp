@@ -41,6 +41,11 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
     kernel_ = select_kernel(laws_);
     pairs_ = make_contact_table(laws_, false);
     wall_rows_ = make_contact_table(laws_, true);
+    if (config_.bonds) bonds_ = ContactTable::bond_table();
+    if (config_.bonds && config_.cell_deforms())
+      throw InputError(
+          "[bonds] in a deforming cell (cell.rate_* or cell.stress_*) is not supported yet: bonds are "
+          "computed in a standing box or periodic cell");
     walls_ = config_.walls;
     boundaries_.bind(walls_);
     box0_ = Boundaries::box(walls_, config_.domain);
@@ -64,6 +69,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
   phases_.restart();
   rebuild();
   if (!restart) check_initial_overlaps();  // on the rows just built: every pair within reach
+  if (!restart && config_.bonds) create_bonds();
   if (write_files_) {
     stop_if_signalled(restart_file);
     files_.prepare(restart_file, step_);
@@ -284,7 +290,7 @@ void Simulation::load_checkpoint(const std::string& path) {
   step_ = h.step;
   time_ = h.time;
   route_to_owners();  // the discs read by file block
-  agree(comm_, [&] { file->read_rows(pairs_, wall_rows_, discs_); });
+  agree(comm_, [&] { file->read_rows(pairs_, wall_rows_, discs_, bond_rows()); });
   agree(comm_, [&] { file->read_ledger(core_.ledger()); });
 }
 
@@ -309,7 +315,8 @@ std::string Simulation::write_checkpoint() {
   settle_errors();
   if (!files_.has_directory())
     throw ConfigError("a checkpoint needs an output directory (this simulation writes no files)");
-  return files_.write_checkpoint(Restart::header(state(), output::kCheckpoint), discs_, pairs_, wall_rows_, walls_);
+  return files_.write_checkpoint(Restart::header(state(), output::kCheckpoint), discs_, pairs_, wall_rows_, walls_,
+                                 bond_rows());
 }
 
 void Simulation::write_snapshot() {
@@ -345,6 +352,11 @@ double Simulation::kinetic_energy() const { return Reports(state()).kinetic_ener
 DiagnosticsRow Simulation::diagnostics() {
   settle_errors();
   summary_ = kernel_.stored(KernelContext{discs_, config_.domain, walls_, config_.params, dt_}, pairs_, wall_rows_);
+  if (config_.bonds) {
+    summary_.bonds_stored = bonds::stored(step_inputs(false).bond_context(), bonds_);
+    summary_.bonds = bonds::booked(discs_, bonds_);
+    breaks_.clear();  // counted in the ledger (n_b_tension, n_b_shear); their records are not written yet
+  }
   return Reports(state()).diagnostics(summary_, core_.ledger().scale);
 }
 

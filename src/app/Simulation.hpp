@@ -87,6 +87,8 @@ class Simulation final : public RunTarget {
   DiscStore& discs() { return discs_; }
   const ContactTable& pairs() const { return pairs_; }
   const ContactTable& wall_rows() const { return wall_rows_; }
+  // The parallel bonds on this rank (an empty table without bonds).
+  const ContactTable& bonds() const { return bonds_; }
   const WallSet& walls() const { return walls_; }
   // This rank's share of the energy ledger (the whole ledger on one rank).
   const EnergyLedger& ledger() const { return core_.ledger(); }
@@ -185,6 +187,11 @@ class Simulation final : public RunTarget {
   Domain cell_sizing() const;
   // The inputs of the step's serial core (StepCore); `bounds`: the drift measures the motion bound.
   StepInputs step_inputs(bool bounds);
+  // The bond table when the scene has bonds, else nullptr.
+  ContactTable* bond_rows() { return config_.bonds ? &bonds_ : nullptr; }
+  // The bonds of a new scene on its first neighbour list (bonds.gap), and their local indices after a rebuild.
+  void create_bonds();
+  void relink_bonds();
   // step() with `close`; without it the closing kick and the step's ledger booking wait for the next step's
   // drift or close_step().
   void advance_step(bool close);
@@ -205,6 +212,8 @@ class Simulation final : public RunTarget {
   DiscStore discs_;
   WallSet walls_;
   ContactTable pairs_, wall_rows_;
+  ContactTable bonds_;             // the parallel bonds (a bond table when config_.bonds; else empty and unused)
+  std::vector<BondBreak> breaks_;  // the breaks this rank booked since the last diagnostics
   NeighbourList neighbours_;
   ForceAssembly assembly_;
   StepCore core_;  // the step's serial core and the ledger of the steps

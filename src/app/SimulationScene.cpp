@@ -117,6 +117,17 @@ void Simulation::route_to_owners() {
   }
 }
 
+void Simulation::create_bonds() {
+  // The pair rows hold every pair within R1 + R2 + skin: a gap of bonds.gap x the smaller radius must lie within.
+  agree(comm_, [&] {
+    if (!(config_.bond_gap * R_max_ < neighbours_.skin()))
+      throw InputError("bonds.gap = " + fmt(config_.bond_gap) + " of the largest radius (" + fmt(R_max_) +
+                       " m) reaches beyond the neighbour skin (" + fmt(neighbours_.skin()) +
+                       " m): lower bonds.gap or raise neighbour.skin above " + fmt(config_.bond_gap * R_max_) + " m");
+    bonds::create(discs_, config_.domain, config_.params, pairs_, config_.bond_gap, bonds_);
+  });
+}
+
 void Simulation::check_initial_overlaps() {
   // On the first neighbour list (its rows join this rank's discs and their ghosts): each pair counted by the rank
   // that owns its lower gid and each wall contact by the disc's owner; the count summed, the worst taken over the

@@ -24,7 +24,10 @@ StepInputs Simulation::step_inputs(bool bounds) {
                     dt_,
                     config_.local_damping,
                     config_.max_overlap,
-                    bounds};
+                    bounds,
+                    bond_rows(),
+                    &breaks_,
+                    config_.thickness};
 }
 
 void Simulation::rebuild() {
@@ -33,18 +36,33 @@ void Simulation::rebuild() {
   if (!config_.domain.standing()) follow_cell();
   cell_rebuild_ = false;
   neighbours_.set_cell_bound(dt_, neighbours_.range(R_max_));
-  const DiscExchange::Counts moved = exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_);
+  const DiscExchange::Counts moved =
+      exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_, false, bond_rows());
   decomposition_->migrated();
   // Received discs come last: back into gid order, the kernel's order (the arithmetic does not depend on it).
   discs_.sort_owned_by_gid();
   migrated_ += moved.sent;
   exchange_.build_ghosts(discs_, *decomposition_, comm_);
+  if (config_.bonds) relink_bonds();
   phases_.lap(PhaseTimes::communication);
   neighbours_.build(discs_, config_.domain, walls_, config_.params, pairs_, wall_rows_);
   assembly_.build(discs_);
   if (!driver_forces_.empty()) driver_forces_.locate(discs_);
   reduction_.rebuilt();
   phases_.lap(PhaseTimes::neighbour);
+}
+
+void Simulation::relink_bonds() {
+  // A bond whose other disc is neither owned nor a ghost here has stretched beyond the ghosts' reach: this rank's
+  // error, agreed at the next reduction (it cannot act on the bond any more).
+  ContactKey lost;
+  if (bonds::relink(discs_, bonds_, lost) || reduction_.failed()) return;
+  reduction_.keep(std::make_exception_ptr(
+      InstabilityError("step " + std::to_string(step_) + ": the bond between discs " + std::to_string(lost.lo) +
+                       " and " + std::to_string(lost.hi) + " has stretched beyond the interaction range and skin (" +
+                       fmt(neighbours_.range(R_max_)) +
+                       " m) without breaking: its strengths (bonds.sigma_c, bonds.tau_c) are too "
+                       "high for its stiffness, or neighbour.skin is too small")));
 }
 
 void Simulation::edit_discs(const std::function<double(DiscStore&)>& edit) {
@@ -126,10 +144,10 @@ void Simulation::regrid() {
   // As a restart: the discs (with their rows) to an equal-cell cut of the new grid on any rank, then to the
   // weighted cut. Collective, and rare: once per halving or doubling of a length.
   make_decomposition(false);
-  exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_, true);
+  exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_, true, bond_rows());
   decomposition_->migrated();
   if (decomposition_->repartition(discs_, pairs_)) {
-    exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_);
+    exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_, false, bond_rows());
     decomposition_->migrated();
   }
   ++regrids_;

@@ -108,6 +108,10 @@ struct Config {
   // [contact] and law blocks: the selected laws' keywords (physics/LawRegistry) and their parameters
   std::string normal_law, tangential_law, rolling_law;
   ContactParamTable params;
+  // [bonds]: bonds are created at set-up (any key of [bonds] or a pair block [bonds.A.B] given) between discs whose
+  // gap is at most bond_gap x the smaller radius; their parameters are in params' bond fields
+  bool bonds = false;
+  double bond_gap = 0.0;
   // [neighbour]
   double skin = 0.0;  // 0: a quarter of the mean radius
   // [parallel]

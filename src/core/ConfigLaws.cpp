@@ -109,6 +109,34 @@ ContactParams read_wall_contact(const LawCatalog& laws, const Reader& r, const C
   return w;
 }
 
+// True when a key of [bonds] or of a pair block [bonds.A.B] is given: the scene has bonds.
+bool bonds_given(const LawCatalog& laws, const Reader& r) {
+  if (!laws.bonds) return false;
+  const std::string prefix = std::string(laws.bonds->section) + ".";
+  for (const auto& [key, value] : r.vm)
+    if (key.rfind(prefix, 0) == 0 && !value.defaulted()) return true;
+  return false;
+}
+
+// [bonds] itself (not its pair blocks): given, every pair of discs is bonded with these parameters.
+void read_bond_block(const LawCatalog& laws, const Reader& r, ContactParams& p) {
+  const LawBlock& block = *laws.bonds;
+  const std::string prefix = std::string(block.section) + ".";
+  bool given = false;
+  for (const ParamSpec& spec : block.params) given = given || r.given(prefix + spec.key);
+  if (!given && !r.given(prefix + "gap")) return;
+  for (const ParamSpec& spec : block.params) {
+    const std::string key = prefix + spec.key;
+    if (!r.vm.count(key)) {
+      r.required(key,
+                 " (required in [bonds]: every pair of discs is bonded; bond some pairs only with pair blocks "
+                 "[bonds.A.B] and no [bonds])");
+      continue;
+    }
+    p.*spec.target = law_param(r, key, spec);
+  }
+}
+
 }  // namespace
 
 void declare_law_param(KeyTable<Config>& table, const std::string& key, const ParamSpec& p, bool with_default,
@@ -133,6 +161,8 @@ void read_contact(const LawCatalog& laws, const Reader& r, Config& c) {
   for (const LawKind* kind : laws.kinds())
     if (const LawBlock* block = selected_block(laws, c, *kind))
       read_block(r, *kind, selected_keyword(laws, c, *kind), *block, p);
+  c.bonds = bonds_given(laws, r);
+  if (c.bonds) read_bond_block(laws, r, p);
   c.params = ContactParamTable(1);
   c.params.pair(0, 0) = p;
   c.params.wall(0) = read_wall_contact(laws, r, c, p);

@@ -217,6 +217,14 @@ void read_wall_materials(Config& c) {
 }
 
 // The parameters of `section` ("BLOCK.A.B" or "BLOCK.A.wall.W") given in the INI or on the command line.
+// A pair block [bonds.A.B] without [bonds] bonds its pair alone: it gives every required key itself.
+void require_bond_keys(const LawBlock& block, const std::string& section, const ContactParams& p) {
+  for (const ParamSpec& spec : block.params)
+    if (spec.presence == Presence::required && !(p.*spec.target > 0.0))
+      throw ConfigError("missing required key '" + section + "." + spec.key + "' (without [bonds], a pair block [" +
+                        section + "] bonds its pair alone and gives " + "every required key of [bonds])");
+}
+
 void read_pair_block(const LawCatalog& laws, const Reader& r, const std::string& section, ContactParams& p) {
   const std::string block = section.substr(0, section.find('.'));
   if (block == kContactSection) {
@@ -289,10 +297,16 @@ void read_pairs(const LawCatalog& laws, const Reader& r, const DynamicSections& 
     if (!at_wall && !seen.insert(id).second)
       throw ConfigError("section [" + section + "]: the pair is given twice (a pair is unordered: [" + parts[0] + "." +
                         parts[2] + "." + parts[1] + "] is the same)");
+    const bool bonds = laws.bonds && parts[0] == laws.bonds->section;
+    if (bonds && at_wall)
+      throw ConfigError("section [" + section +
+                        "]: bonds join discs, not a disc and a wall (a disc glued to a wall: "
+                        "walls.rough)");
     if (at_wall) {
       read_pair_block(laws, r, section, c.params.wall(a, b));
     } else {
       read_pair_block(laws, r, section, c.params.pair(a, b));
+      if (bonds) require_bond_keys(*laws.bonds, section, c.params.pair(a, b));
       c.params.pair(b, a) = c.params.pair(a, b);
     }
   }

@@ -173,6 +173,10 @@ void add_law_sections(po::options_description& all, std::vector<KeySpec>& keys, 
       Keys table(section, keys);
       config::declare_law_param(table, key, p, true, param_help(p));
     }
+    if (block == laws.bonds)
+      Keys(section, keys, readers)
+          .number("bonds.gap", at(&Config::bond_gap), 0.01, "-", kNonNegative,
+                  "bond the discs whose gap at set-up is at most this fraction of the smaller radius");
     all.add(section);
   }
   po::options_description wallc("[wall_contact] disc-wall parameters (default: the disc-disc ones)");

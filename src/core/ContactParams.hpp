@@ -42,7 +42,14 @@ struct alignas(64) ContactParams {
   // or from the pair's restitution e_wb (K2 = K1/e^2) at set-up
   double k_unload = -1.0;  // < 0: not given
   double e_wb = -1.0;      // < 0: not given
+  // parallel bonds ([bonds], docs/physics.md section 12): stiffnesses per area [Pa/m], mean strengths [Pa] with
+  // their relative spreads, the section's radius multiplier; kb_n = 0: the pair is not bonded
+  double kb_n = 0.0, kb_s = 0.0;
+  double sigma_c = 0.0, tau_c = 0.0;
+  double sigma_spread = 0.0, tau_spread = 0.0;
+  double bond_lambda = 1.0;
 };
+static_assert(sizeof(ContactParams) == 256, "a parameter entry is 256 bytes: the kernel finds it with a shift");
 
 // Parameters for every (material, material) pair and every (disc material, wall material) pair. A contact
 // row holds the index of its entry (pair_index or wall_index, set at the neighbour build), so the kernel's

@@ -13,6 +13,12 @@ ContactTable::ContactTable(std::vector<std::string> slot_names, int couples, boo
   for (const auto& s : slot_names_) slot_columns_.push_back("history/" + s);
 }
 
+ContactTable ContactTable::bond_table() {
+  ContactTable t({"Fb_n", "Fb_s", "Mb"}, 0, false);
+  t.bonds_ = true;
+  return t;
+}
+
 void ContactTable::reserve(std::size_t rows) {
   for_each_column([rows](std::string_view, unsigned, auto& column) { column.reserve(rows); });
 }
@@ -72,7 +78,7 @@ void ContactTable::sort_unique_by_key() {
 }
 
 bool ContactTable::has_state(std::size_t r) const {
-  bool state = false;
+  bool state = bonds_;
   for_each_column([&state, r](std::string_view, unsigned uses, const auto& column) {
     using T = typename std::decay_t<decltype(column)>::value_type;
     if constexpr (std::is_same_v<T, double>) state = state || ((uses & kColumnState) && column[r] != 0.0);

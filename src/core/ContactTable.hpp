@@ -52,6 +52,10 @@ class ContactTable {
   // couples: the rolling couple columns, 0 (no rolling law), 1 (M1) or 2 (M1 and M2); wall_rows: a table of
   // disc-wall rows (with the column f1).
   ContactTable(std::vector<std::string> slot_names, int couples, bool wall_rows = false);
+  // The table of parallel bonds (docs/physics.md section 12): pair rows keyed like their contacts whose columns are
+  // the bond's state, history/Fb_n, history/Fb_s and history/Mb, and no last scalars. Every row is state: a bond
+  // is kept until it breaks, whatever its discs' distance (physics/BondPass.hpp).
+  static ContactTable bond_table();
 
   std::vector<ContactKey> key;
   std::vector<std::int32_t> i1, i2;       // local disc indices (a wall row: i2 is the wall index)
@@ -66,8 +70,13 @@ class ContactTable {
   // The rolling couple columns: 0, 1 (M1; the couple on disc 2 is -M1) or 2 (M1 and M2).
   int couples() const { return couples_; }
   bool wall_rows() const { return wall_rows_; }
+  bool bonds() const { return bonds_; }
   // An empty table with the same columns.
-  ContactTable empty_like() const { return ContactTable(slot_names_, couples_, wall_rows_); }
+  ContactTable empty_like() const {
+    ContactTable t(slot_names_, couples_, wall_rows_);
+    t.bonds_ = bonds_;
+    return t;
+  }
   void reserve(std::size_t rows);
   void clear();
   std::size_t memory_bytes() const;
@@ -79,7 +88,7 @@ class ContactTable {
   void push_copy(const ContactTable& src, std::size_t r);
   // Sorts rows by key and keeps the first of equal keys (copies of one contact are bit-identical).
   void sort_unique_by_key();
-  // True when the row carries state worth keeping (history or last forces).
+  // True when the row carries state worth keeping (history or last forces; every row of a bond table).
   bool has_state(std::size_t r) const;
   // Copies history and last forces, matched by key, from `old` (both tables in ascending key order).
   // Rows of `old` that are not candidates any more are dropped: their contact has opened.
@@ -98,6 +107,7 @@ class ContactTable {
     constexpr unsigned kKept = kColumnRecord | kColumnInherit | kColumnState;
     for (std::size_t k = 0; k < first.slot.size(); ++k)
       visit(std::string_view(first.slot_columns_[k]), kKept, tables.slot[k]...);
+    if (first.bonds_) return;
     visit(std::string_view("F_n"), kKept, tables.F_n...);
     visit(std::string_view("F_t"), kKept, tables.F_t...);
     if (first.couples_ > 0) visit(std::string_view("M1"), kKept, tables.M1...);
@@ -125,6 +135,7 @@ class ContactTable {
   std::vector<std::string> slot_columns_;  // "history/<slot>", the slots' column names
   std::uint8_t couples_ = 0;
   bool wall_rows_ = false;
+  bool bonds_ = false;
 };
 
 }  // namespace rondel

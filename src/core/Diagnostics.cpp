@@ -8,7 +8,7 @@
 
 namespace rondel {
 
-// The ledger's columns: its work terms, E_stored, then its dissipation terms (LedgerTerms' order).
+// The ledger's columns: its work terms, E_stored, then its dissipation terms (LedgerTerms' order); its counts last.
 std::string DiagnosticsWriter::header() {
   std::string h = "step,time,ke_trans,ke_rot,contacts,wall_contacts,coordination,max_overlap_ratio";
   const auto names = [&h](unsigned use) {
@@ -19,7 +19,9 @@ std::string DiagnosticsWriter::header() {
   names(kTermWork);
   h += ",E_stored";
   names(kTermDissipation);
-  return h + ",D_other,ledger_residual,imbalance,ghost_fraction,migrated";
+  h += ",D_other,ledger_residual,imbalance,ghost_fraction,migrated,bonds";
+  names(kTermCount);
+  return h;
 }
 
 std::string DiagnosticsWriter::format(const DiagnosticsRow& r) {
@@ -39,7 +41,9 @@ std::string DiagnosticsWriter::format(const DiagnosticsRow& r) {
   values(kTermWork);
   s << ',' << r.E_stored;
   values(kTermDissipation);
-  s << ',' << r.D_other << ',' << r.residual << ',' << r.imbalance << ',' << r.ghost_fraction << ',' << r.migrated;
+  s << ',' << r.D_other << ',' << r.residual << ',' << r.imbalance << ',' << r.ghost_fraction << ',' << r.migrated
+    << ',' << r.bonds;
+  values(kTermCount);
   return s.str();
 }
 

@@ -23,6 +23,7 @@ struct DiagnosticsRow : LedgerTerms {
   double imbalance = 1.0;       // max over mean of the per-rank work at the last balance check
   double ghost_fraction = 0.0;  // ghosts over discs, all ranks
   std::int64_t migrated = 0;    // discs moved between ranks so far
+  std::int64_t bonds = 0;       // intact parallel bonds (their breaks by mode: the ledger's counts)
 };
 
 // diagnostics.csv: one header, one row per diagnostics step (rank 0 only).

@@ -78,6 +78,7 @@ std::vector<const LawBlock*> LawCatalog::blocks() const {
   for (const LawKind* kind : kinds())
     for (const LawInfo& law : kind->laws)
       if (law.block && std::find(out.begin(), out.end(), law.block) == out.end()) out.push_back(law.block);
+  if (bonds) out.push_back(bonds);
   return out;
 }
 

@@ -92,8 +92,11 @@ struct LawKind {
 
 struct LawCatalog {
   LawKind normal, tangential, rolling;
+  // The parallel bonds' block [bonds] (nullptr: a catalog without bonds): not a law of a kind, but a block of pair
+  // parameters read like one, when any of its keys is given.
+  const LawBlock* bonds = nullptr;
   std::vector<const LawKind*> kinds() const { return {&normal, &tangential, &rolling}; }
-  // Every distinct block, in registry order (normal, tangential, rolling).
+  // Every distinct block, in registry order (normal, tangential, rolling), then the bonds' block.
   std::vector<const LawBlock*> blocks() const;
 };
 

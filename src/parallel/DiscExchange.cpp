@@ -50,12 +50,14 @@ std::size_t partner_index(const std::vector<int>& partners, int rank, const Comm
 }  // namespace
 
 DiscExchange::Counts DiscExchange::migrate(DiscStore& discs, ContactTable& pairs, ContactTable& wall_rows,
-                                           const Decomposition& dec, const Communicator& comm, bool any_rank) {
+                                           const Decomposition& dec, const Communicator& comm, bool any_rank,
+                                           ContactTable* bonds) {
   discs.truncate_to_owned();
   Counts counts;
   if (comm.size() == 1) return counts;
   const auto pair_index = rows_by_gid(pairs, true);
   const auto wall_index = rows_by_gid(wall_rows, false);
+  const auto bond_index = bonds ? rows_by_gid(*bonds, true) : decltype(pair_index){};
   const std::vector<int>& to = dec.send_to();
   std::vector<ByteBuffer> out(any_rank ? static_cast<std::size_t>(comm.size()) : to.size());
   std::vector<bool> leaving(discs.n_owned(), false);
@@ -68,6 +70,7 @@ DiscExchange::Counts DiscExchange::migrate(DiscStore& discs, ContactTable& pairs
     pack_disc(discs, i, kMigrate, b);
     pack_rows_of(discs.gid[i], pair_index, pairs, b);
     pack_rows_of(discs.gid[i], wall_index, wall_rows, b);
+    if (bonds) pack_rows_of(discs.gid[i], bond_index, *bonds, b);
   }
   const auto in = any_rank ? comm.all_to_all(out) : comm.exchange(to, out, dec.receive_from());
   discs.remove_owned(leaving);
@@ -76,7 +79,8 @@ DiscExchange::Counts DiscExchange::migrate(DiscStore& discs, ContactTable& pairs
     while (!r.done()) {
       append_disc(discs, kMigrate, r);
       ++counts.received;
-      for (ContactTable* t : {&pairs, &wall_rows}) {
+      for (ContactTable* t : {&pairs, &wall_rows, bonds}) {
+        if (!t) continue;
         const auto n = r.get<std::uint32_t>();
         for (std::uint32_t k = 0; k < n; ++k) unpack_row(*t, r);
       }
@@ -85,6 +89,7 @@ DiscExchange::Counts DiscExchange::migrate(DiscStore& discs, ContactTable& pairs
   discs.set_owned_count(discs.size());
   pairs.sort_unique_by_key();
   wall_rows.sort_unique_by_key();
+  if (bonds) bonds->sort_unique_by_key();
   return counts;
 }
 

@@ -27,9 +27,10 @@ class DiscExchange {
   // The rows of `pairs` and `wall_rows` are extended with the received rows, sorted by key, de-duplicated;
   // their local indices are stale (they only serve as history for the next neighbour build).
   // The partners are dec.send_to() and dec.receive_from() (point to point); `any_rank` (set-up only: discs
-  // read by file block) sends to any rank with one all-to-all instead.
+  // read by file block) sends to any rank with one all-to-all instead. `bonds` (a scene with bonds): its rows
+  // travel too (both ends, as the pairs'); the rows left behind are dropped by bonds::relink after the ghosts.
   Counts migrate(DiscStore& discs, ContactTable& pairs, ContactTable& wall_rows, const Decomposition& dec,
-                 const Communicator& comm, bool any_rank = false);
+                 const Communicator& comm, bool any_rank = false, ContactTable* bonds = nullptr);
   void build_ghosts(DiscStore& discs, const Decomposition& dec, const Communicator& comm);
   void update_ghosts(DiscStore& discs, const Communicator& comm);
   std::size_t ghost_count() const { return ghosts_; }

@@ -100,13 +100,13 @@ std::int64_t booked_rows(const ContactTable& t, std::size_t n_owned) {
 // The file's size, estimated from above (collective): every record (a snapshot's index and owner columns
 // too), the walls, the text attributes, and HDF5's metadata (about 6 kB for a checkpoint: 64 kB), plus 2 %.
 std::uint64_t estimate_file_bytes(const StateHeader& h, DiscStore& discs, const ContactTable& pairs,
-                                  const ContactTable& wall_rows, std::size_t walls, bool snapshot,
-                                  const Communicator& comm) {
+                                  const ContactTable& wall_rows, const ContactTable* bonds, std::size_t walls,
+                                  bool snapshot, const Communicator& comm) {
   const std::size_t n = discs.n_owned();
-  const double local =
-      static_cast<double>(n) * static_cast<double>(record_bytes(discs, kCheckpoint) + (snapshot ? 12 : 0)) +
-      static_cast<double>(booked_rows(pairs, n)) * static_cast<double>(row_bytes(pairs)) +
-      static_cast<double>(booked_rows(wall_rows, n)) * static_cast<double>(row_bytes(wall_rows));
+  double local = static_cast<double>(n) * static_cast<double>(record_bytes(discs, kCheckpoint) + (snapshot ? 12 : 0)) +
+                 static_cast<double>(booked_rows(pairs, n)) * static_cast<double>(row_bytes(pairs)) +
+                 static_cast<double>(booked_rows(wall_rows, n)) * static_cast<double>(row_bytes(wall_rows));
+  if (bonds) local += static_cast<double>(booked_rows(*bonds, n)) * static_cast<double>(row_bytes(*bonds));
   const double fixed =
       static_cast<double>(walls) * 256.0 + static_cast<double>(h.config.size() + h.materials.size()) + 64.0 * 1024.0;
   return static_cast<std::uint64_t>(1.02 * (comm.sum(local) + fixed));
@@ -222,17 +222,19 @@ std::size_t StateWriter::checkpoint_structure_bytes() const {
 
 void StateWriter::write(const std::string& path, const StateHeader& h, DiscStore& discs, const ContactTable& pairs,
                         const ContactTable& wall_rows, const WallSet& walls, const Communicator& comm,
-                        const std::vector<std::string>& fields, double wall_seconds) {
+                        const std::vector<std::string>& fields, double wall_seconds, const ContactTable* bonds) {
   times_ = {};
   const double t0 = now();
+  const ContactTable* rows_of_bonds = fields.empty() ? bonds : nullptr;
   Hdf5File f(path, Hdf5File::Mode::create, comm,
-             estimate_file_bytes(h, discs, pairs, wall_rows, walls.size(), !fields.empty(), comm));
+             estimate_file_bytes(h, discs, pairs, wall_rows, rows_of_bonds, walls.size(), !fields.empty(), comm));
   f.run([&] {
     write_header(f, h);
     write_discs(f, discs, comm, fields);
     if (fields.empty()) {
       write_rows(f, "/contacts", pairs, discs.n_owned(), comm);
       write_rows(f, "/wall_contacts", wall_rows, discs.n_owned(), comm);
+      if (bonds) write_rows(f, "/bonds", *bonds, discs.n_owned(), comm);
     }
     write_walls(f, walls, comm);
     f.write_attribute("/walls", "box_width0", h.box_width0);

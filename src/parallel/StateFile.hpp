@@ -80,9 +80,10 @@ inline Domain recorded_cell(const StateHeader& h, Domain configured) {
 // offset. Keep one writer per output directory: its buffers keep their capacity from one file to the next.
 class StateWriter {
  public:
+  // `bonds` (a run with bonds): its rows too, in /bonds (a checkpoint; a snapshot has no rows).
   void write(const std::string& path, const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
              const ContactTable& wall_rows, const WallSet& walls, const Communicator& comm,
-             const std::vector<std::string>& fields, double wall_seconds);
+             const std::vector<std::string>& fields, double wall_seconds, const ContactTable* bonds = nullptr);
   // The bytes of this rank's checkpoint structures, as held now: their capacity only grows, so this is
   // the peak of every file written so far. Per record this rank writes: 24 B of key and index (48 B
   // while merging received runs), 8 B of row index, and the largest dataset's element (16 B); per record
@@ -134,7 +135,10 @@ std::uint64_t state_file_discs(const std::string& path, const Communicator& comm
 // The datasets of /discs the file holds (a snapshot has those of its output.snapshot_fields, and "index").
 std::vector<std::string> state_file_disc_datasets(const std::string& path, const Communicator& comm);
 void read_state_discs(const std::string& path, DiscStore& discs, const Communicator& comm);
-void read_state_rows(const std::string& path, ContactTable& pairs, ContactTable& wall_rows, const Communicator& comm);
+// `bonds` (a configuration with bonds): this rank's block of /bonds too. A file with bonds read without `bonds`,
+// or one without /bonds read with it, is refused (InputError naming the file): a run resumes with the bonds it had.
+void read_state_rows(const std::string& path, ContactTable& pairs, ContactTable& wall_rows, const Communicator& comm,
+                     ContactTable* bonds = nullptr);
 WallSet read_state_walls(const std::string& path, const Communicator& comm);
 
 // Refuses a file in which two discs share an id (InputError naming `path` and the smallest such id, on every

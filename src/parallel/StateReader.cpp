@@ -197,9 +197,21 @@ void read_state_discs(const std::string& path, DiscStore& discs, const Communica
 
 namespace {
 
-void read_rows(const Hdf5File& f, ContactTable& pairs, ContactTable& wall_rows, const Communicator& comm) {
+void read_rows(const Hdf5File& f, const std::string& path, ContactTable& pairs, ContactTable& wall_rows,
+               ContactTable* bonds, const Communicator& comm) {
+  const bool has_bonds = f.exists("/bonds");
+  if (has_bonds && !bonds)
+    throw InputError("'" + path + "' holds parallel bonds (/bonds, " + std::to_string(f.rows("/bonds/key")) +
+                     " of them): its run is resumed with its configuration's [bonds]");
+  if (bonds && !has_bonds)
+    throw InputError("'" + path +
+                     "' holds no parallel bonds (/bonds), but the configuration has [bonds]: a run "
+                     "resumes with the bonds it had; to bond the discs of a file, start a new run from it (scene.type "
+                     "= file)");
   for (auto [group, table] :
-       {std::pair{std::string("/contacts"), &pairs}, std::pair{std::string("/wall_contacts"), &wall_rows}}) {
+       {std::pair{std::string("/contacts"), &pairs}, std::pair{std::string("/wall_contacts"), &wall_rows},
+        std::pair{std::string("/bonds"), bonds}}) {
+    if (!table) continue;
     table->clear();
     const std::uint64_t total = f.rows(group + "/key");
     const std::uint64_t begin = block_begin(total, comm.rank(), comm.size());
@@ -256,9 +268,10 @@ WallSet read_walls(const Hdf5File& f, const std::string& path) {
 
 }  // namespace
 
-void read_state_rows(const std::string& path, ContactTable& pairs, ContactTable& wall_rows, const Communicator& comm) {
+void read_state_rows(const std::string& path, ContactTable& pairs, ContactTable& wall_rows, const Communicator& comm,
+                     ContactTable* bonds) {
   Hdf5File f(path, Hdf5File::Mode::read, comm);
-  f.run([&] { read_rows(f, pairs, wall_rows, comm); });
+  f.run([&] { read_rows(f, path, pairs, wall_rows, bonds, comm); });
 }
 
 WallSet read_state_walls(const std::string& path, const Communicator& comm) {

@@ -1,9 +1,8 @@
 #pragma once
 // The parallel bond of Potyondy & Cundall (2004) in 2D (docs/physics.md section 12): an elastic beam of rectangular
 // section between two discs that acts beside their contact law and breaks in tension or shear. This file is the
-// law: its geometry, one step of its forces, its breaking test, its stored energy and the strengths drawn per
-// bond. (The rows that carry bonds through the contact kernel, the set-up that creates them and the [bonds] keys
-// are not written yet: issue 29.)
+// law: its [bonds] block, its geometry, one step of its forces, its breaking test, its stored energy and the strengths
+// drawn per bond. The rows that carry bonds and their pass after the contact kernel: physics/BondPass.hpp.
 //
 //   geometry: Rb = lambda min(R1, R2),  A = 2 Rb t,  I = (2 Rb)^3 t/12,  t the discs' thickness
 //   update (half-step velocities, canonical frame of the kinematics: v_n = (v2 - v1).n, V_s, w1 - w2):
@@ -20,18 +19,29 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/ContactParams.hpp"
+#include "core/LawSpec.hpp"
 #include "physics/ContactKinematics.hpp"
 
 namespace rondel {
 
-// A bond's parameters (per pair of materials): stiffnesses per area [Pa/m], mean strengths [Pa] with their relative
-// spreads (each bond's strength is uniform in mean (1 +- spread), spread in [0, 1)), and the radius multiplier.
-struct BondParams {
-  double kb_n = 0.0, kb_s = 0.0;
-  double sigma_c = 0.0, tau_c = 0.0;
-  double sigma_spread = 0.0, tau_spread = 0.0;
-  double lambda = 1.0;
+// [bonds] and its pair blocks [bonds.A.B]: a bond's parameters per pair of materials (ContactParams' bond fields).
+// Each bond's strength is uniform in mean (1 +- spread), spread in [0, 1).
+inline constexpr Range kSpread{0.0, 1.0, false, true};
+inline constexpr ParamSpec kBondParams[] = {
+    {"kb_n", "Pa/m", Presence::required, 0.0, kPositive, "bond normal stiffness per area", &ContactParams::kb_n, 1e9},
+    {"kb_s", "Pa/m", Presence::required, 0.0, kPositive, "bond shear stiffness per area", &ContactParams::kb_s, 0.5e9},
+    {"sigma_c", "Pa", Presence::required, 0.0, kPositive, "mean tensile strength", &ContactParams::sigma_c, 1e4},
+    {"tau_c", "Pa", Presence::required, 0.0, kPositive, "mean shear strength", &ContactParams::tau_c, 1e4},
+    {"sigma_spread", "-", Presence::defaulted, 0.0, kSpread, "relative spread of the tensile strength per bond",
+     &ContactParams::sigma_spread},
+    {"tau_spread", "-", Presence::defaulted, 0.0, kSpread, "relative spread of the shear strength per bond",
+     &ContactParams::tau_spread},
+    {"lambda", "-", Presence::defaulted, 1.0, kPositive, "bond radius Rb = lambda min(R1, R2)",
+     &ContactParams::bond_lambda},
 };
+inline constexpr LawBlock kBondBlock{"bonds", "parallel bonds (Potyondy & Cundall 2004; any key turns bonds on)",
+                                     kBondParams};
 
 // The beam's section: radius Rb [m], area A [m^2 per thickness t], second moment I [m^4].
 struct BondGeometry {
@@ -57,13 +67,13 @@ struct BondStep {
   BondMode mode = BondMode::intact;
 };
 
-inline double bond_stored(const BondParams& p, const BondGeometry& g, const BondState& s) {
+inline double bond_stored(const ContactParams& p, const BondGeometry& g, const BondState& s) {
   return s.Fb_n * s.Fb_n / (2.0 * p.kb_n * g.A) + s.Fb_s * s.Fb_s / (2.0 * p.kb_s * g.A) +
          s.Mb * s.Mb / (2.0 * p.kb_n * g.I);
 }
 
 // The step: the increments from the kinematics' rates, then the breaking test against this bond's strengths.
-inline BondStep bond_step(const BondParams& p, const BondGeometry& g, const ContactKinematics& k, double dt,
+inline BondStep bond_step(const ContactParams& p, const BondGeometry& g, const ContactKinematics& k, double dt,
                           const BondState& before, double sigma_c, double tau_c) {
   BondStep out;
   BondState& s = out.state;
@@ -96,5 +106,14 @@ inline double bond_strength(double mean, double spread, std::int64_t lo, std::in
 }
 inline constexpr std::uint64_t kTensileSalt = 0x7465'6e73'696c'6531ULL;  // "tensile1"
 inline constexpr std::uint64_t kShearSalt = 0x7368'6561'7273'7431ULL;    // "shearst1"
+
+// The strengths of the bond (lo, hi) with the pair's parameters.
+struct BondStrengths {
+  double sigma_c, tau_c;
+  static BondStrengths of(const ContactParams& p, std::int64_t lo, std::int64_t hi) {
+    return {bond_strength(p.sigma_c, p.sigma_spread, lo, hi, kTensileSalt),
+            bond_strength(p.tau_c, p.tau_spread, lo, hi, kShearSalt)};
+  }
+};
 
 }  // namespace rondel

@@ -27,10 +27,13 @@ struct LedgerStep : LedgerTerms, WorstOverlap {};
 
 // The contacts now: energy held by their springs [J per thickness], how many carry load, how many slide
 // (|F_t| at mu F_n) and how many have yielded in rolling (|M| at the law's cap). Booked rows only.
+// The parallel bonds' stored energy and count (booked rows) join them when the scene has bonds.
 struct ContactSummary {
   double normal = 0.0, tangential = 0.0, rolling = 0.0;
   std::int64_t contacts = 0, wall_contacts = 0, sliding = 0, rolling_yield = 0;
-  double total() const { return normal + tangential + rolling; }
+  double bonds_stored = 0.0;
+  std::int64_t bonds = 0;
+  double total() const { return normal + tangential + rolling + bonds_stored; }
 };
 
 struct KernelContext {

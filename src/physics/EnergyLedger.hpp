@@ -1,7 +1,7 @@
 #pragma once
 // Energy ledger (docs/physics.md section 5): the work of gravity W_g, of moving walls on discs W_w, and of the
-// contact forces and couples W_c = W_n + W_t + W_r on the relative motion (negative when they resist),
-// integrated with the half-step velocities, and D_damping, the work the integrator's local damping takes from
+// contact forces and couples W_c = W_n + W_t + W_r (+ W_b, the bonds') on the relative motion (negative when they
+// resist), integrated with the half-step velocities, and D_damping, the work the integrator's local damping takes from
 // the discs (run.local_damping), and W_cell, the work of a deforming periodic cell on the discs through the pairs
 // across its boundary. Residual |KE - KE0 - W_g - W_w - W_cell - W_c + D_damping| relative to the largest of
 // KE, |W_g|, |W_w| and |W_cell| so far is the run's reported integration error.
@@ -26,7 +26,7 @@ struct EnergyLedger : LedgerTerms {
     add_terms(s, kTermKernel);
     D_damping += damping;
   }
-  double W_c() const { return W_n + W_t + W_r; }
+  double W_c() const { return W_n + W_t + W_r + W_b; }
   // What the dissipations by mechanism leave of -W_c once the springs' energy E_stored is counted: the
   // dashpots of the normal and tangential springs, and the integration error. The local damping is not a
   // part of -W_c (it acts on the discs' motion, not through the contacts).

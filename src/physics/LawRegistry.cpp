@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "core/ConfigSchema.hpp"
+#include "physics/BondParallel.hpp"
 #include "physics/LawRows.hpp"
 
 namespace rondel {
@@ -16,7 +17,7 @@ using registry::with_laws;
 
 const LawCatalog& law_catalog() {
   static const LawCatalog catalog{NormalLaws::kind("normal"), TangentialLaws::kind("tangential"),
-                                  RollingLaws::kind("rolling")};
+                                  RollingLaws::kind("rolling"), &kBondBlock};
   return catalog;
 }
 

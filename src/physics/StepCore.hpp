@@ -14,6 +14,7 @@
 #include "core/ForceAssembly.hpp"
 #include "core/Integrator.hpp"
 #include "core/Wall.hpp"
+#include "physics/BondPass.hpp"
 #include "physics/EnergyLedger.hpp"
 #include "physics/LawRegistry.hpp"
 
@@ -37,6 +38,11 @@ struct StepInputs {
   double damping = 0.0;             // run.local_damping
   double overlap_limit = INFINITY;  // run.max_overlap: the kernel reports overlaps above it
   bool bounds = false;              // the drift measures the motion bound of spaced reductions
+  // The parallel bonds (nullptr: the scene has none), where their breaks are recorded, and the discs' thickness.
+  ContactTable* bonds = nullptr;
+  std::vector<BondBreak>* breaks = nullptr;
+  double thickness = 1.0;
+  BondContext bond_context() const { return BondContext{discs, domain, params, thickness, dt}; }
 };
 
 // A run's hooks that do nothing (the rig's, and the base of a run's).
@@ -54,6 +60,7 @@ class StepCore {
     ForceAssembly::begin(in.discs, in.body);
     in.kernel.initial(KernelContext{in.discs, in.domain, in.walls, in.params, 0.0}, in.pairs, in.wall_rows,
                       ForceSums::of(in.discs));
+    if (in.bonds) bonds::apply(in.bond_context(), *in.bonds, ForceSums::of(in.discs));
     in.assembly.finish(in.discs);
   }
 
@@ -74,10 +81,12 @@ class StepCore {
     hooks.between(drift);
     // 4. The sums of the fixed discs and the ghosts begin (the drift began the free discs').
     in.assembly.begin_fixed_and_ghosts(in.discs);
-    // 5. The contact kernel over every row, adding each row's terms to its discs' sums in ascending partner gid.
+    // 5. The contact kernel over every row, adding each row's terms to its discs' sums in ascending partner gid;
+    //    then the bonds in theirs.
     work_ = LedgerStep{};
     in.kernel.run(KernelContext{in.discs, in.domain, in.walls, in.params, in.dt, in.overlap_limit}, in.pairs,
                   in.wall_rows, ForceSums::of(in.discs), work_);
+    if (in.bonds) bonds::step(in.bond_context(), *in.bonds, ForceSums::of(in.discs), work_, *in.breaks);
     work_.W_cell += drift.W_cell;  // the drift's wraps in a moving cell (+0 otherwise)
     hooks.lap(StepPhase::force);
     // 6. The sums are complete; the fixed discs are finished; then the hooks (checks, loads).

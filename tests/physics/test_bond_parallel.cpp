@@ -26,8 +26,8 @@ namespace {
 constexpr double kR = test::d5::R;
 constexpr double kDt = 1e-6;
 
-BondParams params() {
-  BondParams p;
+ContactParams params() {
+  ContactParams p;
   p.kb_n = 1e9, p.kb_s = 0.5e9;
   p.sigma_c = 1e4, p.tau_c = 1e4;
   return p;
@@ -50,7 +50,7 @@ TEST(BondParallel, TheGeometryOfItsSection) {
 }
 
 TEST(BondParallel, PulledApartItCarriesKbnADeltaAndBreaksInTensionWhenSigmaReachesItsStrength) {
-  BondParams p = params();
+  ContactParams p = params();
   p.sigma_c = 1.0505e4;   // reached between steps: Fb_n/A grows by 10 Pa a step
   const double V = 0.01;  // disc 2 leaves at 1 cm/s along +x
   BondState s;
@@ -79,7 +79,7 @@ TEST(BondParallel, PulledApartItCarriesKbnADeltaAndBreaksInTensionWhenSigmaReach
 }
 
 TEST(BondParallel, SpunAtFixedCentresItShearsOrBendsAndTheFirstModeToReachItsStrengthBreaks) {
-  const BondParams p = params();
+  const ContactParams p = params();
   const Vec2 x2{2.0 * kR, 0.0};
   const double w = 0.3;
   BondState shear, bend;
@@ -112,7 +112,7 @@ TEST(BondParallel, SpunAtFixedCentresItShearsOrBendsAndTheFirstModeToReachItsStr
 }
 
 TEST(BondParallel, ARotatedFrameAndASuperposedSpinChangeNoForce) {
-  const BondParams p = params();
+  const ContactParams p = params();
   const Vec2 x1{0.013, -0.021}, v1{0.02, -0.01}, v2{-0.01, 0.015};
   const double w1 = 7.0, w2 = -3.0, dist = 2.0 * kR - 1e-5;
   auto trace = [&](double angle, double Omega) {
