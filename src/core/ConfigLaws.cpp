@@ -122,15 +122,16 @@ bool bonds_given(const LawCatalog& laws, const Reader& r) {
 void read_bond_block(const LawCatalog& laws, const Reader& r, ContactParams& p) {
   const LawBlock& block = *laws.bonds;
   const std::string prefix = std::string(block.section) + ".";
-  bool given = false;
-  for (const ParamSpec& spec : block.params) given = given || r.given(prefix + spec.key);
-  if (!given && !r.given(prefix + "gap")) return;
+  std::string given = r.given(prefix + "gap") ? prefix + "gap" : "";
+  for (const ParamSpec& spec : block.params)
+    if (given.empty() && r.given(prefix + spec.key)) given = prefix + spec.key;
+  if (given.empty()) return;
   for (const ParamSpec& spec : block.params) {
     const std::string key = prefix + spec.key;
     if (!r.vm.count(key)) {
-      r.required(key,
-                 " (required in [bonds]: every pair of discs is bonded; bond some pairs only with pair blocks "
-                 "[bonds.A.B] and no [bonds])");
+      r.required(key, " (required in [bonds], which '" + given +
+                          "' turns on: every pair of discs is bonded; bond some pairs only with pair blocks "
+                          "[bonds.A.B] and no [bonds])");
       continue;
     }
     p.*spec.target = law_param(r, key, spec);
@@ -169,6 +170,7 @@ void read_contact(const LawCatalog& laws, const Reader& r, Config& c) {
 }
 
 bool unselected_law_block(const LawCatalog& laws, const Config& c, const std::string& section) {
+  if (laws.bonds && section == laws.bonds->section) return !c.bonds;  // [bonds] only in a scene with bonds
   const LawKind* kind = block_kind(laws, section);
   if (!kind) return false;
   const LawBlock* block = selected_block(laws, c, *kind);

@@ -80,7 +80,8 @@ void declare_law_param(KeyTable<Config>& table, const std::string& key, const Pa
                        const std::string& help);
 // A law parameter's value as given: its number, or its word's index (the validation pass checked either).
 double law_param(const Reader& r, const std::string& key, const ParamSpec& p);
-// Whether [section] is the block of a law that is not selected (left out of the resolved text).
+// Whether [section] is the block of a law that is not selected, or [bonds] in a scene without bonds (left out of the
+// resolved text).
 bool unselected_law_block(const LawCatalog& laws, const Config& c, const std::string& section);
 
 }  // namespace rondel::config

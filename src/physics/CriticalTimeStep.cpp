@@ -5,6 +5,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "physics/BondParallel.hpp"
 #include "physics/NormalLinear.hpp"
 
 namespace rondel {
@@ -30,7 +31,7 @@ struct Best {
 }  // namespace
 
 double contact_critical_step(const LawSelection& laws, const ContactParams& p_in, const ContactBody& a,
-                             const ContactBody& b, std::string* mode, double max_overlap) {
+                             const ContactBody& b, std::string* mode, double max_overlap, double thickness) {
   const bool wall = std::isinf(b.m);
   const ContactBodies bodies = wall ? disc_wall_bodies(a.m, a.I) : disc_disc_bodies(a.m, b.m, a.I, b.I);
   const double m_eff = bodies.m_eff;
@@ -40,24 +41,31 @@ double contact_critical_step(const LawSelection& laws, const ContactParams& p_in
   if (normal_law(laws).stiffening) at_limit.u_n = max_overlap * (wall ? a.R : std::min(a.R, b.R));
   const ContactParams p = linearised(laws, ContactInput{p_in, bodies, at_limit});
   Best best;
+  // A bond's springs beside the contact's (zero unbonded): normal kb_n A, shear kb_s A, rotation kb_n I.
+  const bool bonded = !wall && thickness > 0.0 && p_in.kb_n > 0.0;
+  const BondGeometry g = bonded ? BondGeometry::of(a.R, b.R, thickness, p_in.bond_lambda) : BondGeometry{};
+  const double kb_n = p_in.kb_n * g.A, kb_s = p_in.kb_s * g.A, Kb = p_in.kb_n * g.I;
   // The normal mode with the law's stiffest spring (walton_braun: its unloading stiffness K2).
   const ContactParams q = stiffest_normal(laws, ContactInput{p_in, bodies, at_limit});
-  const double w_n = std::sqrt(q.k_n / m_eff);
-  best.consider(mode_limit(w_n, NormalLinear::c_n(q, bodies) / (2.0 * std::sqrt(m_eff * q.k_n))), "normal");
+  const double k_n = q.k_n + kb_n;
+  const double w_n = std::sqrt(k_n / m_eff);
+  best.consider(mode_limit(w_n, NormalLinear::c_n(q, bodies) / (2.0 * std::sqrt(m_eff * k_n))),
+                bonded ? "normal + bond" : "normal");
 
   // Tangential and rolling springs in the coordinates s (sliding) and theta_r (rolling): their modes are
   // the eigenvalues of diag(k_s, K) [[G, C], [C, H]] with G = 1/m_t = sum(1/m_i + R_i^2/I_i),
   // H = 1/I_red = sum(1/I_i) and C = R1/I1 - R2/I2 (a wall: R1/I1), in closed form below.
   double G = 1.0 / a.m + a.R * a.R / a.I, H = 1.0 / a.I, C = a.R / a.I;
   if (!wall) G += 1.0 / b.m + b.R * b.R / b.I, H += 1.0 / b.I, C -= b.R / b.I;
-  double w2_t = 0.0, zeta_t = 0.0, k_s = 0.0;
-  if (const auto spring = tangential_spring(laws, p)) {
-    k_s = spring->k;
+  double w2_t = 0.0, zeta_t = 0.0, k_s = kb_s;
+  const auto spring = tangential_spring(laws, p);
+  if (spring) k_s += spring->k, zeta_t = spring->zeta * std::sqrt(m_eff * G) * std::sqrt(spring->k / k_s);
+  if (k_s > 0.0) {
     w2_t = k_s * G;
-    zeta_t = spring->zeta * std::sqrt(m_eff * G);
-    best.consider(mode_limit(std::sqrt(w2_t), zeta_t), "tangential");
+    best.consider(mode_limit(std::sqrt(w2_t), zeta_t), bonded ? "tangential + bond" : "tangential");
   }
-  const RollingSpring roll = rolling_spring(laws, p, bodies, at_limit).value_or(RollingSpring{});
+  RollingSpring roll = rolling_spring(laws, p, bodies, at_limit).value_or(RollingSpring{});
+  roll.K += Kb;
   if (roll.K > 0.0) {
     const double w2_r = roll.K * H;
     const double zeta_r = roll.C * std::sqrt(H / roll.K) / 2.0;
@@ -66,9 +74,10 @@ double contact_critical_step(const LawSelection& laws, const ContactParams& p_in
       // falls to 0.77 of the limit for equal discs at delta = 3 (C = 0 decouples the modes there).
       const double half = 0.5 * (w2_t - w2_r);
       const double w2 = 0.5 * (w2_t + w2_r) + std::sqrt(half * half + k_s * roll.K * C * C);
-      best.consider(mode_limit(std::sqrt(w2), std::max(zeta_t, zeta_r)), "tangential+rolling");
+      best.consider(mode_limit(std::sqrt(w2), std::max(zeta_t, zeta_r)),
+                    bonded ? "tangential+rolling + bond" : "tangential+rolling");
     } else {
-      best.consider(mode_limit(std::sqrt(w2_r), zeta_r), "rolling");
+      best.consider(mode_limit(std::sqrt(w2_r), zeta_r), bonded ? "rolling + bond" : "rolling");
     }
   }
   if (mode) *mode = best.mode;
@@ -111,7 +120,8 @@ CriticalStep critical_time_step(const LawSelection& laws, const ContactParamTabl
       for (std::size_t b = 0; b < materials.size(); ++b) {
         if (materials[b].R_max <= 0.0) continue;
         for (double Rb : radii(materials[b])) {
-          const double dt = contact_critical_step(laws, params.pair(a, b), A, body(materials[b], Rb), &mode, u);
+          const double dt = contact_critical_step(laws, params.pair(a, b), A, body(materials[b], Rb), &mode, u,
+                                                  materials[a].thickness);
           if (!std::isnan(best.dt) && !(dt >= best.dt)) best = {dt, mode, label(a, Ra) + " / " + label(b, Rb), 0.0};
         }
       }

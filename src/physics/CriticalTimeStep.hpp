@@ -56,8 +56,11 @@ double mode_limit(double omega, double zeta);
 
 // The critical step of one contact (its most limiting mode); `mode` receives the mode's name. A hertz or
 // mindlin contact is linearised at the overlap max_overlap x the smaller radius (docs/physics.md section 6).
+// A bonded pair (p.kb_n > 0, `thickness` > 0: the discs' thickness) adds its bond's springs kb_n A, kb_s A and
+// kb_n I to the normal, tangential and rolling springs (docs/physics.md section 12); its modes are named "... + bond".
 double contact_critical_step(const LawSelection& laws, const ContactParams& p, const ContactBody& a,
-                             const ContactBody& b, std::string* mode = nullptr, double max_overlap = 0.1);
+                             const ContactBody& b, std::string* mode = nullptr, double max_overlap = 0.1,
+                             double thickness = 0.0);
 
 CriticalStep critical_time_step(const LawSelection& laws, const ContactParamTable& params,
                                 const std::vector<MaterialInfo>& materials, bool has_walls,

@@ -116,6 +116,7 @@ inline std::string rows_text(const Simulation& sim) {
   };
   put(sim.pairs(), "P");
   put(sim.wall_rows(), "W");
+  put(sim.bonds(), "B");  // the parallel bonds (none without [bonds])
   return out;
 }
 

@@ -306,5 +306,13 @@ TEST(Checkpoint, RestartIsBitwiseWithRoughShearingWall) {
   restart_cases("wang", {"--walls.rough=right", "--walls.rough_depth=0.0025", "--walls.control=right:shear:0.05"});
 }
 
+// Parallel bonds (docs/bonds.md) between the discs within 0.4 radii of each other at the start, breaking as the
+// pile falls and is pushed (before and after the checkpoint): the bonds travel through it (/bonds) to the owners
+// of their discs on another rank count, and the checkpoints of step N compare equal whatever the writer's ranks.
+TEST(Checkpoint, RestartIsBitwiseWithBreakingBonds) {
+  restart_cases("wang", {"--neighbour.skin=0.001", "--bonds.gap=0.4", "--bonds.kb_n=1e9", "--bonds.kb_s=5e8",
+                         "--bonds.sigma_c=4e3", "--bonds.tau_c=4e3", "--bonds.sigma_spread=0.5"});
+}
+
 }  // namespace
 }  // namespace rondel

@@ -36,9 +36,9 @@ void number_terms(Terms& terms) {
 TEST(LedgerTerms, CheckpointNamesAreTheFileFormats) {
   std::vector<std::string> names;
   LedgerTerms{}.for_each_term([&](const LedgerTermInfo& t, double) { names.emplace_back(t.name); });
-  EXPECT_EQ(names,
-            (std::vector<std::string>{"KE0", "W_g", "W_w", "W_n", "W_t", "W_r", "W_cell", "W_driver", "D_slip",
-                                      "D_r_plastic", "D_r_dashpot", "E_r_break", "D_n_hyst", "D_damping", "scale"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"KE0", "W_g", "W_w", "W_n", "W_t", "W_r", "W_b", "W_cell", "W_driver",
+                                             "D_slip", "D_r_plastic", "D_r_dashpot", "E_r_break", "D_n_hyst",
+                                             "E_b_break", "D_damping", "scale", "n_b_tension", "n_b_shear"}));
   EXPECT_EQ(std::set<std::string>(names.begin(), names.end()).size(), names.size()) << "a name appears twice";
 }
 
@@ -47,8 +47,10 @@ TEST(LedgerTerms, EachColumnAppearsOnceInTheDiagnosticsHeader) {
   EXPECT_EQ(std::set<std::string>(header.begin(), header.end()).size(), header.size()) << "a column appears twice";
   LedgerTerms{}.for_each_term([&](const LedgerTermInfo& t, double) {
     const bool work = (t.uses & kTermWork) != 0, loss = (t.uses & kTermDissipation) != 0;
-    EXPECT_FALSE(work && loss) << t.name << " is both a work and a dissipation";
-    EXPECT_EQ(t.column.empty(), !work && !loss) << t.name << ": a column exactly for the works and dissipations";
+    const bool count = (t.uses & kTermCount) != 0;
+    EXPECT_LE(int{work} + int{loss} + int{count}, 1) << t.name << " is more than one of a work, a loss and a count";
+    EXPECT_EQ(t.column.empty(), !work && !loss && !count)
+        << t.name << ": a column exactly for the works, dissipations and counts";
     EXPECT_TRUE(!(t.uses & kTermKernel) || (t.uses & kTermRankShare)) << t.name << ": a kernel term is a rank share";
     if (t.column.empty()) return;
     EXPECT_EQ(std::count(header.begin(), header.end(), std::string(t.column)), 1) << t.column;
@@ -58,9 +60,9 @@ TEST(LedgerTerms, EachColumnAppearsOnceInTheDiagnosticsHeader) {
 TEST(LedgerTerms, DiagnosticsHeaderIsTheFileFormats) {
   EXPECT_EQ(DiagnosticsWriter::header(),
             "step,time,ke_trans,ke_rot,contacts,wall_contacts,coordination,max_overlap_ratio,W_gravity,W_walls,"
-            "W_normal,W_tangential,W_rolling,W_cell,W_driver,E_stored,D_slip,D_rolling_plastic,D_rolling_dashpot,E_"
-            "rolling_break,"
-            "D_normal_hysteresis,D_damping,D_other,ledger_residual,imbalance,ghost_fraction,migrated");
+            "W_normal,W_tangential,W_rolling,W_bonds,W_cell,W_driver,E_stored,D_slip,D_rolling_plastic,"
+            "D_rolling_dashpot,E_rolling_break,D_normal_hysteresis,E_bond_break,D_damping,D_other,ledger_residual,"
+            "imbalance,ghost_fraction,migrated,bonds,bond_breaks_tension,bond_breaks_shear");
 }
 
 TEST(LedgerTerms, ATermsValueLandsInItsOwnDiagnosticsColumn) {

@@ -106,7 +106,8 @@ class StateFile:
     laws {'normal', 'tangential', 'rolling'}, history_slots (list of names), attrs (every root attribute,
     decoded), config (Config of the `config` attribute), discs (Group: gid, radius, position (n, 2), ...),
     contacts and wall_contacts (Group with key, param, F_n, ..., history {slot: array}; None in a
-    snapshot), walls (Group: kind, p0, p1, normal, velocity, ...; attrs box_width0, box_height0),
+    snapshot), bonds (the parallel bonds: Group with key, param, history {Fb_n, Fb_s, Mb}; None in a snapshot and
+    in a run without bonds), walls (Group: kind, p0, p1, normal, velocity, ...; attrs box_width0, box_height0),
     cell (dict: xlo, xhi, ylo, yhi, tilt, rate_xx, rate_xy, rate_yy, flips; {} before version 5; cell_vectors()),
     ledger (dict of float), run_metadata (dict), checksums {'/discs/gid': stored uint64}."""
 
@@ -159,6 +160,7 @@ class StateFile:
             raise RondelFileError(self.path, "has no /discs group")
         self.contacts = self._group(f, h5py, "contacts")
         self.wall_contacts = self._group(f, h5py, "wall_contacts")
+        self.bonds = self._group(f, h5py, "bonds")
         self.walls = self._group(f, h5py, "walls") or Group("walls")
         self.ledger = {k: float(decode(v)) for k, v in f["ledger"].attrs.items()} if "ledger" in f else {}
         self.cell = {k: decode(v) for k, v in f["cell"].attrs.items()} if "cell" in f else {}
@@ -220,7 +222,7 @@ class StateFile:
     def datasets(self):
         """{'/discs/radius': array, ...} of every dataset in the file."""
         out = {}
-        for g in (self.discs, self.contacts, self.wall_contacts, self.walls):
+        for g in (self.discs, self.contacts, self.wall_contacts, self.bonds, self.walls):
             if g is None:
                 continue
             for k, v in g.items():
