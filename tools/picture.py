@@ -26,8 +26,10 @@ sets it.
   ranks     discs coloured by the owner rank /discs/rank (snapshots written with 'rank' in
             output.snapshot_fields), categorical colours, legend with rank and disc count.
             Writes PREFIX.png and PREFIX.csv (rank,count).
+  bonds     the intact parallel bonds of a checkpoint (/bonds) as lines between the disc centres, coloured by
+            their normal force (tools/picture_bonds.py). Writes PREFIX.png and PREFIX.csv (gid1,gid2,Fb_n,...).
 
-FILE may be a run directory: its newest snapshot_*.h5 is used (forces: its newest checkpoint_*.h5;
+FILE may be a run directory: its newest snapshot_*.h5 is used (forces, bonds: its newest checkpoint_*.h5;
 rotation and ranks fall back to the newest checkpoint when there is no snapshot).
 The figure is --width inches wide (height from the view's aspect), so the PNG is width*dpi pixels wide;
 --palette writes an 8-bit palette PNG (about 3x smaller, for documentation; needs Pillow).
@@ -45,6 +47,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rondel import Config, RondelError, open_any  # noqa: E402
 from rondel.cli import ArgumentParser, add_figure_options, check_figure_options, pyplot, run_tool, save_figure  # noqa: E402,E501
+from picture_bonds import picture_bonds  # noqa: E402
 
 try:
     import numpy as np
@@ -58,7 +61,7 @@ except ImportError as e:  # pragma: no cover - depends on the machine
           file=sys.stderr)
     sys.exit(1)
 
-KINDS = ("rotation", "forces", "ranks")
+KINDS = ("rotation", "forces", "ranks", "bonds")
 TOOL = "picture"
 
 
@@ -71,7 +74,7 @@ class PictureError(RondelError):
 
 def resolve(path, kind):
     """The state file to draw: PATH itself, or the newest suitable file of the run directory PATH."""
-    return open_any(path, ("checkpoint",) if kind == "forces" else ("snapshot", "checkpoint"))
+    return open_any(path, ("checkpoint",) if kind in ("forces", "bonds") else ("snapshot", "checkpoint"))
 
 
 def parse_domain(config_text):
@@ -441,7 +444,8 @@ def picture_ranks(state, args):
 
 def draw(args):
     state = State(resolve(args.file, args.kind))
-    written = {"rotation": picture_rotation, "forces": picture_forces, "ranks": picture_ranks}[args.kind](state, args)
+    kinds = {"rotation": picture_rotation, "forces": picture_forces, "ranks": picture_ranks, "bonds": picture_bonds}
+    written = kinds[args.kind](state, args)
     print(f"picture: {state.path} ({state.kind}, step {state.step}, {len(state.radius)} discs) -> "
           + ", ".join(written))
 
@@ -458,7 +462,7 @@ def main(argv=None):
     ap.add_argument("--width", type=float, default=8.0, help="figure width in inches (default 8)")
     ap.add_argument("--title", default=None, help="figure title (default: quantity, scene, laws, step, time)")
     ap.add_argument("--vmax", type=float, default=None,
-                    help="rotation: colour limits +-VMAX (default: 99th percentile of |value|)")
+                    help="rotation, bonds: colour limits +-VMAX (default: 99th percentile of |value|)")
     ap.add_argument("--line-width", type=float, default=None,
                     help="forces: line width [pt] of a contact with the mean F_n (default: from disc size)")
     ap.add_argument("--view", nargs="+", default=["discs"], metavar="discs|walls|X0 X1 Y0 Y1",

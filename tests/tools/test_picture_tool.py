@@ -37,8 +37,9 @@ def config_text(xlo=0.0, xhi=1.0, ylo=0.0, yhi=1.0, px=False, py=False):
 
 
 def write_state(path, kind="checkpoint", step=10, config=None, discs=None, contacts=None,
-                wall_contacts=None, walls=None, fmt="rondel"):
-    """A Rondel file: DISCS / CONTACTS / WALL_CONTACTS / WALLS are dicts of dataset name -> array."""
+                wall_contacts=None, walls=None, fmt="rondel", bonds=None):
+    """A Rondel file: DISCS / CONTACTS / WALL_CONTACTS / WALLS / BONDS are dicts of dataset name -> array (a dict
+    of arrays for a subgroup: history)."""
     def put(group, name, data):
         ds = group.create_dataset(name, data=data)
         ds.attrs["checksum"] = np.uint64(checksum(np.asarray(data)))
@@ -52,12 +53,17 @@ def write_state(path, kind="checkpoint", step=10, config=None, discs=None, conta
         f.attrs["dt"] = np.float64(1e-5)
         f.attrs["config"] = np.bytes_(config if config is not None else config_text())
         for gname, content in (("discs", discs), ("contacts", contacts), ("wall_contacts", wall_contacts),
-                               ("walls", walls)):
+                               ("walls", walls), ("bonds", bonds)):
             if content is None:
                 continue
             g = f.create_group(gname)
             for name, data in content.items():
-                put(g, name, data)
+                if isinstance(data, dict):
+                    sub = g.create_group(name)
+                    for slot, values in data.items():
+                        put(sub, slot, values)
+                else:
+                    put(g, name, data)
         f.attrs["complete"] = np.int64(1)
 
 
@@ -163,6 +169,31 @@ def test_forces(tmp):
     write_state(snap, kind="snapshot", discs={"position": np.array(pos), "radius": np.full(6, 0.03)})
     rc, out = run_tool(snap, "--kind", "forces", "--out", os.path.join(tmp, "x"))
     check("forces on a snapshot: exit 1 naming /contacts", rc == 1 and 'Traceback' not in out and "/contacts" in out, (rc, out))
+
+
+def test_bonds(tmp):
+    pos = [[0.2, 0.5], [0.26, 0.5], [0.32, 0.5], [0.8, 0.5]]
+    discs = discs_of(pos, 0.03)
+    g = discs["gid"]
+    key = np.array([[g[0], g[1]], [g[1], g[2]]], dtype=np.int64)
+    history = {"Fb_n": np.array([2.5, -1.25]), "Fb_s": np.array([0.5, 0.0]), "Mb": np.array([0.0, 1e-3])}
+    path = os.path.join(tmp, "checkpoint_0000000020.h5")
+    write_state(path, step=20, discs=discs, walls=bottom_wall(), bonds={"key": key, "history": history})
+    prefix = os.path.join(tmp, "out", "bonds")
+    rc, out = run_tool(path, "--kind", "bonds", "--out", prefix, "--dpi", "60", "--width", "6")
+    check("bonds: exit 0", rc == 0, out)
+    rows = read_csv(prefix + ".csv")
+    want = [["gid1", "gid2", "Fb_n", "Fb_s", "Mb"]] + [
+        [str(a), str(b), repr(n), repr(s), repr(m)]
+        for (a, b), n, s, m in zip(key.tolist(), *(history[k].tolist() for k in ("Fb_n", "Fb_s", "Mb")))]
+    check("bonds CSV: every intact bond with its state, exact", rows == want, (rows, want))
+    check("bonds PNG: the tension bond drawn red", red_pixels(prefix + ".png") > 20, red_pixels(prefix + ".png"))
+    # A checkpoint of a run without bonds: a clear error naming [bonds].
+    plain = os.path.join(tmp, "checkpoint_0000000030.h5")
+    write_state(plain, step=30, discs=discs, walls=bottom_wall())
+    rc, out = run_tool(plain, "--kind", "bonds", "--out", os.path.join(tmp, "y"))
+    check("bonds without /bonds: exit 1 naming [bonds]", rc == 1 and "Traceback" not in out and "[bonds]" in out,
+          (rc, out))
 
 
 def test_ranks(tmp):
@@ -277,6 +308,7 @@ def main():
         test_segments_minimum_image()
         test_wall_points()
         test_forces(tmp)
+        test_bonds(tmp)
         test_ranks(tmp)
         test_rotation(tmp)
         test_errors_and_directory(tmp)
