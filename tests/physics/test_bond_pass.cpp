@@ -7,16 +7,21 @@
 //    reaches sigma_c, its record (mode, centre halfway across the gap, stresses), the row removed and the energy
 //    that was stored booked as E_b_break, so that W_b + E_b_break = 0 once it has broken;
 //  - a row whose disc 1 is a ghost acts on the sums and breaks alike, but books nothing and records nothing;
-//  - relink after a rebuild: local indices from the gids, rows with no owned disc dropped, a missing partner named.
+//  - relink after a rebuild: local indices from the gids, rows with no owned disc dropped, a missing partner named;
+//  - the critical step of a bonded pair: the bond's springs kb_n A, kb_s A and kb_n I added to the contact's normal,
+//    tangential and rolling springs (equal discs: the tangential and rolling modes decouple), the mode named.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "core/ContactTable.hpp"
 #include "core/DiscStore.hpp"
 #include "core/Domain.hpp"
 #include "physics/BondPass.hpp"
+#include "physics/CriticalTimeStep.hpp"
 #include "support/StandardObjects.hpp"
 
 namespace rondel {
@@ -189,6 +194,28 @@ TEST(BondPass, RelinkFindsTheDiscsByGidDropsRowsWithNoOwnedDiscAndNamesALostPart
   t.push({2, 7}, -1, -1, 0);
   EXPECT_FALSE(bonds::relink(d, t, lost));
   EXPECT_EQ(lost, (ContactKey{2, 7}));
+}
+
+TEST(BondPass, TheCriticalStepOfABondedPairAddsTheBondsSprings) {
+  ContactParams p = test::set_S();  // k_n = 1e6, k_s = 7.5e5, no damping
+  const double m = test::d5::mass(), I = test::d5::inertia();
+  const ContactBody disc{m, I, kR};
+  const LawSelection laws;  // linear, coulomb, no rolling law
+  std::string mode;
+  const double plain = contact_critical_step(laws, p, disc, disc, &mode, 0.1, 1.0);
+  EXPECT_EQ(mode.find("bond"), std::string::npos) << mode;
+  p.kb_n = 1e9, p.kb_s = 0.5e9;
+  const double bonded = contact_critical_step(laws, p, disc, disc, &mode, 0.1, 1.0);
+  const BondGeometry g = BondGeometry::of(kR, kR, 1.0, 1.0);
+  const double w2_n = (p.k_n + p.kb_n * g.A) / (0.5 * m);
+  const double w2_t = (p.k_s + p.kb_s * g.A) * 2.0 * (1.0 / m + kR * kR / I);  // 1/m_t of two equal discs
+  const double w2_r = p.kb_n * g.I * 2.0 / I;                                  // I_red = I/2
+  const double expected = 2.0 / std::sqrt(std::max({w2_n, w2_t, w2_r}));
+  EXPECT_NEAR(bonded / expected, 1.0, 1e-12);
+  EXPECT_LT(bonded, plain);
+  EXPECT_EQ(mode, "tangential + bond");  // the coupled mode equals it here (C = 0): the first found is kept
+  // Without the thickness (a caller that knows of no bonds) the bond is left out.
+  EXPECT_EQ(contact_critical_step(laws, p, disc, disc, &mode), plain);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 // percent of it: the chain's deflection is 0.9994 of Euler-Bernoulli's, the discrete sum's 1 - 1/(4 n^2).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -113,6 +114,76 @@ TEST(BondedChain, TheCantileverTipIsTheDiscreteChainsExactStaticSolution) {
   // Timoshenko's continuum cantilever with E = kb_n l and G = kb_s l (docs/bonds.md): within 1 %.
   const double timoshenko = kP * L * L * L / (3.0 * EI) + kP * L / ((5.0 / 6.0) * 0.5e9 * l * g.A);
   EXPECT_NEAR(tip.deflection / timoshenko, 1.0, 0.01);
+}
+
+// A bonded pair that breaks while rolling resistance acts (docs/validation.md section 15): two touching D5 discs spun
+// in opposite senses bend their bond until it breaks; the contact's rolling couple (wang) is the law's from its own
+// history before and after, so the break leaves no jump in it: its change in the breaking step is at most the law's
+// own increment, k_r R*^2 |omega1 - omega2| dt, nothing of the bond's moment, which is a hundred times larger.
+TEST(BondedChain, ABreakLeavesTheRollingCoupleToItsOwnHistory) {
+  const std::string ini = R"([run]
+progress = false
+[domain]
+xlo = -0.05
+xhi = 0.05
+ylo = -0.05
+yhi = 0.05
+[material]
+density = 2650
+[linear]
+k_n = 1e6
+[coulomb]
+k_s = 7.5e5
+mu = 0.5
+[contact]
+rolling = wang
+[wang]
+k_r = 3e4
+mu_r = 0.1
+[bonds]
+kb_n = 1e9
+kb_s = 5e8
+sigma_c = 3e3
+tau_c = 1e9
+[scene]
+type = lattice_square
+nx = 2
+ny = 1
+radius = 0.005
+spacing = 0.009999
+x0 = -0.005
+)";
+  const Communicator comm;
+  Simulation sim(parse_config_text(ini), comm, false);
+  sim.edit_discs([](DiscStore& d) {
+    d.omega[0] = 5.0, d.omega[1] = -5.0;
+    return 0.0;
+  });
+  ASSERT_EQ(sim.bonds().size(), 1u);
+  ASSERT_EQ(sim.pairs().size(), 1u);
+  // wang's spring in rolling: dM = -k_r R*^2 dtheta_r, R* = R/2; the law's own increment in a step is at most
+  // k_r R*^2 |omega1 - omega2| dt.
+  const double k_rR2 = 3e4 * 0.0025 * 0.0025;
+  double M_before = sim.pairs().M1[0], Mb_before = 0.0, jump = NAN, own = 0.0;
+  for (int s = 0; s < 20000 && std::isnan(jump); ++s) {
+    const double spin_before = std::fabs(sim.discs().omega[0] - sim.discs().omega[1]);
+    sim.step();
+    ASSERT_EQ(sim.pairs().size(), 1u);
+    const double M = sim.pairs().M1[0];
+    if (sim.bonds().size() == 0) {
+      jump = std::fabs(M - M_before);
+      own = k_rR2 * std::max(spin_before, std::fabs(sim.discs().omega[0] - sim.discs().omega[1])) * sim.dt();
+      break;
+    }
+    M_before = M, Mb_before = sim.bonds().slot[2][0];
+  }
+  ASSERT_FALSE(std::isnan(jump)) << "the bond did not break";
+  std::printf(
+      "[ roll     ] at the break: bond moment %.4g N m, the rolling couple's change %.4g N m (the law's own "
+      "increment at most %.4g)\n",
+      Mb_before, jump, own);
+  EXPECT_GT(std::fabs(Mb_before), 100.0 * jump);
+  EXPECT_LE(jump, own);
 }
 
 // Refused before any step, naming the keys: a gap that reaches beyond the neighbour skin (the pairs searched), and
