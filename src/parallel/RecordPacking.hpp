@@ -4,6 +4,7 @@
 // ContactTable's column table: the key, the parameter index, the history slots, the last scalars and the
 // last force on disc 1.
 #include <cstddef>
+#include <cstring>
 #include <string_view>
 #include <type_traits>
 
@@ -53,6 +54,15 @@ inline void unpack_row(ContactTable& t, ByteReader& in) {
   t.for_each_column([&](std::string_view, unsigned uses, auto& column) {
     using T = typename std::decay_t<decltype(column)>::value_type;
     column.push_back((uses & kColumnRecord) ? in.get<T>() : unset_column_value<T>(uses));
+  });
+}
+
+// Row r's record (the layout of pack_row) at `out`, for a file block or a routed buffer.
+inline void pack_row_bytes(const ContactTable& t, std::size_t r, char* out) {
+  t.for_each_column([&](std::string_view, unsigned uses, const auto& column) {
+    if (!(uses & kColumnRecord)) return;
+    std::memcpy(out, &column[r], sizeof column[0]);
+    out += sizeof column[0];
   });
 }
 

@@ -121,6 +121,8 @@ void write_state_file(const std::string& path, const StateHeader& header, DiscSt
 // The largest checkpoint_structure_bytes() of any writer, and of the buffers of route_rows_to_owners, in
 // this process so far (for the scaling audit: it must fall as 1/P at a fixed total size).
 std::size_t peak_checkpoint_structure_bytes();
+// Counts a structure of that many bytes into that peak (the routing's buffers, StateRouting.cpp).
+void note_checkpoint_structure_bytes(std::size_t bytes);
 
 // Collective reads (StateReader.cpp). The header is checked (format name and version, completeness); discs and rows
 // come as this rank's block of the file, to be sent to their owners by the caller.
