@@ -10,6 +10,7 @@
 #include <limits>
 #include <sstream>
 
+#include "app/BondRecords.hpp"
 #include "app/OutputNames.hpp"
 #include "core/Errors.hpp"
 #include "core/InputFile.hpp"
@@ -62,7 +63,7 @@ std::string Checkpointing::file_name(const char* prefix, std::int64_t step) {
 
 std::string Checkpointing::write_checkpoint(const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
                                             const ContactTable& wall_rows, const WallSet& walls, double wall_seconds,
-                                            const ContactTable* bonds) {
+                                            const StateExtras& extras) {
   const fs::path final_path = fs::path(dir_) / file_name(output::kCheckpoint, header.step);
   // Hidden and never matched by checkpoint_*.h5 until complete; a name of its own per attempt (rank 0's
   // process id and a counter), so that nothing a killed attempt left behind (the file, or an MPI-IO lock
@@ -76,7 +77,7 @@ std::string Checkpointing::write_checkpoint(const StateHeader& header, DiscStore
   part_name += ".part";
   const fs::path part = fs::path(dir_) / part_name;
   try {
-    writer_.write(part.string(), header, discs, pairs, wall_rows, walls, comm_, {}, wall_seconds, bonds);
+    writer_.write(part.string(), header, discs, pairs, wall_rows, walls, comm_, {}, wall_seconds, extras);
     // Known good before it replaces anything: what the disk holds is what was meant (an MPI-IO layer may
     // not report a failed write on every rank, or at all).
     if (verify_) {
@@ -124,7 +125,8 @@ void Checkpointing::adopt_snapshots(std::int64_t step) {
       snapshots_.push_back(
           {p.filename().string(), h.step, static_cast<std::int64_t>(state_file_discs(p.string(), comm_)), h.time,
            state_file_disc_datasets(p.string(), comm_), wall_outline(read_state_walls(p.string(), comm_), domain_),
-           cell_outline(recorded_cell(h, domain_))});
+           cell_outline(recorded_cell(h, domain_)), state_file_rows(p.string(), "/bonds/key", comm_),
+           state_file_rows(p.string(), "/breaks/key", comm_)});
     } catch (const InputError&) {
       // not a complete snapshot: left out of the series
     }
@@ -149,14 +151,15 @@ void Checkpointing::remove_old_files() const {
 }
 
 std::string Checkpointing::write_snapshot(const StateHeader& header, DiscStore& discs, const WallSet& walls,
-                                          std::int64_t n_discs) {
+                                          std::int64_t n_discs, const StateExtras& extras) {
   const std::string name = file_name(output::kSnapshot, header.step);
   const ContactTable none;
-  writer_.write((fs::path(dir_) / name).string(), header, discs, none, none, walls, comm_, fields_, 0.0);
+  writer_.write((fs::path(dir_) / name).string(), header, discs, none, none, walls, comm_, fields_, 0.0, extras);
   std::vector<std::string> written = fields_;
   written.emplace_back(kIndexField);
+  const auto rows = [this](const RecordTable* t) { return t ? comm_.sum(static_cast<std::int64_t>(t->size())) : 0; };
   snapshots_.push_back({name, header.step, n_discs, header.time, written, wall_outline(walls, domain_),
-                        cell_outline(recorded_cell(header, domain_))});
+                        cell_outline(recorded_cell(header, domain_)), rows(extras.bond_segments), rows(extras.breaks)});
   agree(comm_, [&] {
     if (comm_.root()) write_xdmf();
   });
@@ -215,6 +218,42 @@ void xdmf_walls(std::ostream& x, const std::string& file, const std::vector<Vec2
       << hdf_item(file, std::string("/walls/") + v, cells + " 2", "Float", 8) << "</Attribute>\n";
 }
 
+// A scalar node or cell attribute of the XDMF side-car from a dataset of `n` rows.
+void xdmf_scalar(std::ostream& x, const std::string& file, const std::string& set, const std::string& name,
+                 std::int64_t n, const char* center, const char* type) {
+  x << "     <Attribute Name=\"" << name << "\" AttributeType=\"Scalar\" Center=\"" << center << "\">"
+    << hdf_item(file, set, std::to_string(n), type, 8) << "</Attribute>\n";
+}
+
+// The bonds of a snapshot as line cells between their discs' centres (/bonds/points), their forces and stresses as
+// cell attributes (docs/bonds.md).
+void xdmf_bonds(std::ostream& x, const std::string& file, std::int64_t bonds) {
+  const std::string cells = std::to_string(bonds), points = std::to_string(2 * bonds);
+  x << "    <Grid Name=\"bonds\" GridType=\"Uniform\">\n"
+    << "     <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << cells << "\" NodesPerElement=\"2\">"
+    << hdf_item(file, "/bonds/index", points, "Int", 8) << "</Topology>\n"
+    << "     <Geometry GeometryType=\"XY\">" << hdf_item(file, "/bonds/points", points + " 2", "Float", 8)
+    << "</Geometry>\n";
+  for (const char* name : bond_records::kSegmentReals)
+    xdmf_scalar(x, file, std::string("/bonds/") + name, name, bonds, "Cell", "Float");
+  x << "    </Grid>\n";
+}
+
+// The breaks since the last snapshot as vertex cells at the bonds' centres, with their step, mode and stresses.
+void xdmf_breaks(std::ostream& x, const std::string& file, std::int64_t breaks) {
+  const std::string n = std::to_string(breaks);
+  x << "    <Grid Name=\"breaks\" GridType=\"Uniform\">\n"
+    << "     <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\" NodesPerElement=\"1\">"
+    << hdf_item(file, "/breaks/index", n, "Int", 8) << "</Topology>\n"
+    << "     <Geometry GeometryType=\"XY\">"
+    << hdf_item(file, std::string("/breaks/") + bond_records::kBreakPosition, n + " 2", "Float", 8) << "</Geometry>\n";
+  for (const char* name : bond_records::kBreakIntegers)
+    xdmf_scalar(x, file, std::string("/breaks/") + name, name, breaks, "Node", "Int");
+  for (const char* name : bond_records::kBreakReals)
+    xdmf_scalar(x, file, std::string("/breaks/") + name, name, breaks, "Node", "Float");
+  x << "    </Grid>\n";
+}
+
 }  // namespace
 
 std::vector<Vec2> Checkpointing::cell_outline(const Domain& c) {
@@ -251,6 +290,8 @@ void Checkpointing::write_xdmf() const {
       xdmf_lines(x, s.cell);
       x << "    </Grid>\n";
     }
+    if (s.bonds > 0) xdmf_bonds(x, s.file, s.bonds);
+    if (s.breaks > 0) xdmf_breaks(x, s.file, s.breaks);
     x << "   </Grid>\n";
   }
   x << "  </Grid>\n </Domain>\n</Xdmf>\n";

@@ -26,8 +26,10 @@ class Checkpointing {
   // not read back as written) removes the partial file and keeps the previous checkpoints.
   std::string write_checkpoint(const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
                                const ContactTable& wall_rows, const WallSet& walls, double wall_seconds,
-                               const ContactTable* bonds = nullptr);
-  std::string write_snapshot(const StateHeader& header, DiscStore& discs, const WallSet& walls, std::int64_t n_discs);
+                               const StateExtras& extras = {});
+  // `extras`: the bonds as segments and the breaks since the last snapshot (a run with bonds).
+  std::string write_snapshot(const StateHeader& header, DiscStore& discs, const WallSet& walls, std::int64_t n_discs,
+                             const StateExtras& extras = {});
 
   // The newest checkpoint of `directory` that passes verify_state_file (collective): it opens, is complete,
   // and its attributes and datasets match their checksums, and it was written by the directory's run (the id
@@ -68,9 +70,10 @@ class Checkpointing {
     std::string file;
     std::int64_t step, discs;
     double time;
-    std::vector<std::string> fields;  // the /discs datasets the file holds
-    std::vector<Vec2> walls;          // wall_outline() at that step
-    std::vector<Vec2> cell;           // cell_outline() at that step
+    std::vector<std::string> fields;     // the /discs datasets the file holds
+    std::vector<Vec2> walls;             // wall_outline() at that step
+    std::vector<Vec2> cell;              // cell_outline() at that step
+    std::int64_t bonds = 0, breaks = 0;  // the rows of /bonds and /breaks (a run with bonds)
   };
   std::vector<Snapshot> snapshots_;
 };

@@ -252,14 +252,16 @@ void RunFiles::write_measures(const MeasuresRow& row) {
 }
 
 std::string RunFiles::write_checkpoint(const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
-                                       const ContactTable& wall_rows, const WallSet& walls, const ContactTable* bonds) {
-  const std::string path = checkpoints_->write_checkpoint(header, discs, pairs, wall_rows, walls, wall_seconds_, bonds);
+                                       const ContactTable& wall_rows, const WallSet& walls, const StateExtras& extras) {
+  const std::string path =
+      checkpoints_->write_checkpoint(header, discs, pairs, wall_rows, walls, wall_seconds_, extras);
   log("checkpoint at step " + std::to_string(header.step) + ": " + path);
   return path;
 }
 
-void RunFiles::write_snapshot(const StateHeader& header, DiscStore& discs, const WallSet& walls, std::int64_t n_discs) {
-  checkpoints_->write_snapshot(header, discs, walls, n_discs);
+void RunFiles::write_snapshot(const StateHeader& header, DiscStore& discs, const WallSet& walls, std::int64_t n_discs,
+                              const StateExtras& extras) {
+  checkpoints_->write_snapshot(header, discs, walls, n_discs, extras);
 }
 
 void RunFiles::flush_tables() {

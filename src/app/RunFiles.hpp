@@ -51,9 +51,9 @@ class RunFiles {
   void write_measures(const MeasuresRow& row);
   // Collective: a checkpoint of `header` and the state; logs and returns its path.
   std::string write_checkpoint(const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
-                               const ContactTable& wall_rows, const WallSet& walls,
-                               const ContactTable* bonds = nullptr);
-  void write_snapshot(const StateHeader& header, DiscStore& discs, const WallSet& walls, std::int64_t n_discs);
+                               const ContactTable& wall_rows, const WallSet& walls, const StateExtras& extras = {});
+  void write_snapshot(const StateHeader& header, DiscStore& discs, const WallSet& walls, std::int64_t n_discs,
+                      const StateExtras& extras = {});
   // Wall time of the run so far, recorded in the checkpoints' metadata.
   void add_wall_seconds(double s) { wall_seconds_ += s; }
   // Rank 0: the rows of diagnostics.csv and measures.csv reach their files (checked).

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <thread>
 
+#include "app/BondRecords.hpp"
 #include "app/OutputNames.hpp"
 #include "app/Reports.hpp"
 #include "app/Restart.hpp"
@@ -291,6 +292,7 @@ void Simulation::load_checkpoint(const std::string& path) {
   time_ = h.time;
   route_to_owners();  // the discs read by file block
   agree(comm_, [&] { file->read_rows(pairs_, wall_rows_, discs_, bond_rows()); });
+  if (config_.bonds) bond_records::read_breaks(path, breaks_, comm_);
   agree(comm_, [&] { file->read_ledger(core_.ledger()); });
 }
 
@@ -315,14 +317,26 @@ std::string Simulation::write_checkpoint() {
   settle_errors();
   if (!files_.has_directory())
     throw ConfigError("a checkpoint needs an output directory (this simulation writes no files)");
+  // A run with bonds: their rows, and the breaks not yet in a snapshot (the resumed run writes them into its next).
+  const RecordTable breaks = bond_records::breaks(breaks_);
+  StateExtras extras;
+  if (config_.bonds) extras.bonds = &bonds_, extras.breaks = &breaks;
   return files_.write_checkpoint(Restart::header(state(), output::kCheckpoint), discs_, pairs_, wall_rows_, walls_,
-                                 bond_rows());
+                                 extras);
 }
 
 void Simulation::write_snapshot() {
   settle_errors();
   const auto n = comm_.sum(static_cast<std::int64_t>(discs_.n_owned()));
-  files_.write_snapshot(Restart::header(state(), output::kSnapshot), discs_, walls_, n);
+  if (!config_.bonds) {
+    files_.write_snapshot(Restart::header(state(), output::kSnapshot), discs_, walls_, n);
+    return;
+  }
+  // The bonds as segments and the breaks since the last snapshot, which are then written.
+  const RecordTable segments = bond_records::segments(step_inputs(false).bond_context(), bonds_);
+  const RecordTable breaks = bond_records::breaks(breaks_);
+  files_.write_snapshot(Restart::header(state(), output::kSnapshot), discs_, walls_, n, {nullptr, &segments, &breaks});
+  breaks_.clear();
 }
 
 RunState Simulation::state() const {
@@ -355,7 +369,6 @@ DiagnosticsRow Simulation::diagnostics() {
   if (config_.bonds) {
     summary_.bonds_stored = bonds::stored(step_inputs(false).bond_context(), bonds_);
     summary_.bonds = bonds::booked(discs_, bonds_);
-    breaks_.clear();  // counted in the ledger (n_b_tension, n_b_shear); their records are not written yet
   }
   return Reports(state()).diagnostics(summary_, core_.ledger().scale);
 }

@@ -27,7 +27,8 @@ StepInputs Simulation::step_inputs(bool bounds) {
                     bounds,
                     bond_rows(),
                     &breaks_,
-                    config_.thickness};
+                    config_.thickness,
+                    step_ + 1};
 }
 
 void Simulation::rebuild() {

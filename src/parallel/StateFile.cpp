@@ -1,9 +1,11 @@
 #include "parallel/StateFile.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <string_view>
 #include <type_traits>
 
@@ -90,14 +92,22 @@ std::int64_t booked_rows(const ContactTable& t, std::size_t n_owned) {
 
 // The file's size, estimated from above (collective): every record (a snapshot's index and owner columns
 // too), the walls, the text attributes, and HDF5's metadata (about 6 kB for a checkpoint: 64 kB), plus 2 %.
+// Bytes of one record of a RecordTable (its key and a value of each column).
+std::size_t record_bytes(const RecordTable& t) {
+  return sizeof(ContactKey) + 8 * (t.reals.size() + t.integers.size()) + sizeof(Vec2) * t.vectors.size();
+}
+
 std::uint64_t estimate_file_bytes(const StateHeader& h, DiscStore& discs, const ContactTable& pairs,
-                                  const ContactTable& wall_rows, const ContactTable* bonds, std::size_t walls,
+                                  const ContactTable& wall_rows, const StateExtras& extras, std::size_t walls,
                                   bool snapshot, const Communicator& comm) {
+  const ContactTable* bonds = snapshot ? nullptr : extras.bonds;
   const std::size_t n = discs.n_owned();
   double local = static_cast<double>(n) * static_cast<double>(record_bytes(discs, kCheckpoint) + (snapshot ? 12 : 0)) +
                  static_cast<double>(booked_rows(pairs, n)) * static_cast<double>(row_bytes(pairs)) +
                  static_cast<double>(booked_rows(wall_rows, n)) * static_cast<double>(row_bytes(wall_rows));
   if (bonds) local += static_cast<double>(booked_rows(*bonds, n)) * static_cast<double>(row_bytes(*bonds));
+  for (const RecordTable* t : {extras.bond_segments, extras.breaks})  // with points and index
+    if (t) local += static_cast<double>(t->size()) * static_cast<double>(record_bytes(*t) + 48);
   const double fixed =
       static_cast<double>(walls) * 256.0 + static_cast<double>(h.config.size() + h.materials.size()) + 64.0 * 1024.0;
   return static_cast<std::uint64_t>(1.02 * (comm.sum(local) + fixed));
@@ -206,6 +216,65 @@ void StateWriter::write_rows(Hdf5File& f, const std::string& group, const Contac
   note_bytes(checkpoint_structure_bytes());
 }
 
+void StateWriter::write_records(Hdf5File& f, const std::string& group, const RecordTable& t, const Communicator& comm) {
+  // A record: the key, then each column's value in the order reals, integers, vectors.
+  const double t0 = now();
+  order_.arrange(
+      t.size(),
+      [&](std::size_t i) {
+        return OrderKey{t.key[i].lo, t.key[i].hi};
+      },
+      record_bytes(t),
+      [&](std::size_t i, char* out) {
+        std::memcpy(out, &t.key[i], sizeof(ContactKey));
+        out += sizeof(ContactKey);
+        const auto put = [&](const auto& columns) {
+          for (const auto& [name, values] : columns) {
+            std::memcpy(out, &values[i], sizeof values[i]);
+            out += sizeof values[i];
+          }
+        };
+        put(t.reals), put(t.integers), put(t.vectors);
+      },
+      comm);
+  times_.order += now() - t0;
+  f.create_group(group);
+  write_column<ContactKey>(
+      f, group + "/key", [&](std::size_t i) { return &t.key[i]; }, 0);
+  std::size_t at = sizeof(ContactKey);
+  std::array<std::size_t, 2> end_at{};             // the ends' byte offsets in a record
+  std::array<const std::vector<Vec2>*, 2> ends{};  // and their local columns
+  const auto columns = [&](const auto& list) {
+    for (const auto& [name, values] : list) {
+      using T = typename std::decay_t<decltype(values)>::value_type;
+      bool end = false;  // a segment's ends are written as its points only
+      if constexpr (std::is_same_v<T, Vec2>)
+        for (std::size_t e = 0; e < 2; ++e)
+          if (t.segments && name == (e == 0 ? "end1" : "end2")) end_at[e] = at, ends[e] = &values, end = true;
+      if (!end)
+        write_column<T>(
+            f, group + "/" + name, [&values](std::size_t i) { return &values[i]; }, at);
+      at += sizeof(T);
+    }
+  };
+  columns(t.reals), columns(t.integers), columns(t.vectors);
+  // The XDMF cells: each record's two ends as points 2k and 2k + 1 (segments), or the row numbers.
+  const std::uint64_t per = t.segments ? 2 : 1, count = order_.count(), offset = order_.offset();
+  std::vector<std::int64_t> index(per * count);
+  for (std::uint64_t k = 0; k < index.size(); ++k) index[k] = static_cast<std::int64_t>(per * offset + k);
+  f.write(group + "/index", index, per * order_.total(), per * offset);
+  if (!t.segments) return;
+  if (!ends[0] || !ends[1]) throw std::logic_error("a RecordTable of segments without the columns end1 and end2");
+  std::vector<Vec2> points(2 * count);
+  for (std::uint64_t k = 0; k < count; ++k)
+    for (std::size_t e = 0; e < 2; ++e) {
+      const void* from = order_.is_local(k) ? static_cast<const void*>(&(*ends[e])[order_.local_index(k)])
+                                            : static_cast<const void*>(order_.received(k) + end_at[e]);
+      std::memcpy(&points[2 * k + e], from, sizeof(Vec2));
+    }
+  f.write(group + "/points", points, 2 * order_.total(), 2 * offset);
+}
+
 std::size_t StateWriter::checkpoint_structure_bytes() const {
   return order_.capacity_bytes() + booked_.capacity() * sizeof(std::size_t) +
          column_.capacity() * sizeof(std::uint64_t);
@@ -213,20 +282,22 @@ std::size_t StateWriter::checkpoint_structure_bytes() const {
 
 void StateWriter::write(const std::string& path, const StateHeader& h, DiscStore& discs, const ContactTable& pairs,
                         const ContactTable& wall_rows, const WallSet& walls, const Communicator& comm,
-                        const std::vector<std::string>& fields, double wall_seconds, const ContactTable* bonds) {
+                        const std::vector<std::string>& fields, double wall_seconds, const StateExtras& extras) {
   times_ = {};
   const double t0 = now();
-  const ContactTable* rows_of_bonds = fields.empty() ? bonds : nullptr;
   Hdf5File f(path, Hdf5File::Mode::create, comm,
-             estimate_file_bytes(h, discs, pairs, wall_rows, rows_of_bonds, walls.size(), !fields.empty(), comm));
+             estimate_file_bytes(h, discs, pairs, wall_rows, extras, walls.size(), !fields.empty(), comm));
   f.run([&] {
     write_header(f, h);
     write_discs(f, discs, comm, fields);
     if (fields.empty()) {
       write_rows(f, "/contacts", pairs, discs.n_owned(), comm);
       write_rows(f, "/wall_contacts", wall_rows, discs.n_owned(), comm);
-      if (bonds) write_rows(f, "/bonds", *bonds, discs.n_owned(), comm);
+      if (extras.bonds) write_rows(f, "/bonds", *extras.bonds, discs.n_owned(), comm);
+    } else if (extras.bond_segments) {
+      write_records(f, "/bonds", *extras.bond_segments, comm);
     }
+    if (extras.breaks) write_records(f, "/breaks", *extras.breaks, comm);
     write_walls(f, walls, comm);
     f.write_attribute("/walls", "box_width0", h.box_width0);
     f.write_attribute("/walls", "box_height0", h.box_height0);
@@ -256,7 +327,7 @@ void StateWriter::write(const std::string& path, const StateHeader& h, DiscStore
 void write_state_file(const std::string& path, const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
                       const ContactTable& wall_rows, const WallSet& walls, const Communicator& comm,
                       const std::vector<std::string>& fields, double wall_seconds) {
-  StateWriter().write(path, header, discs, pairs, wall_rows, walls, comm, fields, wall_seconds);
+  StateWriter().write(path, header, discs, pairs, wall_rows, walls, comm, fields, wall_seconds, {});
 }
 
 std::size_t peak_checkpoint_structure_bytes() { return g_peak_bytes; }

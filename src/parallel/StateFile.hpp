@@ -73,6 +73,29 @@ inline Domain recorded_cell(const StateHeader& h, Domain configured) {
   return configured;
 }
 
+// Records of a group of a file other than discs and contact rows (a snapshot's bonds, the bonds' breaks): a key
+// each, which sets their order in the file, and named columns, one dataset each (GROUP/NAME). `segments`: the
+// records are line segments whose ends are the Vec2 columns "end1" and "end2", written as GROUP/points (2 M rows:
+// each record's two ends, in place of the two columns) with GROUP/index (0 .. 2 M - 1), the XDMF line cells; otherwise
+// GROUP/index
+// holds the row numbers (the XDMF vertex cells of a "position" column).
+struct RecordTable {
+  std::vector<ContactKey> key;
+  std::vector<std::pair<std::string, std::vector<double>>> reals;
+  std::vector<std::pair<std::string, std::vector<std::int64_t>>> integers;
+  std::vector<std::pair<std::string, std::vector<Vec2>>> vectors;
+  bool segments = false;
+  std::size_t size() const { return key.size(); }
+};
+
+// What a state file holds besides discs, contact rows and walls, when a run has it: a checkpoint's bond rows, a
+// snapshot's bonds as segments, and the breaks since the last snapshot (both kinds of file).
+struct StateExtras {
+  const ContactTable* bonds = nullptr;         // /bonds of a checkpoint
+  const RecordTable* bond_segments = nullptr;  // /bonds of a snapshot
+  const RecordTable* breaks = nullptr;         // /breaks
+};
+
 // Writes checkpoints and snapshots (collective). `fields` selects the disc datasets of a snapshot (empty:
 // every checkpointed field plus the contacts); a snapshot also gets the owner rank when "rank" is listed,
 // and its row numbers ("index"). Records are put in file order by a distributed sample sort (CanonicalOrder:
@@ -80,10 +103,10 @@ inline Domain recorded_cell(const StateHeader& h, Domain configured) {
 // offset. Keep one writer per output directory: its buffers keep their capacity from one file to the next.
 class StateWriter {
  public:
-  // `bonds` (a run with bonds): its rows too, in /bonds (a checkpoint; a snapshot has no rows).
+  // `extras`: what the run has besides (its bonds and their breaks).
   void write(const std::string& path, const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
              const ContactTable& wall_rows, const WallSet& walls, const Communicator& comm,
-             const std::vector<std::string>& fields, double wall_seconds, const ContactTable* bonds = nullptr);
+             const std::vector<std::string>& fields, double wall_seconds, const StateExtras& extras = {});
   // The bytes of this rank's checkpoint structures, as held now: their capacity only grows, so this is
   // the peak of every file written so far. Per record this rank writes: 24 B of key and index (48 B
   // while merging received runs), 8 B of row index, and the largest dataset's element (16 B); per record
@@ -102,6 +125,7 @@ class StateWriter {
   void write_discs(Hdf5File& f, DiscStore& discs, const Communicator& comm, const std::vector<std::string>& fields);
   void write_rows(Hdf5File& f, const std::string& group, const ContactTable& rows, std::size_t n_owned,
                   const Communicator& comm);
+  void write_records(Hdf5File& f, const std::string& group, const RecordTable& records, const Communicator& comm);
   // Writes one dataset from this rank's records in file order: a local record's value is *local(i), a
   // received one's is at byte `at` of its record.
   template <class T, class Local>
@@ -134,6 +158,8 @@ StateHeader read_state_header(const std::string& path, const Communicator& comm)
 void verify_state_file(const std::string& path, const Communicator& comm);
 // Number of discs the file holds.
 std::uint64_t state_file_discs(const std::string& path, const Communicator& comm);
+// Rows of a dataset of the file (0 when it has none).
+std::int64_t state_file_rows(const std::string& path, const std::string& dataset, const Communicator& comm);
 // The datasets of /discs the file holds (a snapshot has those of its output.snapshot_fields, and "index").
 std::vector<std::string> state_file_disc_datasets(const std::string& path, const Communicator& comm);
 void read_state_discs(const std::string& path, DiscStore& discs, const Communicator& comm);

@@ -121,6 +121,10 @@ std::uint64_t state_file_discs(const std::string& path, const Communicator& comm
   return Hdf5File(path, Hdf5File::Mode::read, comm).rows("/discs/position");
 }
 
+std::int64_t state_file_rows(const std::string& path, const std::string& dataset, const Communicator& comm) {
+  return static_cast<std::int64_t>(Hdf5File(path, Hdf5File::Mode::read, comm).rows(dataset));
+}
+
 std::vector<std::string> state_file_disc_datasets(const std::string& path, const Communicator& comm) {
   Hdf5File f(path, Hdf5File::Mode::read, comm);
   std::vector<std::string> found;

@@ -77,7 +77,7 @@ void step(const BondContext& c, ContactTable& t, ForceSums sums, LedgerTerms& wo
       W += last_half;
       released += bond_stored(p, g, before) - last_half;
       const Vec2 centre = c.discs.position[static_cast<std::size_t>(t.i1[r])] + k.a1 * k.n;
-      breaks.push_back({t.key[r], centre, s.mode, s.sigma, s.tau});
+      breaks.push_back({t.key[r], centre, s.mode, s.sigma, s.tau, c.step});
       (s.mode == BondMode::tension ? tension : shear) += 1.0;
       continue;
     }

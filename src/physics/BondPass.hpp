@@ -33,6 +33,7 @@ struct BondBreak {
   Vec2 position;
   BondMode mode = BondMode::tension;
   double sigma = 0.0, tau = 0.0;
+  std::int64_t step = 0;  // the step it broke in
 };
 
 // What a bond pass reads (standing domains: bonds are refused in a deforming cell).
@@ -42,6 +43,7 @@ struct BondContext {
   const ContactParamTable& params;
   double thickness;
   double dt;
+  std::int64_t step = 0;  // the step being taken (its breaks are recorded with it)
 };
 
 namespace bonds {

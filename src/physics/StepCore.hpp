@@ -42,7 +42,8 @@ struct StepInputs {
   ContactTable* bonds = nullptr;
   std::vector<BondBreak>* breaks = nullptr;
   double thickness = 1.0;
-  BondContext bond_context() const { return BondContext{discs, domain, params, thickness, dt}; }
+  std::int64_t step = 0;  // the step being taken (the bonds' break records)
+  BondContext bond_context() const { return BondContext{discs, domain, params, thickness, dt, step}; }
 };
 
 // A run's hooks that do nothing (the rig's, and the base of a run's).

@@ -106,8 +106,10 @@ class StateFile:
     laws {'normal', 'tangential', 'rolling'}, history_slots (list of names), attrs (every root attribute,
     decoded), config (Config of the `config` attribute), discs (Group: gid, radius, position (n, 2), ...),
     contacts and wall_contacts (Group with key, param, F_n, ..., history {slot: array}; None in a
-    snapshot), bonds (the parallel bonds: Group with key, param, history {Fb_n, Fb_s, Mb}; None in a snapshot and
-    in a run without bonds), walls (Group: kind, p0, p1, normal, velocity, ...; attrs box_width0, box_height0),
+    snapshot), bonds (the parallel bonds: in a checkpoint Group with key, param, history {Fb_n, Fb_s, Mb}, in a
+    snapshot key, Fb_n, Fb_s, Mb, sigma, tau, points (2 per bond), index; None without bonds), breaks (the bonds'
+    breaks since the last snapshot: key, position, step, mode (1 tension, 2 shear), sigma, tau; None without bonds),
+    walls (Group: kind, p0, p1, normal, velocity, ...; attrs box_width0, box_height0),
     cell (dict: xlo, xhi, ylo, yhi, tilt, rate_xx, rate_xy, rate_yy, flips; {} before version 5; cell_vectors()),
     ledger (dict of float), run_metadata (dict), checksums {'/discs/gid': stored uint64}."""
 
@@ -161,6 +163,7 @@ class StateFile:
         self.contacts = self._group(f, h5py, "contacts")
         self.wall_contacts = self._group(f, h5py, "wall_contacts")
         self.bonds = self._group(f, h5py, "bonds")
+        self.breaks = self._group(f, h5py, "breaks")
         self.walls = self._group(f, h5py, "walls") or Group("walls")
         self.ledger = {k: float(decode(v)) for k, v in f["ledger"].attrs.items()} if "ledger" in f else {}
         self.cell = {k: decode(v) for k, v in f["cell"].attrs.items()} if "cell" in f else {}
@@ -222,7 +225,7 @@ class StateFile:
     def datasets(self):
         """{'/discs/radius': array, ...} of every dataset in the file."""
         out = {}
-        for g in (self.discs, self.contacts, self.wall_contacts, self.bonds, self.walls):
+        for g in (self.discs, self.contacts, self.wall_contacts, self.bonds, self.breaks, self.walls):
             if g is None:
                 continue
             for k, v in g.items():
