@@ -191,6 +191,7 @@ class Simulation final : public RunTarget {
   ContactTable* bond_rows() { return config_.bonds ? &bonds_ : nullptr; }
   // The bonds of a new scene on its first neighbour list (bonds.gap), and their local indices after a rebuild.
   void create_bonds();
+  void bonds_from_file();  // bonds.file's pairs, checked
   void relink_bonds();
   // step() with `close`; without it the closing kick and the step's ledger booking wait for the next step's
   // drift or close_step().

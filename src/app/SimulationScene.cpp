@@ -8,6 +8,7 @@
 #include <limits>
 #include <string>
 
+#include "app/BondList.hpp"
 #include "app/Restart.hpp"
 #include "app/RowGeometry.hpp"
 #include "app/Simulation.hpp"
@@ -17,6 +18,7 @@
 #include "core/Format.hpp"
 #include "core/SceneBuilder.hpp"
 #include "parallel/Agreement.hpp"
+#include "parallel/StateFile.hpp"
 
 namespace rondel {
 
@@ -124,7 +126,60 @@ void Simulation::create_bonds() {
       throw InputError("bonds.gap = " + fmt(config_.bond_gap) + " of the largest radius (" + fmt(R_max_) +
                        " m) reaches beyond the neighbour skin (" + fmt(neighbours_.skin()) +
                        " m): lower bonds.gap or raise neighbour.skin above " + fmt(config_.bond_gap * R_max_) + " m");
-    bonds::create(discs_, config_.domain, config_.params, pairs_, config_.bond_gap, bonds_);
+    if (config_.bond_file.empty())
+      bonds::create(discs_, config_.domain, config_.params, pairs_, config_.bond_gap, bonds_);
+  });
+  if (!config_.bond_file.empty()) bonds_from_file();
+}
+
+void Simulation::bonds_from_file() {
+  // Each rank reads a block of the list; the pairs go to the owners of their discs (the restart's routing), which
+  // find both discs (owned or ghosts) and check the pair; the line numbers ride in Fb_n until then.
+  const std::string dir = config_.source_file.empty() ? "" : fs::path(config_.source_file).parent_path().string();
+  const std::string path = scene::resolve(config_.bond_file, dir);
+  ContactTable rows = ContactTable::bond_table();
+  bond_list::read_block(path, rows, comm_);
+  const std::int64_t listed = comm_.sum(static_cast<std::int64_t>(rows.size()));
+  agree(comm_, [&] { route_rows_to_owners(rows, true, discs_, comm_); });
+  const ContactTable routed = rows;  // the lines of the pairs that relink drops
+  ContactKey lost{-1, -1};
+  bonds::relink(discs_, rows, lost);
+  bonds_ = std::move(rows);
+  std::int64_t line = std::numeric_limits<std::int64_t>::max();
+  std::string why;
+  const auto consider = [&](double at, const std::string& what) {
+    if (static_cast<std::int64_t>(at) < line) line = static_cast<std::int64_t>(at), why = what;
+  };
+  const auto pair_text = [](ContactKey k) { return "discs " + std::to_string(k.lo) + " and " + std::to_string(k.hi); };
+  if (lost.lo >= 0) {
+    const auto it = std::lower_bound(routed.key.begin(), routed.key.end(), lost);
+    consider(routed.slot[0][static_cast<std::size_t>(it - routed.key.begin())],
+             pair_text(lost) + ": one of them does not exist, or they are farther apart than the neighbour range");
+  }
+  for (std::size_t r = 0; r < bonds_.size(); ++r) {
+    const auto i = static_cast<std::size_t>(bonds_.i1[r]), j = static_cast<std::size_t>(bonds_.i2[r]);
+    const std::size_t a = static_cast<std::size_t>(discs_.material[i]),
+                      b = static_cast<std::size_t>(discs_.material[j]);
+    bonds_.param[r] = static_cast<std::int32_t>(config_.params.pair_index(a, b));
+    const double R = std::min(discs_.radius[i], discs_.radius[j]);
+    const double gap = RowGeometry::pair(discs_, config_.domain, i, j).u_n;  // -gap
+    if (!(config_.params.pair(a, b).kb_n > 0.0))
+      consider(bonds_.slot[0][r], pair_text(bonds_.key[r]) + " are of materials " + config_.materials[a].name +
+                                      " and " + config_.materials[b].name + ", a pair that [bonds] does not bond");
+    else if (-gap > config_.bond_gap * R)
+      consider(bonds_.slot[0][r], pair_text(bonds_.key[r]) + " are " + fmt(-gap / R) +
+                                      " of the smaller radius apart, above bonds.gap = " + fmt(config_.bond_gap));
+    bonds_.slot[0][r] = 0.0;
+  }
+  const std::int64_t first = -comm_.max(-line);
+  const std::int64_t kept = comm_.sum(bonds::booked(discs_, bonds_));
+  agree(comm_, [&] {
+    if (first != std::numeric_limits<std::int64_t>::max() && line == first)
+      throw InputError("bonds.file '" + path + "' line " + std::to_string(first) + ": " + why);
+    if (first == std::numeric_limits<std::int64_t>::max() && kept != listed)
+      throw InputError("bonds.file '" + path + "' lists " + std::to_string(listed) + " pairs but " +
+                       std::to_string(kept) + " distinct pairs of existing discs: a pair is listed twice, or names " +
+                       "discs that do not exist");
   });
 }
 

@@ -112,6 +112,7 @@ struct Config {
   // gap is at most bond_gap x the smaller radius; their parameters are in params' bond fields
   bool bonds = false;
   double bond_gap = 0.0;
+  std::string bond_file;  // bonds.file: the pairs to bond ("" : every pair within bond_gap)
   // [neighbour]
   double skin = 0.0;  // 0: a quarter of the mean radius
   // [parallel]

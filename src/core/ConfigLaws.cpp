@@ -122,7 +122,7 @@ bool bonds_given(const LawCatalog& laws, const Reader& r) {
 void read_bond_block(const LawCatalog& laws, const Reader& r, ContactParams& p) {
   const LawBlock& block = *laws.bonds;
   const std::string prefix = std::string(block.section) + ".";
-  std::string given = r.given(prefix + "gap") ? prefix + "gap" : "";
+  std::string given = r.given(prefix + "gap") ? prefix + "gap" : (r.given(prefix + "file") ? prefix + "file" : "");
   for (const ParamSpec& spec : block.params)
     if (given.empty() && r.given(prefix + spec.key)) given = prefix + spec.key;
   if (given.empty()) return;

@@ -176,7 +176,10 @@ void add_law_sections(po::options_description& all, std::vector<KeySpec>& keys, 
     if (block == laws.bonds)
       Keys(section, keys, readers)
           .number("bonds.gap", at(&Config::bond_gap), 0.01, "-", kNonNegative,
-                  "bond the discs whose gap at set-up is at most this fraction of the smaller radius");
+                  "bond the discs whose gap at set-up is at most this fraction of the smaller radius")
+          .text("bonds.file", at(&Config::bond_file), "", "path",
+                "a CSV of the pairs to bond instead, 'gid1,gid2' per line (# comments, a header 'gid1,gid2'), each "
+                "within bonds.gap; relative paths next to the INI file");
     all.add(section);
   }
   po::options_description wallc("[wall_contact] disc-wall parameters (default: the disc-disc ones)");

@@ -10,6 +10,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "ParallelTestUtil.hpp"
@@ -79,6 +80,32 @@ TEST(RankInvariance, TheBondedBlockBreaksSomeOfItsBondsDuringTheRun) {
   EXPECT_GT(end.n_b_tension + end.n_b_shear, 5.0);
   EXPECT_EQ(static_cast<double>(start.bonds - end.bonds), end.n_b_tension + end.n_b_shear);
   EXPECT_GT(end.bonds, start.bonds / 4);
+}
+
+// bonds.file: the horizontal neighbours of each row only, read in blocks on every rank and routed to their owners;
+// the run on N ranks is the 1-rank run's, and a bad line is refused with the same message on any rank count.
+TEST(RankInvariance, BondsFromAListBitwiseEqualToOneRankAndItsRefusalOnAnyRankCount) {
+  SharedTempDir tmp("bond-list");
+  const std::string list = (tmp.path() / "pairs.csv").string(), bad = (tmp.path() / "bad.csv").string();
+  if (world_rank() == 0) {
+    std::ofstream out(list);
+    out << "gid1,gid2\n";
+    for (int k = 0; k < 160; ++k)
+      if (k % 20 != 19) out << k << ',' << k + 1 << '\n';
+    std::ofstream(bad) << "gid1,gid2\n0,1\n# fine so far\n1,2\n5,150\n";
+  }
+  world_barrier();
+  const LockstepResult r = run_lockstep(bonded_drop_ini(), {"--bonds.file=" + list}, 1500, 250);
+  EXPECT_TRUE(r.equal) << r.what;
+  const Communicator world(MPI_COMM_WORLD);
+  std::string message = "accepted";
+  try {
+    Simulation sim(parse_config_text(bonded_drop_ini(), {"--bonds.file=" + bad}), world, false);
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  EXPECT_EQ(message, broadcast(message));
+  EXPECT_NE(message.find("bad.csv' line 5: discs 5 and 150"), std::string::npos) << message;
 }
 
 // h5diff of the bonds' and breaks' groups of two snapshots: "" when equal. Rank 0 only.

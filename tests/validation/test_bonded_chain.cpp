@@ -15,6 +15,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -184,6 +186,50 @@ x0 = -0.005
       Mb_before, jump, own);
   EXPECT_GT(std::fabs(Mb_before), 100.0 * jump);
   EXPECT_LE(jump, own);
+}
+
+// bonds.file: the pairs of a list instead of every pair within bonds.gap; its refusals name the file and the line.
+TEST(BondedChain, BondsFromAListAndItsRefusals) {
+  const Communicator comm;
+  const std::string list = (std::filesystem::temp_directory_path() / "rondel-bond-list-test.csv").string();
+  const auto error_of = [&](const std::string& text, std::int64_t* bonds = nullptr) -> std::string {
+    std::ofstream(list) << text;
+    try {
+      Simulation sim(parse_config_text(chain_ini(), {"--bonds.file=" + list}), comm, false);
+      if (bonds) *bonds = static_cast<std::int64_t>(sim.bonds().size());
+      for (int s = 0; s < 10; ++s) sim.step();
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  std::int64_t bonds = -1;
+  EXPECT_EQ(error_of("gid1,gid2\n# the chain's first two bonds\n0,1\n\n2, 1\n", &bonds), "accepted");
+  EXPECT_EQ(bonds, 2);
+  const auto line2 = [&](const std::string& pair, const std::string& part) {
+    const std::string e = error_of("gid1,gid2\n" + pair + "\n");
+    EXPECT_NE(e.find("bonds.file '" + list + "' line 2: "), std::string::npos) << e;
+    EXPECT_NE(e.find(part), std::string::npos) << e;
+  };
+  line2("0,99", "does not exist");
+  line2("0,3", "of the smaller radius apart, above bonds.gap");
+  line2("0,x", "is not a pair");
+  line2("4,4", "is not a pair");
+  line2("0,1,2", "is not a pair");
+  const std::string twice = error_of("0,1\n1,0\n");
+  EXPECT_NE(twice.find("lists 2 pairs but 1 distinct pairs"), std::string::npos) << twice;
+  std::filesystem::remove(list);
+  const std::string unreadable = [&] {
+    try {
+      Simulation sim(parse_config_text(chain_ini(), {"--bonds.file=" + list}), comm, false);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  }();
+  EXPECT_NE(unreadable.find("bonds.file '" + list + "' cannot be read"), std::string::npos) << unreadable;
+  Simulation plain(parse_config_text(chain_ini()), comm, false);  // without the list: every pair within bonds.gap
+  EXPECT_EQ(static_cast<std::int64_t>(plain.bonds().size()), kDiscs - 1);
 }
 
 // Refused before any step, naming the keys: a gap that reaches beyond the neighbour skin (the pairs searched), and
