@@ -1,6 +1,7 @@
 """The scripts of examples/python/ on 2 ranks with --quick, and what each must show (docs/python.md, "Examples"):
 the cyclic biaxial test reverses at its two deviator levels, the pour releases every disc at the rate it set (halved
-while the pile splashes), the in-situ series ends at the deposition's documented coordination, every disc at rest.
+while the pile splashes), the in-situ series ends at the deposition's documented coordination, every disc at rest,
+and the bonded cantilever comes to rest on the discrete chain's exact solution (1e-6).
 
 Run by CTest (label python) with MPIEXEC in the environment.
 """
@@ -66,3 +67,13 @@ def test_coordination_series_ends_at_the_depositions_coordination(out):
     assert r[0]["coordination"] < 0.1 and r[0]["moving_fraction"] > 0.9
     assert 3.0 < r[-1]["coordination"] < 3.5
     assert os.path.isfile(os.path.join(out, "coordination.png"))
+
+
+def test_bonded_cantilever_is_the_exact_chain(out):
+    run_example("bonded_cantilever.py", out)
+    r = rows(os.path.join(out, "cantilever.csv"))
+    assert len(r) == 21 and r[0]["deflection"] == 0.0 and r[0]["rotation"] == 0.0, "the first disc is held"
+    for x in r[1:]:
+        assert abs(x["deflection"] / x["deflection_exact"] - 1.0) < 1e-6
+        assert abs(x["rotation"] / x["rotation_exact"] - 1.0) < 1e-6
+    assert os.path.isfile(os.path.join(out, "cantilever.png"))
