@@ -1,6 +1,5 @@
 #include "app/BondRecords.hpp"
 
-#include <cmath>
 #include <iterator>
 
 #include "parallel/Hdf5File.hpp"
@@ -16,10 +15,9 @@ RecordTable segments(const BondContext& c, const ContactTable& bonds) {
   for (std::size_t r = 0; r < bonds.size(); ++r) {
     const auto i = static_cast<std::size_t>(bonds.i1[r]), j = static_cast<std::size_t>(bonds.i2[r]);
     if (i >= c.discs.n_owned()) continue;
-    const ContactParams& p = c.params.pairs()[static_cast<std::size_t>(bonds.param[r])];
-    const BondGeometry g = BondGeometry::of(c.discs.radius[i], c.discs.radius[j], c.thickness, p.bond_lambda);
-    const double Fn = bonds.slot[0][r], Fs = bonds.slot[1][r], M = bonds.slot[2][r];
-    const double values[] = {Fn, Fs, M, Fn / g.A + std::fabs(M) * g.Rb / g.I, std::fabs(Fs) / g.A};
+    const BondState s{bonds.slot[0][r], bonds.slot[1][r], bonds.slot[2][r]};
+    const BondStresses stress = BondStresses::of(bonds::row_geometry(c, bonds, r), s);
+    const double values[] = {s.Fb_n, s.Fb_s, s.Mb, stress.sigma, stress.tau};
     static_assert(std::size(values) == std::size(kSegmentReals));
     for (std::size_t k = 0; k < std::size(values); ++k) t.reals[k].second.push_back(values[k]);
     t.key.push_back(bonds.key[r]);

@@ -72,6 +72,14 @@ inline double bond_stored(const ContactParams& p, const BondGeometry& g, const B
          s.Mb * s.Mb / (2.0 * p.kb_n * g.I);
 }
 
+// The stresses of the breaking test: sigma = Fb_n/A + |Mb| Rb/I (tension), tau = |Fb_s|/A (shear) [Pa].
+struct BondStresses {
+  double sigma, tau;
+  static BondStresses of(const BondGeometry& g, const BondState& s) {
+    return {s.Fb_n / g.A + std::fabs(s.Mb) * g.Rb / g.I, std::fabs(s.Fb_s) / g.A};
+  }
+};
+
 // The step: the increments from the kinematics' rates, then the breaking test against this bond's strengths.
 inline BondStep bond_step(const ContactParams& p, const BondGeometry& g, const ContactKinematics& k, double dt,
                           const BondState& before, double sigma_c, double tau_c) {
@@ -80,8 +88,8 @@ inline BondStep bond_step(const ContactParams& p, const BondGeometry& g, const C
   s.Fb_n = before.Fb_n + p.kb_n * g.A * k.v_n * dt;
   s.Fb_s = before.Fb_s - p.kb_s * g.A * k.V_s * dt;
   s.Mb = before.Mb - p.kb_n * g.I * k.thetadot_r * dt;
-  out.sigma = s.Fb_n / g.A + std::fabs(s.Mb) * g.Rb / g.I;
-  out.tau = std::fabs(s.Fb_s) / g.A;
+  const BondStresses stress = BondStresses::of(g, s);
+  out.sigma = stress.sigma, out.tau = stress.tau;
   const double r_t = out.sigma / sigma_c, r_s = out.tau / tau_c;
   if (r_t >= 1.0 || r_s >= 1.0) out.mode = r_t >= r_s ? BondMode::tension : BondMode::shear;
   return out;

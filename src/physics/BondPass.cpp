@@ -16,12 +16,6 @@ ContactKinematics row_kinematics(const DiscStore& D, const MinimumImage& image, 
                               D.omega[i], D.omega[j]);
 }
 
-BondGeometry row_geometry(const BondContext& c, const ContactTable& t, std::size_t r) {
-  const auto i = static_cast<std::size_t>(t.i1[r]), j = static_cast<std::size_t>(t.i2[r]);
-  const ContactParams& p = c.params.pairs()[static_cast<std::size_t>(t.param[r])];
-  return BondGeometry::of(c.discs.radius[i], c.discs.radius[j], c.thickness, p.bond_lambda);
-}
-
 BondState row_state(const ContactTable& t, std::size_t r) { return {t.slot[0][r], t.slot[1][r], t.slot[2][r]}; }
 
 // The work rate of a bond's forces on its pair's relative motion, times dt.
@@ -40,6 +34,12 @@ void add_to_sums(const ContactTable& t, std::size_t r, const ContactKinematics& 
 }
 
 }  // namespace
+
+BondGeometry row_geometry(const BondContext& c, const ContactTable& t, std::size_t r) {
+  const auto i = static_cast<std::size_t>(t.i1[r]), j = static_cast<std::size_t>(t.i2[r]);
+  const ContactParams& p = c.params.pairs()[static_cast<std::size_t>(t.param[r])];
+  return BondGeometry::of(c.discs.radius[i], c.discs.radius[j], c.thickness, p.bond_lambda);
+}
 
 void create(const DiscStore& discs, const Domain& domain, const ContactParamTable& params, const ContactTable& pairs,
             double gap, ContactTable& bonds) {

@@ -61,6 +61,9 @@ void step(const BondContext& c, ContactTable& bonds, ForceSums sums, LedgerTerms
 // The bonds' forces as they stand, into the sums (the initial forces: no update, nothing booked).
 void apply(const BondContext& c, const ContactTable& bonds, ForceSums sums);
 
+// The section of bond row r (its discs' radii, its pair's lambda, the discs' thickness).
+BondGeometry row_geometry(const BondContext& c, const ContactTable& bonds, std::size_t r);
+
 // The bonds this rank books (its disc 1 owned here).
 std::int64_t booked(const DiscStore& discs, const ContactTable& bonds);
 
