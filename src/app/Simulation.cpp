@@ -159,10 +159,10 @@ Domain Simulation::cell_sizing() const {
   return s;
 }
 
-void Simulation::make_decomposition(bool replicated) {
-  decomposition_ = std::make_unique<Decomposition>(config_.domain, neighbours_.range(R_max_), config_.partitioner,
-                                                   comm_, cell_sizing());
-  decomposition_->initial_partition(discs_, replicated);
+void Simulation::make_decomposition(bool replicated, double range, const Decomposition::CellUnits* units) {
+  decomposition_ = std::make_unique<Decomposition>(config_.domain, range, config_.partitioner, comm_, cell_sizing());
+  weighed_ = units && decomposition_->initial_partition(*units);
+  if (!units) decomposition_->initial_partition(discs_, replicated);
   if (decomposition_->empty_ranks() > 0 && comm_.root())
     std::cerr << "rondel: warning: " << decomposition_->empty_ranks() << " of " << comm_.size()
               << " ranks own no cell and will idle; use fewer ranks for this scene\n";

@@ -157,8 +157,11 @@ class Simulation final : public RunTarget {
   // A periodic length holds at least twice the interaction range.
   void check_periodic_lengths() const;
   void setup_boundaries();
+  // The discs to the owners of their cells (each rank keeps its own of a whole scene; blocks are routed; a scene
+  // built cell by cell is there already).
   void distribute_discs();
-  void make_decomposition(bool replicated);
+  // `units` (a scene built cell by cell): the first map weighted by the discs each cell will hold.
+  void make_decomposition(bool replicated, double range, const Decomposition::CellUnits* units = nullptr);
   void load_checkpoint(const std::string& path);
   // The deformed cell of a checkpoint (its shape and flips; the rates are this configuration's).
   void resume_cell(const StateHeader& h, const std::string& path);
@@ -174,8 +177,10 @@ class Simulation final : public RunTarget {
   // The initial overlaps over every rank's discs (on the first neighbour list): refused above
   // scene.max_initial_overlap.
   void check_initial_overlaps();
-  // Blocks of discs (a scene built in blocks, a checkpoint read in blocks) to the ranks that own their cells.
+  // Discs anywhere (a scene built in blocks, a checkpoint read in blocks, a new grid) to the ranks that own their
+  // cells on a new decomposition; settle_owners: to the cut weighted by their work.
   void route_to_owners();
+  void settle_owners();
   void rebuild();
   // A deforming cell: its step h += dt L h and its flip (SimulationStep.cpp); its shape into the decomposition's
   // grid at a rebuild (a new grid when the cell has halved or doubled a side's cells), refused when a length has
@@ -225,6 +230,7 @@ class Simulation final : public RunTarget {
   double R_min_ = 0.0, R_max_ = 0.0, R_total_ = 0.0;  // over every disc (measure_radii): extremes, sum
   std::int64_t n_discs_ = 0;                          // every disc (measure_radii)
   std::unique_ptr<Decomposition> decomposition_;
+  bool weighed_ = false;  // the first map was weighted by the discs the scene will place (no repartition due)
   DiscExchange exchange_;
   PhaseTimes phases_;
   std::size_t migrated_ = 0;

@@ -39,8 +39,21 @@ void Simulation::add_scene_discs() {
   const std::string dir = config_.source_file.empty() ? "" : fs::path(config_.source_file).parent_path().string();
   const FileScene files(config_, walls_, config_.domain);
   const SceneInputs in{config_.scene, config_.domain, dir, &files};
-  const auto scene =
-      scene::in_blocks(config_.scene) ? build_scene_block(in, comm_.rank(), comm_.size()) : build_scene(in);
+  std::vector<SceneDisc> scene;
+  if (const double radius = config_.cell_deforms() ? 0.0 : scene::by_cells(in); radius > 0.0) {
+    // Each rank finds the discs of its cells: the decomposition first, on the range of the discs' radius (the
+    // neighbour skin's default is a quarter of the mean radius), weighted by the discs each cell will hold; no
+    // disc moves to its owner.
+    const Decomposition::CellUnits units = [&](std::size_t c) {
+      return config_.scene.type->cell_count(in, decomposition_->grid(), c);
+    };
+    const double range = 2.0 * radius + (config_.skin > 0.0 ? config_.skin : 0.25 * radius);
+    start_checks::check_cells(config_, range);  // as setup_neighbours will: a grid this machine can hold
+    make_decomposition(false, range, &units);
+    scene = config_.scene.type->cells(in, decomposition_->grid(), decomposition_->own_cells());
+  } else {
+    scene = scene::in_blocks(config_.scene) ? build_scene_block(in, comm_.rank(), comm_.size()) : build_scene(in);
+  }
   box0_ = Boundaries::box(walls_, config_.domain);        // a file scene may have moved the box walls
   if (scene.empty() && !scene::in_blocks(config_.scene))  // a block may be empty (more ranks than discs)
     throw InputError(config_.scene.type->source != SceneType::Source::keys
@@ -94,12 +107,15 @@ void Simulation::measure_radii() {
 }
 
 void Simulation::distribute_discs() {
-  if (scene::in_blocks(config_.scene)) {  // each rank built its block: the discs go to their owners
-    route_to_owners();
-    return;
+  if (decomposition_) {  // built cell by cell (add_scene_discs) on the range its radius gave
+    const CellGrid grid(config_.domain, neighbours_.range(R_max_), cell_sizing());
+    if (grid.nx() == decomposition_->grid().nx() && grid.ny() == decomposition_->grid().ny())
+      return weighed_ ? void() : settle_owners();
+    return route_to_owners();  // a range that rounds to another grid: the discs go to the owners of this one
   }
+  if (scene::in_blocks(config_.scene)) return route_to_owners();  // each rank built its block
   // Every rank built the whole scene; each keeps the discs of its cells.
-  make_decomposition(true);
+  make_decomposition(true, neighbours_.range(R_max_));
   std::vector<bool> elsewhere(discs_.n_owned());
   for (std::size_t i = 0; i < discs_.n_owned(); ++i)
     elsewhere[i] = decomposition_->owner(discs_.position[i]) != comm_.rank();
@@ -107,14 +123,17 @@ void Simulation::distribute_discs() {
 }
 
 void Simulation::route_to_owners() {
-  // Blocks of discs (of a file, of a scene) go to the owners of an equal-cell cut (any rank), then to the cut
-  // weighted by their work.
-  make_decomposition(false);
-  ContactTable no_pairs = make_contact_table(laws_, false), no_walls = make_contact_table(laws_, true);
-  exchange_.migrate(discs_, no_pairs, no_walls, *decomposition_, comm_, true);
+  // Discs (with their rows) go to the owners of an equal-cell cut (from any rank), then to the cut weighted by
+  // their work.
+  make_decomposition(false, neighbours_.range(R_max_));
+  exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_, true, bond_rows());
   decomposition_->migrated();
-  if (decomposition_->repartition(discs_, no_pairs)) {
-    exchange_.migrate(discs_, no_pairs, no_walls, *decomposition_, comm_);
+  settle_owners();
+}
+
+void Simulation::settle_owners() {
+  if (decomposition_->repartition(discs_, pairs_)) {
+    exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_, false, bond_rows());
     decomposition_->migrated();
   }
 }

@@ -144,13 +144,7 @@ void Simulation::follow_cell() {
 void Simulation::regrid() {
   // As a restart: the discs (with their rows) to an equal-cell cut of the new grid on any rank, then to the
   // weighted cut. Collective, and rare: once per halving or doubling of a length.
-  make_decomposition(false);
-  exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_, true, bond_rows());
-  decomposition_->migrated();
-  if (decomposition_->repartition(discs_, pairs_)) {
-    exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_, false, bond_rows());
-    decomposition_->migrated();
-  }
+  route_to_owners();
   ++regrids_;
 }
 

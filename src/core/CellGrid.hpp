@@ -40,6 +40,26 @@ class CellGrid {
   bool periodic_y() const { return domain_.periodic_y; }
   // The distinct cells of the 3 x 3 stencil around `cell` (periodic wrap; itself included), ascending.
   std::vector<std::size_t> stencil(std::size_t cell) const;
+  // f(cx, cy) for each cell of that stencil without building the list: a cell may come more than once (a
+  // periodic grid of one or two cells across), in no set order.
+  template <class F>
+  void for_each_in_stencil(std::size_t cell, F f) const {
+    const int cx = static_cast<int>(cell % static_cast<std::size_t>(nx_)), cy = static_cast<int>(cell / nx_);
+    for (int dy = -1; dy <= 1; ++dy) {
+      int y = cy + dy;
+      if (domain_.periodic_y) y = (y + ny_) % ny_;
+      if (y < 0 || y >= ny_) continue;
+      for (int dx = -1; dx <= 1; ++dx) {
+        int x = cx + dx;
+        if (domain_.periodic_x) x = (x + nx_) % nx_;
+        if (x >= 0 && x < nx_) f(x, y);
+      }
+    }
+  }
+  // The lower corner of cell (cx, cy) and its sides, in the reduced coordinates of column_of (an untilted cell's
+  // own): the cell holds [lo, lo + side) in each direction (the edge cells of a box also what lies beyond it).
+  Vec2 cell_corner(int cx, int cy) const { return {domain_.xlo + cx * side_x_, domain_.ylo + cy * side_y_}; }
+  Vec2 cell_sides() const { return {side_x_, side_y_}; }
 
  private:
   Domain domain_;

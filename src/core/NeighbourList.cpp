@@ -12,13 +12,38 @@ void NeighbourList::bin(const DiscStore& discs, const Domain& domain, double R_m
   std::vector<int> cx(n), cy(n);
   for (std::size_t i = 0; i < n; ++i)
     cx[i] = grid_.column_of(discs.position[i]), cy[i] = grid_.row_of(discs.position[i].y);
+  // The distinct values of v, ascending: marked over their span when it is not much wider than v (a rank's
+  // compact region), else sorted.
   auto distinct = [](std::vector<int> v) {
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
+    if (v.empty()) return v;
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    const auto span = static_cast<std::size_t>(*hi - *lo) + 1;
+    if (span > 4 * v.size() + 64) {
+      std::sort(v.begin(), v.end());
+      v.erase(std::unique(v.begin(), v.end()), v.end());
+      return v;
+    }
+    std::vector<char> present(span, 0);
+    const int first = *lo;
+    for (int c : v) present[static_cast<std::size_t>(c - first)] = 1;
+    v.clear();
+    for (std::size_t k = 0; k < span; ++k)
+      if (present[k]) v.push_back(first + static_cast<int>(k));
     return v;
   };
   columns_ = distinct(cx);
   rows_ = distinct(cy);
+  // Each occupied column's and row's place among them, looked up directly over their span when that is not
+  // much wider than their number (a rank's compact region), else by binary search (a periodic wrap's far side).
+  const auto slots = [](const std::vector<int>& v) {
+    std::vector<int> slot;
+    if (v.empty() || static_cast<std::size_t>(v.back() - v.front()) > 4 * v.size() + 64) return slot;
+    slot.assign(static_cast<std::size_t>(v.back() - v.front()) + 1, -1);
+    for (std::size_t k = 0; k < v.size(); ++k) slot[static_cast<std::size_t>(v[k] - v.front())] = static_cast<int>(k);
+    return slot;
+  };
+  column_slot_ = slots(columns_);
+  row_slot_ = slots(rows_);
   const std::size_t n_bins = columns_.size() * rows_.size();
   cell_start_.assign(n_bins + 1, 0);
   std::vector<std::size_t> cell(n);
@@ -32,11 +57,23 @@ void NeighbourList::bin(const DiscStore& discs, const Domain& domain, double R_m
   for (std::size_t i = 0; i < n; ++i) cell_items_[fill[cell[i]]++] = i;
 }
 
+namespace {
+// The place of c among the ascending `values` (-1: not there), by `slot` over their span when there is one.
+long place(const std::vector<int>& values, const std::vector<int>& slot, int c) {
+  if (values.empty()) return -1;
+  if (!slot.empty()) {
+    const long k = static_cast<long>(c) - values.front();
+    return k >= 0 && k < static_cast<long>(slot.size()) ? slot[static_cast<std::size_t>(k)] : -1;
+  }
+  const auto at = std::lower_bound(values.begin(), values.end(), c);
+  return at == values.end() || *at != c ? -1 : static_cast<long>(at - values.begin());
+}
+}  // namespace
+
 long NeighbourList::bin_of(int cx, int cy) const {
-  const auto x = std::lower_bound(columns_.begin(), columns_.end(), cx);
-  const auto y = std::lower_bound(rows_.begin(), rows_.end(), cy);
-  if (x == columns_.end() || *x != cx || y == rows_.end() || *y != cy) return -1;
-  return static_cast<long>(y - rows_.begin()) * static_cast<long>(columns_.size()) + (x - columns_.begin());
+  const long x = place(columns_, column_slot_, cx), y = place(rows_, row_slot_, cy);
+  if (x < 0 || y < 0) return -1;
+  return y * static_cast<long>(columns_.size()) + x;
 }
 
 std::vector<NeighbourList::Candidate> NeighbourList::candidates(const DiscStore& discs, const Domain& domain,
@@ -58,11 +95,12 @@ std::vector<NeighbourList::Candidate> NeighbourList::candidates_by(const DiscSto
     if (cell_start_[c] == cell_start_[c + 1]) continue;
     around.clear();
     const int column = columns_[c % columns_.size()], row = rows_[c / columns_.size()];
-    for (std::size_t g : grid_.stencil(grid_.index(column, row))) {
-      const long b = bin_of(static_cast<int>(g % static_cast<std::size_t>(grid_.nx())),
-                            static_cast<int>(g / static_cast<std::size_t>(grid_.nx())));
+    grid_.for_each_in_stencil(grid_.index(column, row), [&](int x, int y) {
+      const long b = bin_of(x, y);
       if (b >= 0) around.push_back(static_cast<std::size_t>(b));
-    }
+    });
+    std::sort(around.begin(), around.end());  // each bin once (a periodic grid of one or two cells across)
+    around.erase(std::unique(around.begin(), around.end()), around.end());
     for (std::size_t a = cell_start_[c]; a < cell_start_[c + 1]; ++a) {
       const std::size_t i = cell_items_[a];
       for (std::size_t c2 : around) {

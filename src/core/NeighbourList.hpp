@@ -51,7 +51,7 @@ class NeighbourList {
   std::size_t builds() const { return builds_; }
   // Bytes this list holds (bins and the positions at the last build; the rows are the ContactTables').
   std::size_t memory_bytes() const {
-    return (columns_.capacity() + rows_.capacity()) * sizeof(int) +
+    return (columns_.capacity() + rows_.capacity() + column_slot_.capacity() + row_slot_.capacity()) * sizeof(int) +
            (cell_start_.capacity() + cell_items_.capacity()) * sizeof(std::size_t) +
            position_at_build_.capacity() * sizeof(Vec2);
   }
@@ -82,6 +82,7 @@ class NeighbourList {
   double skin_;
   CellGrid grid_;
   std::vector<int> columns_, rows_;                   // the occupied columns and rows, ascending
+  std::vector<int> column_slot_, row_slot_;           // their places by column and row over their span (or empty)
   std::vector<std::size_t> cell_start_, cell_items_;  // bin b is column b % columns_.size(), row b / it
   std::vector<Vec2> position_at_build_;
   Domain cell_at_build_;

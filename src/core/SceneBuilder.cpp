@@ -125,6 +125,10 @@ std::string resolve(const std::string& file, const std::string& config_dir) {
 
 namespace scene {
 bool in_blocks(const SceneConfig& s) { return s.type->block != nullptr; }
+double by_cells(const SceneInputs& in) {
+  const SceneType& t = *in.scene.type;
+  return t.by_cells && t.cell_count && t.cells ? t.by_cells(in) : 0.0;
+}
 }  // namespace scene
 
 std::vector<SceneDisc> build_scene_block(const SceneInputs& in, int rank, int ranks) {

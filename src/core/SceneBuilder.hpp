@@ -58,6 +58,8 @@ std::size_t material_slot_of(const SceneConfig& s, const std::vector<std::size_t
 int slot_material(const SceneConfig& s, std::size_t slot);
 // Whether the scene is built in blocks, each rank its own: a type with a block builder (a lattice).
 bool in_blocks(const SceneConfig& s);
+// The radius of the discs of a scene built cell by cell (SceneType::by_cells), 0 when it is not.
+double by_cells(const SceneInputs& in);
 // Numbers the discs 0, 1, ... in rows of height 2 R_max from `ylo` up, by x within a row (docs/design.md section 5).
 void number_in_rows(std::vector<SceneDisc>& discs, double ylo);
 // scene.type may use the material scene.numbering = placement only (random: rows too).

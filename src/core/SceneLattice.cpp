@@ -1,8 +1,10 @@
 // scene.type = lattice_square | lattice_hex: scene.nx x scene.ny discs of scene.radius, the first at
 // (scene.x0, scene.y0), centres scene.spacing apart (0: touching); hex rows shifted by half a spacing, sqrt(3)/2
 // spacings apart. Numbered row by row, by x within a row.
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "core/ConfigRead.hpp"
 #include "core/Errors.hpp"
@@ -74,12 +76,128 @@ std::vector<SceneDisc> lattice_block(const SceneInputs& in, bool hex, std::int64
   return out;
 }
 
+// Cell by cell when no site wraps round a periodic side (a site on a periodic side's upper bound would) and the
+// grid is untilted; the radius, else 0.
+double lattice_by_cells(const SceneInputs& in, bool hex) {
+  const SceneConfig& s = in.scene;
+  const Domain& d = in.domain;
+  const double row = hex ? s.spacing * std::sqrt(3.0) / 2.0 : s.spacing;
+  const double far_x = s.x0 + (s.nx - 1) * s.spacing + (hex && s.ny > 1 ? 0.5 * s.spacing : 0.0),
+               far_y = s.y0 + (s.ny - 1) * row;
+  const bool inside_x = !d.periodic_x || (s.x0 >= d.xlo && far_x < d.xhi);
+  const bool inside_y = !d.periodic_y || (s.y0 >= d.ylo && far_y < d.yhi);
+  return d.tilt == 0.0 && inside_x && inside_y ? s.radius : 0.0;
+}
+
+// The lattice seen through a grid: the lattice rows in a grid row, and the sites of a row in a run of columns,
+// each decided by the grid's own test of the site (every disc's), its candidates from the bounds.
+class LatticeWalk {
+ public:
+  LatticeWalk(const SceneConfig& s, bool hex, const CellGrid& grid)
+      : s_(s), hex_(hex), grid_(grid), row_(hex ? s.spacing * std::sqrt(3.0) / 2.0 : s.spacing) {}
+  // f(j) for each lattice row j in grid row cy, ascending.
+  template <class F>
+  void rows(int cy, F f) const {
+    const double lo = grid_.cell_corner(0, cy).y;
+    const auto [j0, j1] = span(lo, lo + grid_.cell_sides().y, s_.y0, row_, s_.ny);
+    for (int j = j0; j <= j1; ++j)
+      if (grid_.row_of(site(s_, hex_, static_cast<std::int64_t>(j) * s_.nx).x.y) == cy) f(j);
+  }
+  // The columns [first, last] of row j whose sites lie in grid columns cx0 to cx1 of their row (last < first: none).
+  std::pair<int, int> columns(int j, int cy, int cx0, int cx1) const {
+    const double shift = (hex_ && (j % 2 == 1)) ? 0.5 * s_.spacing : 0.0;
+    auto [first, last] = span(grid_.cell_corner(cx0, cy).x, grid_.cell_corner(cx1, cy).x + grid_.cell_sides().x,
+                              s_.x0 + shift, s_.spacing, s_.nx);
+    const auto column = [&](int i) {
+      return grid_.column_of(site(s_, hex_, static_cast<std::int64_t>(j) * s_.nx + i).x);
+    };
+    while (first <= last && column(first) < cx0) ++first;  // the grid's columns grow with i
+    while (last >= first && column(last) > cx1) --last;
+    return {first, last};
+  }
+
+ private:
+  // Indices from the one at or below lo to the one at or above hi (in steps from origin), within [0, count).
+  static std::pair<int, int> span(double lo, double hi, double origin, double step, int count) {
+    const double a = std::clamp(std::floor((lo - origin) / step), 0.0, count - 1.0);
+    const double b = std::clamp(std::ceil((hi - origin) / step), 0.0, count - 1.0);
+    return {static_cast<int>(a), static_cast<int>(b)};
+  }
+  const SceneConfig& s_;
+  bool hex_;
+  const CellGrid& grid_;
+  double row_;
+};
+
+std::uint64_t lattice_cell_count(const SceneInputs& in, bool hex, const CellGrid& grid, std::size_t cell) {
+  const LatticeWalk walk(in.scene, hex, grid);
+  const int cx = static_cast<int>(cell % static_cast<std::size_t>(grid.nx())), cy = static_cast<int>(cell / grid.nx());
+  std::uint64_t count = 0;
+  walk.rows(cy, [&](int j) {
+    const auto [first, last] = walk.columns(j, cy, cx, cx);
+    if (last >= first) count += static_cast<std::uint64_t>(last - first + 1);
+  });
+  return count;
+}
+
+// The sites whose cell of `grid` is one of `cells`, in ascending gid: grid row by grid row, the lattice rows in
+// it, and along each the sites of each run of adjacent cells of the grid row.
+std::vector<SceneDisc> lattice_cells(const SceneInputs& in, bool hex, const CellGrid& grid,
+                                     std::vector<std::size_t> cells) {
+  const SceneConfig& s = in.scene;
+  const std::int64_t n = sites(s);
+  check_memory(static_cast<double>(n) * static_cast<double>(cells.size()) / static_cast<double>(grid.size()), 0.0, 0.0,
+               "scene.nx x scene.ny");
+  check_extent(in, hex);
+  const std::vector<std::size_t> counts = scene::material_counts(s, static_cast<std::uint64_t>(n));
+  const LatticeWalk walk(s, hex, grid);
+  if (!std::is_sorted(cells.begin(), cells.end())) std::sort(cells.begin(), cells.end());  // row-major
+  const auto nx = static_cast<std::size_t>(grid.nx());
+  std::vector<SceneDisc> out;
+  for (std::size_t r0 = 0; r0 < cells.size();) {
+    std::size_t r1 = r0;
+    while (r1 < cells.size() && cells[r1] / nx == cells[r0] / nx) ++r1;  // this grid row's cells: [r0, r1)
+    const int cy = static_cast<int>(cells[r0] / nx);
+    walk.rows(cy, [&](int j) {
+      for (std::size_t a = r0; a < r1;) {
+        std::size_t b = a + 1;  // a run of adjacent cells [a, b)
+        while (b < r1 && cells[b] == cells[b - 1] + 1) ++b;
+        const auto [first, last] =
+            walk.columns(j, cy, static_cast<int>(cells[a] % nx), static_cast<int>(cells[b - 1] % nx));
+        for (int i = first; i <= last; ++i) {
+          SceneDisc d = site(s, hex, static_cast<std::int64_t>(j) * s.nx + i);
+          d.material = scene::slot_material(
+              s, scene::material_slot_of(s, counts, static_cast<std::uint64_t>(n), static_cast<std::uint64_t>(d.gid)));
+          out.push_back(d);
+        }
+        a = b;
+      }
+    });
+    r0 = r1;
+  }
+  return out;
+}
+
 std::vector<SceneDisc> lattice(const SceneInputs& in, bool hex) { return lattice_block(in, hex, 0, sites(in.scene)); }
 
 std::vector<SceneDisc> square(const SceneInputs& in) { return lattice(in, false); }
 std::vector<SceneDisc> hexagonal(const SceneInputs& in) { return lattice(in, true); }
 std::vector<SceneDisc> square_block(const SceneInputs& in, std::int64_t first, std::int64_t count) {
   return lattice_block(in, false, first, count);
+}
+double square_by_cells(const SceneInputs& in) { return lattice_by_cells(in, false); }
+std::uint64_t square_count(const SceneInputs& in, const CellGrid& grid, std::size_t c) {
+  return lattice_cell_count(in, false, grid, c);
+}
+std::uint64_t hexagonal_count(const SceneInputs& in, const CellGrid& grid, std::size_t c) {
+  return lattice_cell_count(in, true, grid, c);
+}
+double hexagonal_by_cells(const SceneInputs& in) { return lattice_by_cells(in, true); }
+std::vector<SceneDisc> square_cells(const SceneInputs& in, const CellGrid& grid, const std::vector<std::size_t>& c) {
+  return lattice_cells(in, false, grid, c);
+}
+std::vector<SceneDisc> hexagonal_cells(const SceneInputs& in, const CellGrid& grid, const std::vector<std::size_t>& c) {
+  return lattice_cells(in, true, grid, c);
 }
 std::vector<SceneDisc> hexagonal_block(const SceneInputs& in, std::int64_t first, std::int64_t count) {
   return lattice_block(in, true, first, count);
@@ -96,11 +214,22 @@ extern const SceneType kLatticeSquareScene{"lattice_square",
                                            false,
                                            square,
                                            sites,
-                                           square_block};
-extern const SceneType kLatticeHexScene{"lattice_hex",  "scene.nx x scene.ny discs on a hexagonal lattice",
-                                        check_lattice,  lattice_keys,
-                                        lattice_radius, SceneType::Source::keys,
-                                        false,          hexagonal,
-                                        sites,          hexagonal_block};
+                                           square_block,
+                                           square_by_cells,
+                                           square_count,
+                                           square_cells};
+extern const SceneType kLatticeHexScene{"lattice_hex",
+                                        "scene.nx x scene.ny discs on a hexagonal lattice",
+                                        check_lattice,
+                                        lattice_keys,
+                                        lattice_radius,
+                                        SceneType::Source::keys,
+                                        false,
+                                        hexagonal,
+                                        sites,
+                                        hexagonal_block,
+                                        hexagonal_by_cells,
+                                        hexagonal_count,
+                                        hexagonal_cells};
 
 }  // namespace rondel

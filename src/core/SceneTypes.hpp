@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/CellGrid.hpp"
 #include "core/Config.hpp"
 #include "core/SceneBuilder.hpp"
 
@@ -47,6 +48,14 @@ struct SceneType {
   // (scene::in_blocks says when; docs/scaling.md, "Set-up"). nullptr: every rank builds the whole scene.
   std::int64_t (*total)(const SceneConfig& scene) = nullptr;
   std::vector<SceneDisc> (*block)(const SceneInputs& in, std::int64_t first, std::int64_t count) = nullptr;
+  // A scene of one radius whose discs can be found cell by cell (a lattice inside an untilted domain) gives that
+  // radius (0: it cannot here, nullptr: never), the number of its discs in a cell of the decomposition's grid
+  // (the first map is weighted by them) and the discs of a rank's cells in ascending gid, so that no disc moves
+  // to its owner (Simulation::add_scene_discs; the same discs as block's).
+  double (*by_cells)(const SceneInputs& in) = nullptr;
+  std::uint64_t (*cell_count)(const SceneInputs& in, const CellGrid& grid, std::size_t cell) = nullptr;
+  std::vector<SceneDisc> (*cells)(const SceneInputs& in, const CellGrid& grid,
+                                  const std::vector<std::size_t>& cells) = nullptr;
 };
 
 std::span<const SceneType* const> scene_types();

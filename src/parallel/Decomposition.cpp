@@ -1,16 +1,20 @@
 #include "parallel/Decomposition.hpp"
 
 #include <algorithm>
-#include <set>
 
 #include "core/Errors.hpp"
 
 namespace rondel {
 
 namespace {
-std::vector<int> sorted_without(std::set<int> ranks, int me) {
-  ranks.erase(me);
-  return {ranks.begin(), ranks.end()};
+// r into a small ascending list of ranks (a rank has few partners); the caller skips repeats of the last one.
+void add_rank(std::vector<int>& ranks, int r) {
+  const auto at = std::lower_bound(ranks.begin(), ranks.end(), r);
+  if (at == ranks.end() || *at != r) ranks.insert(at, r);
+}
+std::vector<int> without(std::vector<int> ranks, int me) {
+  ranks.erase(std::remove(ranks.begin(), ranks.end(), me), ranks.end());
+  return ranks;
 }
 }  // namespace
 
@@ -35,62 +39,132 @@ Decomposition::Decomposition(const Domain& domain, double range, const std::stri
 }
 
 int Decomposition::owner_of_cell(std::size_t c) const {
-  const int x = static_cast<int>(c % static_cast<std::size_t>(grid_.nx())) - box_x0_;
-  const int y = static_cast<int>(c / static_cast<std::size_t>(grid_.nx())) - box_y0_;
-  if (x >= 0 && x < box_nx_ && y >= 0 && y < box_ny_)
-    return box_owner_[static_cast<std::size_t>(y) * static_cast<std::size_t>(box_nx_) + x];
-  return map_->owner(c);
+  const std::size_t at = box_at(static_cast<int>(c % static_cast<std::size_t>(grid_.nx())),
+                                static_cast<int>(c / static_cast<std::size_t>(grid_.nx())));
+  return at != kOutside ? box_owner_[at] : map_->owner(c);
+}
+
+std::vector<std::size_t> Decomposition::own_cells() const {
+  std::vector<std::size_t> out;
+  out.reserve(static_cast<std::size_t>(own_cells_));
+  if (comm_.size() == 1) {
+    for (std::size_t c = 0; c < grid_.size(); ++c) out.push_back(c);
+  } else if (box_nx_ > 0) {  // the table's rows
+    for (int y = 0; y < box_ny_; ++y)
+      for (int x = 0; x < box_nx_; ++x)
+        if (box_owner_[static_cast<std::size_t>(y) * box_nx_ + x] == comm_.rank())
+          out.push_back(grid_.index(box_x0_ + x, box_y0_ + y));
+  } else {
+    map_->for_each_cell(comm_.rank(), [&](std::size_t c) { out.push_back(c); });
+    std::sort(out.begin(), out.end());
+  }
+  return out;
+}
+
+void Decomposition::frame(const std::vector<std::size_t>& cells) {
+  // This rank's cells: their bounding box plus one cell holds every cell whose owner the exchanges ask for
+  // (periodic images of the far side excepted: those take the map's own lookup).
+  box_nx_ = box_ny_ = 0;
+  if (cells.empty()) return;
+  const int nx = grid_.nx(), ny = grid_.ny();
+  int x0 = nx, y0 = ny, x1 = -1, y1 = -1;
+  for (std::size_t c : cells) {
+    const int cx = static_cast<int>(c % static_cast<std::size_t>(nx)), cy = static_cast<int>(c / nx);
+    x0 = std::min(x0, cx), x1 = std::max(x1, cx), y0 = std::min(y0, cy), y1 = std::max(y1, cy);
+  }
+  box_x0_ = std::max(x0 - 1, 0), box_y0_ = std::max(y0 - 1, 0);
+  box_nx_ = std::min(x1 + 1, nx - 1) - box_x0_ + 1;
+  box_ny_ = std::min(y1 + 1, ny - 1) - box_y0_ + 1;
+  if (static_cast<std::int64_t>(box_nx_) * box_ny_ > 16 * static_cast<std::int64_t>(cells.size()) + 4096)
+    box_nx_ = box_ny_ = 0;  // a scattered map (metis): the map's lookup serves
+}
+
+std::vector<int> Decomposition::owners_in_box(const Partition& map, const std::vector<std::size_t>& mine) const {
+  // This rank's cells are known; the map is asked only for the others' (a compact range's box holds few).
+  std::vector<int> box(static_cast<std::size_t>(box_nx_) * static_cast<std::size_t>(box_ny_), -1);
+  for (std::size_t c : mine) {
+    const std::size_t at = box_at(static_cast<int>(c % static_cast<std::size_t>(grid_.nx())),
+                                  static_cast<int>(c / static_cast<std::size_t>(grid_.nx())));
+    if (at != kOutside) box[at] = comm_.rank();
+  }
+  for (int y = 0; y < box_ny_; ++y)
+    for (int x = 0; x < box_nx_; ++x)
+      if (int& o = box[static_cast<std::size_t>(y) * box_nx_ + x]; o < 0)
+        o = map.owner(grid_.index(box_x0_ + x, box_y0_ + y));
+  return box;
+}
+
+template <class F>
+void Decomposition::owners_around(std::size_t cell, const std::vector<int>& box, const Partition& map, F f) const {
+  grid_.for_each_in_stencil(cell, [&](int x, int y) {
+    const std::size_t at = box_at(x, y);
+    f(at != kOutside ? box[at] : map.owner(grid_.index(x, y)));
+  });
+}
+
+void Decomposition::ranks_around(std::size_t cell, std::vector<int>& out) const {
+  out.clear();
+  owners_around(cell, box_owner_, *map_, [&](int r) {
+    if (r != comm_.rank() && std::find(out.begin(), out.end(), r) == out.end()) out.push_back(r);
+  });
+  std::sort(out.begin(), out.end());
 }
 
 void Decomposition::install(const Partition* old) {
   const int me = comm_.rank();
-  // This rank's cells: their bounding box plus one cell holds every cell whose owner the exchanges ask for
-  // (periodic images of the far side excepted: those take the map's own lookup).
-  int x0 = grid_.nx(), y0 = grid_.ny(), x1 = -1, y1 = -1;
-  own_cells_ = 0;
-  std::set<int> neighbours, from;
-  std::vector<std::size_t> cells;
-  map_->for_each_cell(me, [&](std::size_t c) { cells.push_back(c); });
-  for (std::size_t c : cells) {
-    const int cx = static_cast<int>(c % static_cast<std::size_t>(grid_.nx()));
-    const int cy = static_cast<int>(c / static_cast<std::size_t>(grid_.nx()));
-    x0 = std::min(x0, cx), x1 = std::max(x1, cx), y0 = std::min(y0, cy), y1 = std::max(y1, cy);
-    ++own_cells_;
-    for (std::size_t s : grid_.stencil(c)) {
-      neighbours.insert(map_->owner(s));
-      if (old) from.insert(old->owner(s));
-    }
-  }
   box_owner_.clear();
+  box_border_.clear();
   box_nx_ = box_ny_ = 0;
-  if (own_cells_ > 0) {
-    box_x0_ = std::max(x0 - 1, 0), box_y0_ = std::max(y0 - 1, 0);
-    box_nx_ = std::min(x1 + 1, grid_.nx() - 1) - box_x0_ + 1;
-    box_ny_ = std::min(y1 + 1, grid_.ny() - 1) - box_y0_ + 1;
-    const auto area = static_cast<std::int64_t>(box_nx_) * box_ny_;
-    if (area > 16 * own_cells_ + 4096) {
-      box_nx_ = box_ny_ = 0;  // a scattered map (metis): the map's lookup serves
-    } else {
-      box_owner_.resize(static_cast<std::size_t>(area));
-      for (int y = 0; y < box_ny_; ++y)
-        for (int x = 0; x < box_nx_; ++x)
-          box_owner_[static_cast<std::size_t>(y) * box_nx_ + x] = map_->owner(grid_.index(box_x0_ + x, box_y0_ + y));
-    }
+  if (comm_.size() == 1) {  // every cell, no neighbour: the map's lookup serves
+    own_cells_ = static_cast<std::int64_t>(grid_.size());
+    neighbours_.clear(), send_to_.clear(), receive_from_.clear();
+    return;
   }
-  neighbours_ = sorted_without(neighbours, me);
+  std::vector<std::size_t> cells, old_cells;
+  map_->for_each_cell(me, [&](std::size_t c) { cells.push_back(c); });
+  if (old) old->for_each_cell(me, [&](std::size_t c) { old_cells.push_back(c); });
+  own_cells_ = static_cast<std::int64_t>(cells.size());
+  frame(cells);
+  std::vector<int> box_old;  // the old map's owners over the same box
+  if (box_nx_ > 0) {
+    box_owner_ = owners_in_box(*map_, cells);
+    if (old) box_old = owners_in_box(*old, old_cells);
+    box_border_.assign(box_owner_.size(), 0);
+  }
+  // The ranks around this rank's cells, its border cells (a ghost's source) and, after a change of map, the
+  // cells' old owners; runs of one owner are common.
+  std::vector<int> neighbours, from;
+  int last = -1, last_old = -1;
+  for (std::size_t c : cells) {
+    bool border = false;
+    owners_around(c, box_owner_, *map_, [&](int r) {
+      border = border || r != me;
+      if (r != last) add_rank(neighbours, last = r);
+    });
+    if (border && box_nx_ > 0)
+      box_border_[box_at(static_cast<int>(c % static_cast<std::size_t>(grid_.nx())),
+                         static_cast<int>(c / static_cast<std::size_t>(grid_.nx())))] = 1;
+    if (old)
+      owners_around(c, box_old, *old, [&](int o) {
+        if (o != last_old) add_rank(from, last_old = o);
+      });
+  }
+  neighbours_ = without(neighbours, me);
   if (!old) {
     send_to_ = receive_from_ = neighbours_;
     return;
   }
   // Discs now owned here were, at the last migration, in one of these cells or next to one: their old owners
   // may send. Symmetrically this rank may send to the new owners of the cells next to its old cells.
-  std::set<int> to;
-  old->for_each_cell(me, [&](std::size_t c) {
-    for (std::size_t s : grid_.stencil(c)) to.insert(map_->owner(s));
-  });
-  for (int r : neighbours_) to.insert(r), from.insert(r);
-  send_to_ = sorted_without(to, me);
-  receive_from_ = sorted_without(from, me);
+  std::vector<int> to = neighbours_;
+  last = -1;
+  for (std::size_t c : old_cells)
+    owners_around(c, box_owner_, *map_, [&](int r) {
+      if (r != last) add_rank(to, last = r);
+    });
+  for (int r : neighbours_) add_rank(from, r);
+  send_to_ = without(to, me);
+  receive_from_ = without(from, me);
 }
 
 void Decomposition::migrated() { send_to_ = receive_from_ = neighbours_; }
@@ -106,6 +180,13 @@ void Decomposition::initial_partition(const DiscStore& discs, bool replicated) {
   install(nullptr);
 }
 
+bool Decomposition::initial_partition(const CellUnits& units) {
+  map_->initial(DiscStore{}, false);
+  const bool weighed = map_->weigh(units);
+  install(nullptr);
+  return weighed;
+}
+
 bool Decomposition::repartition(const DiscStore& discs, const ContactTable& pairs) {
   const std::unique_ptr<Partition> old = map_->copy();
   if (!map_->repartition(discs, pairs)) return false;
@@ -114,7 +195,7 @@ bool Decomposition::repartition(const DiscStore& discs, const ContactTable& pair
 }
 
 std::size_t Decomposition::memory_bytes() const {
-  return map_->memory_bytes() + box_owner_.capacity() * sizeof(int) +
+  return map_->memory_bytes() + box_owner_.capacity() * sizeof(int) + box_border_.capacity() +
          (neighbours_.capacity() + send_to_.capacity() + receive_from_.capacity()) * sizeof(int);
 }
 

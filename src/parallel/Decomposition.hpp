@@ -35,10 +35,27 @@ class Decomposition {
   const CellGrid& grid() const { return grid_; }
   // A deforming cell's shape now (the cells' counts and owners kept): before a migration.
   void follow(const Domain& domain) { grid_.follow(domain); }
-  int owner(Vec2 x) const { return owner_of_cell(grid_.cell_of(x)); }
+  int owner(Vec2 x) const {
+    const int cx = grid_.column_of(x), cy = grid_.row_of(x.y);
+    const std::size_t at = box_at(cx, cy);
+    return at != kOutside ? box_owner_[at] : map_->owner(grid_.index(cx, cy));
+  }
   // Any cell's owner: from the table of this rank's neighbourhood, else from the map.
   int owner_of_cell(std::size_t c) const;
   const std::string& partitioner() const { return partitioner_; }
+  // The ranks but this one owning a cell of the stencil around `cell`, ascending, into `out`; ghost_ranks: those
+  // of the cell of x (a ghost's destinations; none for an inner cell of this rank).
+  void ranks_around(std::size_t cell, std::vector<int>& out) const;
+  void ghost_ranks(Vec2 x, std::vector<int>& out) const {
+    const int cx = grid_.column_of(x), cy = grid_.row_of(x.y);
+    const std::size_t at = box_at(cx, cy);
+    if (at != kOutside && box_owner_[at] == comm_.rank() && !box_border_[at])
+      out.clear();
+    else
+      ranks_around(grid_.index(cx, cy), out);
+  }
+  // This rank's cells in row-major order (ascending index).
+  std::vector<std::size_t> own_cells() const;
   // Ranks owning a cell next to one of this rank's cells (periodic images included), ascending, not this one.
   const std::vector<int>& neighbours() const { return neighbours_; }
   // The partners of the next migration: the neighbours, or after a change of map every rank that may send
@@ -53,6 +70,10 @@ class Decomposition {
   // block) sfc starts from an equal-cell cut: the caller migrates the discs (to any rank), then calls
   // repartition() for the weighted cut.
   void initial_partition(const DiscStore& discs, bool replicated);
+  // First map, before any disc exists, weighted by the discs each cell will hold (Partition::weigh): true when
+  // the partitioner could (no repartition() is due once the discs are built), else the equal-cell cut.
+  using CellUnits = std::function<std::uint64_t(std::size_t)>;
+  bool initial_partition(const CellUnits& units);
   // A new map from the present work (collective); returns true when it changed.
   bool repartition(const DiscStore& discs, const ContactTable& pairs);
 
@@ -72,6 +93,19 @@ class Decomposition {
  private:
   // The neighbourhood table, the neighbours and (`old`: the map before) the migration partners of the map.
   void install(const Partition* old);
+  // The neighbourhood table's extent for this rank's cells (none for a scattered map), and its owners by `map`
+  // (`mine`: this rank's cells by that map).
+  void frame(const std::vector<std::size_t>& cells);
+  std::vector<int> owners_in_box(const Partition& map, const std::vector<std::size_t>& mine) const;
+  // f(owner) for each cell of the stencil around `cell` by `map`, its table over the box `box`.
+  template <class F>
+  void owners_around(std::size_t cell, const std::vector<int>& box, const Partition& map, F f) const;
+  // The entry of cell (cx, cy) in the neighbourhood table, kOutside beyond it.
+  static constexpr std::size_t kOutside = SIZE_MAX;
+  std::size_t box_at(int cx, int cy) const {
+    const int x = cx - box_x0_, y = cy - box_y0_;
+    return x >= 0 && x < box_nx_ && y >= 0 && y < box_ny_ ? static_cast<std::size_t>(y) * box_nx_ + x : kOutside;
+  }
 
   const Communicator& comm_;
   CellGrid grid_;
@@ -80,6 +114,7 @@ class Decomposition {
   std::unique_ptr<Partition> map_;
   int box_x0_ = 0, box_y0_ = 0, box_nx_ = 0, box_ny_ = 0;
   std::vector<int> box_owner_;
+  std::vector<std::uint8_t> box_border_;  // 1 for a cell of this rank with another rank's cell around it
   std::vector<int> neighbours_, send_to_, receive_from_;
   std::int64_t own_cells_ = 0;
 };

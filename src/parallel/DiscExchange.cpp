@@ -108,13 +108,7 @@ void DiscExchange::build_ghosts(DiscStore& discs, const Decomposition& dec, cons
   std::vector<std::vector<std::size_t>> lists(partners.size());
   std::vector<int> to;
   for (std::size_t i = 0; i < discs.n_owned(); ++i) {
-    to.clear();
-    for (std::size_t c : dec.grid().stencil(dec.grid().cell_of(discs.position[i]))) {
-      const int r = dec.owner_of_cell(c);
-      if (r != comm.rank()) to.push_back(r);
-    }
-    std::sort(to.begin(), to.end());
-    to.erase(std::unique(to.begin(), to.end()), to.end());
+    dec.ghost_ranks(discs.position[i], to);
     for (int r : to) lists[partner_index(partners, r, comm, discs.gid[i])].push_back(i);
   }
   std::vector<ByteBuffer> out(partners.size());

@@ -85,16 +85,21 @@ std::uint64_t HilbertGrid::key_of_cell_number(std::uint64_t m) const {
 }
 
 void HilbertGrid::for_each_in(std::uint64_t lo, std::uint64_t hi, const std::function<void(int, int)>& f) const {
+  for_each_key_in(lo, hi, [&f](std::uint64_t, int cx, int cy) { f(cx, cy); });
+}
+
+void HilbertGrid::for_each_key_in(std::uint64_t lo, std::uint64_t hi,
+                                  const std::function<void(std::uint64_t, int, int)>& f) const {
   if (lo < hi) visit(0, side_, lo, hi, f);
 }
 
 void HilbertGrid::visit(std::uint64_t b, std::uint64_t s, std::uint64_t lo, std::uint64_t hi,
-                        const std::function<void(int, int)>& f) const {
+                        const std::function<void(std::uint64_t, int, int)>& f) const {
   if (b + s * s <= lo || b >= hi || node_cells(b, s) == 0) return;
   if (s == 1) {
     int cx = 0, cy = 0;
     point(b, cx, cy);
-    f(cx, cy);
+    f(b, cx, cy);
     return;
   }
   const std::uint64_t child = s * s / 4;

@@ -27,12 +27,14 @@ class HilbertGrid {
   std::uint64_t key_of_cell_number(std::uint64_t m) const;
   // f(cx, cy) for every in-grid cell with key in [lo, hi), in key order.
   void for_each_in(std::uint64_t lo, std::uint64_t hi, const std::function<void(int, int)>& f) const;
+  // The same with each cell's key: f(key, cx, cy).
+  void for_each_key_in(std::uint64_t lo, std::uint64_t hi, const std::function<void(std::uint64_t, int, int)>& f) const;
 
  private:
   // In-grid cells of the aligned node of side s whose first key is b.
   std::uint64_t node_cells(std::uint64_t b, std::uint64_t s) const;
   void visit(std::uint64_t b, std::uint64_t s, std::uint64_t lo, std::uint64_t hi,
-             const std::function<void(int, int)>& f) const;
+             const std::function<void(std::uint64_t, int, int)>& f) const;
 
   int nx_ = 1, ny_ = 1;
   std::uint64_t side_ = 1;

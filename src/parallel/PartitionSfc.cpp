@@ -31,6 +31,7 @@ class SfcPartition final : public Partition {
   }
   void initial(const DiscStore& discs, bool replicated) override;
   bool repartition(const DiscStore& discs, const ContactTable& pairs) override;
+  bool weigh(const std::function<std::uint64_t(std::size_t)>& units) override;
   int empty_ranks() const override {
     int n = 0;
     for (int r = 0; r < comm_.size(); ++r)
@@ -45,6 +46,8 @@ class SfcPartition final : public Partition {
   // This rank's work units as weighted cells.
   Cells weighted_cells(const DiscStore& discs, const ContactTable& pairs) const;
   void clamp_into(Cells& cells, std::uint64_t lo, std::uint64_t hi) const;
+  // The cuts from this range's weighted cells (collective); true when they changed.
+  bool cut(const Cells& cells);
   std::vector<std::uint64_t> weighted_cuts(const Cells& cells, std::uint64_t lo, std::uint64_t hi, std::uint64_t offset,
                                            std::uint64_t total) const;
 
@@ -56,9 +59,13 @@ class SfcPartition final : public Partition {
 
 Cells SfcPartition::weighted_cells(const DiscStore& discs, const ContactTable& pairs) const {
   std::vector<std::uint64_t> keys;
+  int last_x = -1, last_y = -1;  // discs in gid order, and a disc's rows, come in runs of one cell
+  std::uint64_t last_key = 0;
   for_each_work_unit(discs, pairs, [&](std::size_t i) {
     const Vec2 x = discs.position[i];
-    keys.push_back(curve_.key(grid_.column_of(x), grid_.row_of(x.y)));
+    const int cx = grid_.column_of(x), cy = grid_.row_of(x.y);
+    if (cx != last_x || cy != last_y) last_key = curve_.key(last_x = cx, last_y = cy);
+    keys.push_back(last_key);
   });
   std::sort(keys.begin(), keys.end());
   Cells out;
@@ -145,12 +152,27 @@ void SfcPartition::initial(const DiscStore& discs, bool replicated) {
 
 bool SfcPartition::repartition(const DiscStore& discs, const ContactTable& pairs) {
   if (comm_.size() == 1) return false;
+  auto cells = weighted_cells(discs, pairs);
+  clamp_into(cells, cuts_[comm_.rank()], cuts_[comm_.rank() + 1]);
+  return cut(cells);
+}
+
+bool SfcPartition::weigh(const std::function<std::uint64_t(std::size_t)>& units) {
+  if (comm_.size() == 1) return true;  // one rank: the map is every cell whatever the work
+  Cells cells;
+  curve_.for_each_key_in(cuts_[comm_.rank()], cuts_[comm_.rank() + 1], [&](std::uint64_t key, int cx, int cy) {
+    if (const std::uint64_t u = units(grid_.index(cx, cy)); u > 0)
+      cells.emplace_back(key, u * Decomposition::kCurveScale);
+  });
+  cut(cells);
+  return true;
+}
+
+bool SfcPartition::cut(const Cells& cells) {
   // This rank's key range, its work, the work of the lower ranges (a scan) and the whole (a reduction);
   // each rank finds the cuts that fall in its range and one reduction gives every rank all of them.
   const int me = comm_.rank(), P = comm_.size();
   const std::uint64_t lo = cuts_[me], hi = cuts_[me + 1];
-  auto cells = weighted_cells(discs, pairs);
-  clamp_into(cells, lo, hi);
   std::uint64_t mine = curve_.count_below(hi) - curve_.count_below(lo), offset = 0;
   for (const auto& c : cells) mine += c.second;
   comm_.count_collective();

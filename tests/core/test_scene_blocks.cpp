@@ -1,11 +1,15 @@
 // What each rank needs to build its own block of a lattice (core/SceneBuilder.hpp): a keyed permutation that is a
-// bijection, and material slots with the exact counts of the fractions, each computed for one site alone.
+// bijection, and material slots with the exact counts of the fractions, each computed for one site alone; and to
+// build the discs of its own cells (SceneType::by_cells): every disc once, in the cell the grid puts it in, and
+// the counts the first map is weighted by.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdint>
+#include <string>
 #include <vector>
 
+#include "core/CellGrid.hpp"
 #include "core/Config.hpp"
 #include "core/SceneBuilder.hpp"
 #include "core/SceneTypes.hpp"
@@ -80,6 +84,87 @@ material_fractions = 0.5 0.3 0.2
       }
     EXPECT_EQ(k, whole.size());
   }
+}
+
+// The lattice of `ini` cut into groups of cells (cell % groups): each group's discs are the whole build's discs of
+// its cells, once, in ascending gid, and cell_count gives each cell's number.
+void check_cells(const std::string& ini, const std::vector<std::string>& args, double range, std::size_t groups) {
+  const Config c = parse_config_text(ini, args);
+  const SceneInputs in{c.scene, c.domain, "", nullptr};
+  ASSERT_GT(scene::by_cells(in), 0.0) << ini;
+  const auto whole = build_scene(in);
+  const CellGrid grid(c.domain, range);
+  ASSERT_GT(grid.size(), 20u) << "cells of several discs and of none";
+  std::vector<std::uint64_t> in_cell(grid.size(), 0);
+  for (const auto& d : whole) ++in_cell[grid.cell_of(d.x)];
+  std::vector<int> seen(whole.size(), 0);
+  for (std::size_t g = 0; g < groups; ++g) {
+    std::vector<std::size_t> cells;
+    for (std::size_t cell = g; cell < grid.size(); cell += groups) cells.push_back(cell);
+    const auto part = c.scene.type->cells(in, grid, cells);
+    for (std::size_t k = 0; k < part.size(); ++k) {
+      const auto& d = part[k];
+      const auto& w = whole.at(static_cast<std::size_t>(d.gid));
+      EXPECT_TRUE(d.x.x == w.x.x && d.x.y == w.x.y && d.radius == w.radius && d.v.x == w.v.x && d.omega == w.omega &&
+                  d.material == w.material)
+          << "disc " << d.gid;
+      EXPECT_EQ(grid.cell_of(d.x) % groups, g) << "disc " << d.gid << " of another group's cell";
+      if (k > 0) EXPECT_LT(part[k - 1].gid, d.gid) << "ascending gid";
+      ++seen[static_cast<std::size_t>(d.gid)];
+    }
+  }
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<std::ptrdiff_t>(whole.size())) << "each disc once";
+  for (std::size_t cell = 0; cell < grid.size(); ++cell)
+    EXPECT_EQ(c.scene.type->cell_count(in, grid, cell), in_cell[cell]) << "cell " << cell;
+}
+
+const char* kCellLattice = R"(
+[domain]
+xlo = 0
+xhi = 0.5
+ylo = 0
+yhi = 0.4
+[linear]
+k_n = 1e6
+[coulomb]
+k_s = 1e6
+mu = 0.5
+[material.a]
+density = 2650
+[material.b]
+density = 7800
+[scene]
+nx = 20
+ny = 13
+radius = 0.005
+spacing = 0.0123
+x0 = 0.05
+y0 = 0.0
+materials = a b
+material_fractions = 0.7 0.3
+)";
+
+TEST(SceneBlocks, ALatticeBuiltCellByCellIsTheWholeBuildsDiscsOnce) {
+  // Square and hexagonal rows, cells narrower and wider than the spacing, a site on a cell's lower edge (y0 = 0,
+  // the grid's first row) and on the domain's upper edge.
+  for (const char* type : {"lattice_square", "lattice_hex"})
+    for (double range : {0.01, 0.0123, 0.031, 0.07}) {
+      SCOPED_TRACE(std::string(type) + ", range " + std::to_string(range));
+      check_cells(kCellLattice, {std::string("--scene.type=") + type}, range, 3);
+    }
+  check_cells(kCellLattice, {"--scene.type=lattice_square", "--scene.spacing=0.02", "--scene.ny=21"}, 0.04,
+              2);  // y = yhi
+}
+
+TEST(SceneBlocks, ALatticeThatWrapsRoundAPeriodicSideIsNotBuiltCellByCell) {
+  const std::vector<std::string> periodic{"--scene.type=lattice_square", "--domain.periodic_x=true"};
+  check_cells(kCellLattice, periodic, 0.03, 4);
+  // The 20th column at x0 + 19 x 0.0123 = 0.3 + 0.2337 lies beyond xhi = 0.5: it wraps to the left side.
+  std::vector<std::string> shifted = periodic;
+  shifted.push_back("--scene.x0=0.3");
+  const Config wraps = parse_config_text(kCellLattice, shifted);
+  EXPECT_EQ(scene::by_cells(SceneInputs{wraps.scene, wraps.domain, "", nullptr}), 0.0);
+  EXPECT_TRUE(scene::in_blocks(wraps.scene)) << "built in blocks instead";
 }
 
 }  // namespace

@@ -1,10 +1,11 @@
-// A scene built in blocks (scene::in_blocks: a lattice; docs/scaling.md, "Set-up"): each rank builds
-// the discs of its block of gids and sends them to the owners of their cells. The run gives the bits of the 1-rank
-// run with every partitioner (check_scene), each rank holds only its block before the discs move, and the set-up's
-// refusals are the same on any rank count.
+// A lattice built by each rank (docs/scaling.md, "Set-up"): the discs of its own cells (SceneType::by_cells, a
+// lattice inside the domain) or, when the lattice wraps round a periodic side, its block of gids sent to the owners
+// of their cells (scene::in_blocks). The run gives the bits of the 1-rank run with every partitioner (check_scene),
+// each rank holds only its block before the discs move, and the set-up's refusals are the same on any rank count.
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 
 #include "ParallelTestUtil.hpp"
 #include "core/Config.hpp"
@@ -53,10 +54,22 @@ vy = -0.2
 omega = 20
 )";
 
-TEST(SetupBlocks, ALatticeBuiltInBlocksGivesTheBitsOfOneRank) {
+TEST(SetupBlocks, ALatticeBuiltCellByCellGivesTheBitsOfOneRank) {
   const Config c = parse_config_text(kLattice);
-  ASSERT_TRUE(scene::in_blocks(c.scene));
-  check_scene("lattice in blocks", kLattice, 4000, 500, true);
+  ASSERT_GT(scene::by_cells(SceneInputs{c.scene, c.domain, "", nullptr}), 0.0);
+  check_scene("lattice by cells", kLattice, 4000, 500, true);
+}
+
+TEST(SetupBlocks, ALatticeThatWrapsIsBuiltInBlocksAndGivesTheBitsOfOneRank) {
+  // Periodic in x, the lattice from x = 0.05 on: its right part wraps to the left side.
+  std::string ini = kLattice;
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"yhi = 0.06\n", "yhi = 0.06\nperiodic_x = true\n"},
+                                 {"box = bottom left right", "box = bottom"},
+                                 {"x0 = 0.003", "x0 = 0.05"}})
+    ini.replace(ini.find(from), from.size(), to);
+  const Config c = parse_config_text(ini);
+  ASSERT_EQ(scene::by_cells(SceneInputs{c.scene, c.domain, "", nullptr}), 0.0);
+  check_scene("lattice in blocks", ini, 1500, 500, true);
 }
 
 TEST(SetupBlocks, EachRankBuildsOnlyItsBlockAndTheBlocksMakeTheScene) {
