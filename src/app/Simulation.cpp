@@ -159,7 +159,7 @@ Domain Simulation::cell_sizing() const {
   return s;
 }
 
-void Simulation::make_decomposition(bool replicated, double range, const Decomposition::CellUnits* units) {
+void Simulation::make_decomposition(bool replicated, double range, const Partition::RectUnits* units) {
   decomposition_ = std::make_unique<Decomposition>(config_.domain, range, config_.partitioner, comm_, cell_sizing());
   weighed_ = units && decomposition_->initial_partition(*units);
   if (!units) decomposition_->initial_partition(discs_, replicated);

@@ -161,7 +161,7 @@ class Simulation final : public RunTarget {
   // built cell by cell is there already).
   void distribute_discs();
   // `units` (a scene built cell by cell): the first map weighted by the discs each cell will hold.
-  void make_decomposition(bool replicated, double range, const Decomposition::CellUnits* units = nullptr);
+  void make_decomposition(bool replicated, double range, const Partition::RectUnits* units = nullptr);
   void load_checkpoint(const std::string& path);
   // The deformed cell of a checkpoint (its shape and flips; the rates are this configuration's).
   void resume_cell(const StateHeader& h, const std::string& path);

@@ -44,8 +44,8 @@ void Simulation::add_scene_discs() {
     // Each rank finds the discs of its cells: the decomposition first, on the range of the discs' radius (the
     // neighbour skin's default is a quarter of the mean radius), weighted by the discs each cell will hold; no
     // disc moves to its owner.
-    const Decomposition::CellUnits units = [&](std::size_t c) {
-      return config_.scene.type->cell_count(in, decomposition_->grid(), c);
+    const Partition::RectUnits units = [&](int x0, int y0, int x1, int y1) {
+      return config_.scene.type->rect_count(in, decomposition_->grid(), x0, y0, x1, y1);
     };
     const double range = 2.0 * radius + (config_.skin > 0.0 ? config_.skin : 0.25 * radius);
     start_checks::check_cells(config_, range);  // as setup_neighbours will: a grid this machine can hold
@@ -59,7 +59,7 @@ void Simulation::add_scene_discs() {
     throw InputError(config_.scene.type->source != SceneType::Source::keys
                          ? "scene.file '" + config_.scene.file + "' holds no discs: the scene is empty"
                          : std::string("the scene has no discs (scene.type = ") + config_.scene.type->name + ")");
-  discs_.reserve(scene.size());
+  discs_.reserve(scene.size() + (comm_.size() > 1 ? DiscExchange::ghost_room(scene.size()) : 0));
   for (const auto& d : scene) {
     Vec2 x = d.x;
     config_.domain.wrap(x);

@@ -45,13 +45,13 @@ class CellGrid {
   template <class F>
   void for_each_in_stencil(std::size_t cell, F f) const {
     const int cx = static_cast<int>(cell % static_cast<std::size_t>(nx_)), cy = static_cast<int>(cell / nx_);
+    // One step past an edge wraps by one length (no division: this runs for every cell and disc).
+    const auto wrap = [](int v, int n, bool periodic) { return !periodic ? v : v < 0 ? v + n : v >= n ? v - n : v; };
     for (int dy = -1; dy <= 1; ++dy) {
-      int y = cy + dy;
-      if (domain_.periodic_y) y = (y + ny_) % ny_;
+      const int y = wrap(cy + dy, ny_, domain_.periodic_y);
       if (y < 0 || y >= ny_) continue;
       for (int dx = -1; dx <= 1; ++dx) {
-        int x = cx + dx;
-        if (domain_.periodic_x) x = (x + nx_) % nx_;
+        const int x = wrap(cx + dx, nx_, domain_.periodic_x);
         if (x >= 0 && x < nx_) f(x, y);
       }
     }

@@ -54,10 +54,14 @@ void DiscStore::truncate_to_owned() {
 
 void DiscStore::remove_owned(const std::vector<bool>& drop) {
   truncate_to_owned();
+  // The discs before the first dropped one stay where they are (all of them, most often: nothing is copied).
+  std::size_t first = 0;
+  while (first < n_owned_ && !drop[first]) ++first;
+  if (first == n_owned_) return;
   std::size_t kept = 0;
-  for_each_field([&drop, &kept](const char*, unsigned, auto& field) {
-    std::size_t out = 0;
-    for (std::size_t i = 0; i < field.size(); ++i)
+  for_each_field([&drop, &kept, first](const char*, unsigned, auto& field) {
+    std::size_t out = first;
+    for (std::size_t i = first; i < field.size(); ++i)
       if (!drop[i]) field[out++] = field[i];
     field.resize(out);
     kept = out;

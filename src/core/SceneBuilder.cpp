@@ -127,7 +127,7 @@ namespace scene {
 bool in_blocks(const SceneConfig& s) { return s.type->block != nullptr; }
 double by_cells(const SceneInputs& in) {
   const SceneType& t = *in.scene.type;
-  return t.by_cells && t.cell_count && t.cells ? t.by_cells(in) : 0.0;
+  return t.by_cells && t.rect_count && t.cells ? t.by_cells(in) : 0.0;
 }
 }  // namespace scene
 

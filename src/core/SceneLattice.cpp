@@ -29,14 +29,25 @@ std::string lattice_keys(const SceneConfig&) {
 }
 std::string lattice_radius(const SceneConfig& s) { return "scene.radius = " + fmt(s.radius); }
 
+// The distance between rows, and the position of column i of row j (`row` that distance): one expression for
+// every builder, so that each gives the same bits.
+double row_step(const SceneConfig& s, bool hex) { return hex ? s.spacing * std::sqrt(3.0) / 2.0 : s.spacing; }
+Vec2 position(const SceneConfig& s, bool hex, double row, int i, int j) {
+  const double shift = (hex && (j % 2 == 1)) ? 0.5 * s.spacing : 0.0;
+  return {s.x0 + i * s.spacing + shift, s.y0 + j * row};
+}
+// The farthest column's x (a shifted hex row's) and the last row's y.
+Vec2 far_corner(const SceneConfig& s, bool hex) {
+  return {s.x0 + (s.nx - 1) * s.spacing + (hex && s.ny > 1 ? 0.5 * s.spacing : 0.0),
+          s.y0 + (s.ny - 1) * row_step(s, hex)};
+}
+
 // The lattice's extent checked against the domain (its corners, the farthest row and column, the half shift of hex
 // rows); throws InputError naming the keys.
 void check_extent(const SceneInputs& in, bool hex) {
   const SceneConfig& s = in.scene;
   const Domain& domain = in.domain;
-  const double row = hex ? s.spacing * std::sqrt(3.0) / 2.0 : s.spacing;
-  const double far_x = s.x0 + (s.nx - 1) * s.spacing + (hex && s.ny > 1 ? 0.5 * s.spacing : 0.0),
-               far_y = s.y0 + (s.ny - 1) * row;
+  const auto [far_x, far_y] = far_corner(s, hex);
   const bool inside_x = domain.periodic_x || (s.x0 >= domain.xlo && far_x <= domain.xhi);
   const bool inside_y = domain.periodic_y || (s.y0 >= domain.ylo && far_y <= domain.yhi);
   if (!std::isfinite(far_x) || !std::isfinite(far_y) || !inside_x || !inside_y) {
@@ -51,10 +62,8 @@ void check_extent(const SceneInputs& in, bool hex) {
 
 // The site of gid k (row k / nx, column k % nx).
 SceneDisc site(const SceneConfig& s, bool hex, std::int64_t k) {
-  const double row = hex ? s.spacing * std::sqrt(3.0) / 2.0 : s.spacing;
   const auto j = static_cast<int>(k / s.nx), i = static_cast<int>(k % s.nx);
-  const double shift = (hex && (j % 2 == 1)) ? 0.5 * s.spacing : 0.0;
-  return {k, {s.x0 + i * s.spacing + shift, s.y0 + j * row}, s.radius, s.velocity, s.omega};
+  return {k, position(s, hex, row_step(s, hex), i, j), s.radius, s.velocity, s.omega};
 }
 
 std::int64_t sites(const SceneConfig& s) { return static_cast<std::int64_t>(s.nx) * s.ny; }
@@ -81,37 +90,35 @@ std::vector<SceneDisc> lattice_block(const SceneInputs& in, bool hex, std::int64
 double lattice_by_cells(const SceneInputs& in, bool hex) {
   const SceneConfig& s = in.scene;
   const Domain& d = in.domain;
-  const double row = hex ? s.spacing * std::sqrt(3.0) / 2.0 : s.spacing;
-  const double far_x = s.x0 + (s.nx - 1) * s.spacing + (hex && s.ny > 1 ? 0.5 * s.spacing : 0.0),
-               far_y = s.y0 + (s.ny - 1) * row;
+  const auto [far_x, far_y] = far_corner(s, hex);
   const bool inside_x = !d.periodic_x || (s.x0 >= d.xlo && far_x < d.xhi);
   const bool inside_y = !d.periodic_y || (s.y0 >= d.ylo && far_y < d.yhi);
   return d.tilt == 0.0 && inside_x && inside_y ? s.radius : 0.0;
 }
 
-// The lattice seen through a grid: the lattice rows in a grid row, and the sites of a row in a run of columns,
-// each decided by the grid's own test of the site (every disc's), its candidates from the bounds.
+// The lattice seen through an untilted grid: the lattice rows in a range of grid rows, and the sites of a row in a
+// range of grid columns, each decided by the grid's own test of the site (every disc's), the candidates from the
+// bounds; the grid's rows grow with j and its columns with i, so each answer is a range.
 class LatticeWalk {
  public:
   LatticeWalk(const SceneConfig& s, bool hex, const CellGrid& grid)
-      : s_(s), hex_(hex), grid_(grid), row_(hex ? s.spacing * std::sqrt(3.0) / 2.0 : s.spacing) {}
-  // f(j) for each lattice row j in grid row cy, ascending.
-  template <class F>
-  void rows(int cy, F f) const {
-    const double lo = grid_.cell_corner(0, cy).y;
-    const auto [j0, j1] = span(lo, lo + grid_.cell_sides().y, s_.y0, row_, s_.ny);
-    for (int j = j0; j <= j1; ++j)
-      if (grid_.row_of(site(s_, hex_, static_cast<std::int64_t>(j) * s_.nx).x.y) == cy) f(j);
+      : s_(s), hex_(hex), grid_(grid), row_(row_step(s, hex)) {}
+  // The rows [first, last] whose sites lie in grid rows cy0 to cy1 (last < first: none).
+  std::pair<int, int> rows(int cy0, int cy1) const {
+    auto [first, last] =
+        span(grid_.cell_corner(0, cy0).y, grid_.cell_corner(0, cy1).y + grid_.cell_sides().y, s_.y0, row_, s_.ny);
+    const auto row = [&](int j) { return grid_.row_of(position(s_, hex_, row_, 0, j).y); };
+    while (first <= last && row(first) < cy0) ++first;
+    while (last >= first && row(last) > cy1) --last;
+    return {first, last};
   }
-  // The columns [first, last] of row j whose sites lie in grid columns cx0 to cx1 of their row (last < first: none).
-  std::pair<int, int> columns(int j, int cy, int cx0, int cx1) const {
+  // The columns [first, last] of row j whose sites lie in grid columns cx0 to cx1 (last < first: none).
+  std::pair<int, int> columns(int j, int cx0, int cx1) const {
     const double shift = (hex_ && (j % 2 == 1)) ? 0.5 * s_.spacing : 0.0;
-    auto [first, last] = span(grid_.cell_corner(cx0, cy).x, grid_.cell_corner(cx1, cy).x + grid_.cell_sides().x,
+    auto [first, last] = span(grid_.cell_corner(cx0, 0).x, grid_.cell_corner(cx1, 0).x + grid_.cell_sides().x,
                               s_.x0 + shift, s_.spacing, s_.nx);
-    const auto column = [&](int i) {
-      return grid_.column_of(site(s_, hex_, static_cast<std::int64_t>(j) * s_.nx + i).x);
-    };
-    while (first <= last && column(first) < cx0) ++first;  // the grid's columns grow with i
+    const auto column = [&](int i) { return grid_.column_of(position(s_, hex_, row_, i, j)); };
+    while (first <= last && column(first) < cx0) ++first;
     while (last >= first && column(last) > cx1) --last;
     return {first, last};
   }
@@ -129,14 +136,20 @@ class LatticeWalk {
   double row_;
 };
 
-std::uint64_t lattice_cell_count(const SceneInputs& in, bool hex, const CellGrid& grid, std::size_t cell) {
+// The sites in the cells [x0, x1) x [y0, y1): rows of one parity share their columns (a hex row's shift is its
+// parity's), so the count is rows x columns for each parity.
+std::uint64_t lattice_rect_count(const SceneInputs& in, bool hex, const CellGrid& grid, int x0, int y0, int x1,
+                                 int y1) {
   const LatticeWalk walk(in.scene, hex, grid);
-  const int cx = static_cast<int>(cell % static_cast<std::size_t>(grid.nx())), cy = static_cast<int>(cell / grid.nx());
+  const auto [j0, j1] = walk.rows(y0, y1 - 1);
   std::uint64_t count = 0;
-  walk.rows(cy, [&](int j) {
-    const auto [first, last] = walk.columns(j, cy, cx, cx);
-    if (last >= first) count += static_cast<std::uint64_t>(last - first + 1);
-  });
+  for (int parity = 0; parity < (hex ? 2 : 1); ++parity) {
+    const int j = hex && (j0 % 2 != parity) ? j0 + 1 : j0;  // the first row of this parity
+    if (j > j1) continue;
+    const auto rows = static_cast<std::uint64_t>(hex ? (j1 - j) / 2 + 1 : j1 - j + 1);
+    const auto [i0, i1] = walk.columns(j, x0, x1 - 1);
+    if (i1 >= i0) count += rows * static_cast<std::uint64_t>(i1 - i0 + 1);
+  }
   return count;
 }
 
@@ -146,33 +159,38 @@ std::vector<SceneDisc> lattice_cells(const SceneInputs& in, bool hex, const Cell
                                      std::vector<std::size_t> cells) {
   const SceneConfig& s = in.scene;
   const std::int64_t n = sites(s);
-  check_memory(static_cast<double>(n) * static_cast<double>(cells.size()) / static_cast<double>(grid.size()), 0.0, 0.0,
-               "scene.nx x scene.ny");
+  // About the share of the sites that these cells' share of the grid holds (a lattice that fills the domain).
+  const double share = static_cast<double>(n) * static_cast<double>(cells.size()) / static_cast<double>(grid.size());
+  check_memory(share, 0.0, 0.0, "scene.nx x scene.ny");
   check_extent(in, hex);
   const std::vector<std::size_t> counts = scene::material_counts(s, static_cast<std::uint64_t>(n));
+  const double row = row_step(s, hex);
   const LatticeWalk walk(s, hex, grid);
   if (!std::is_sorted(cells.begin(), cells.end())) std::sort(cells.begin(), cells.end());  // row-major
   const auto nx = static_cast<std::size_t>(grid.nx());
   std::vector<SceneDisc> out;
+  out.reserve(static_cast<std::size_t>(std::min(share * 1.01, static_cast<double>(n))) + 64);
   for (std::size_t r0 = 0; r0 < cells.size();) {
     std::size_t r1 = r0;
     while (r1 < cells.size() && cells[r1] / nx == cells[r0] / nx) ++r1;  // this grid row's cells: [r0, r1)
     const int cy = static_cast<int>(cells[r0] / nx);
-    walk.rows(cy, [&](int j) {
+    const auto [j0, j1] = walk.rows(cy, cy);
+    for (int j = j0; j <= j1; ++j) {
       for (std::size_t a = r0; a < r1;) {
         std::size_t b = a + 1;  // a run of adjacent cells [a, b)
         while (b < r1 && cells[b] == cells[b - 1] + 1) ++b;
         const auto [first, last] =
-            walk.columns(j, cy, static_cast<int>(cells[a] % nx), static_cast<int>(cells[b - 1] % nx));
+            walk.columns(j, static_cast<int>(cells[a] % nx), static_cast<int>(cells[b - 1] % nx));
         for (int i = first; i <= last; ++i) {
-          SceneDisc d = site(s, hex, static_cast<std::int64_t>(j) * s.nx + i);
+          SceneDisc d{static_cast<std::int64_t>(j) * s.nx + i, position(s, hex, row, i, j), s.radius, s.velocity,
+                      s.omega};
           d.material = scene::slot_material(
               s, scene::material_slot_of(s, counts, static_cast<std::uint64_t>(n), static_cast<std::uint64_t>(d.gid)));
           out.push_back(d);
         }
         a = b;
       }
-    });
+    }
     r0 = r1;
   }
   return out;
@@ -186,11 +204,11 @@ std::vector<SceneDisc> square_block(const SceneInputs& in, std::int64_t first, s
   return lattice_block(in, false, first, count);
 }
 double square_by_cells(const SceneInputs& in) { return lattice_by_cells(in, false); }
-std::uint64_t square_count(const SceneInputs& in, const CellGrid& grid, std::size_t c) {
-  return lattice_cell_count(in, false, grid, c);
+std::uint64_t square_count(const SceneInputs& in, const CellGrid& grid, int x0, int y0, int x1, int y1) {
+  return lattice_rect_count(in, false, grid, x0, y0, x1, y1);
 }
-std::uint64_t hexagonal_count(const SceneInputs& in, const CellGrid& grid, std::size_t c) {
-  return lattice_cell_count(in, true, grid, c);
+std::uint64_t hexagonal_count(const SceneInputs& in, const CellGrid& grid, int x0, int y0, int x1, int y1) {
+  return lattice_rect_count(in, true, grid, x0, y0, x1, y1);
 }
 double hexagonal_by_cells(const SceneInputs& in) { return lattice_by_cells(in, true); }
 std::vector<SceneDisc> square_cells(const SceneInputs& in, const CellGrid& grid, const std::vector<std::size_t>& c) {

@@ -49,11 +49,11 @@ struct SceneType {
   std::int64_t (*total)(const SceneConfig& scene) = nullptr;
   std::vector<SceneDisc> (*block)(const SceneInputs& in, std::int64_t first, std::int64_t count) = nullptr;
   // A scene of one radius whose discs can be found cell by cell (a lattice inside an untilted domain) gives that
-  // radius (0: it cannot here, nullptr: never), the number of its discs in a cell of the decomposition's grid
-  // (the first map is weighted by them) and the discs of a rank's cells in ascending gid, so that no disc moves
-  // to its owner (Simulation::add_scene_discs; the same discs as block's).
+  // radius (0: it cannot here, nullptr: never), the number of its discs in a rectangle of cells [x0, x1) x
+  // [y0, y1) of the decomposition's grid (the first map is weighted by them) and the discs of a rank's cells in
+  // ascending gid, so that no disc moves to its owner (Simulation::add_scene_discs; the same discs as block's).
   double (*by_cells)(const SceneInputs& in) = nullptr;
-  std::uint64_t (*cell_count)(const SceneInputs& in, const CellGrid& grid, std::size_t cell) = nullptr;
+  std::uint64_t (*rect_count)(const SceneInputs& in, const CellGrid& grid, int x0, int y0, int x1, int y1) = nullptr;
   std::vector<SceneDisc> (*cells)(const SceneInputs& in, const CellGrid& grid,
                                   const std::vector<std::size_t>& cells) = nullptr;
 };

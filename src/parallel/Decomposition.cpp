@@ -39,8 +39,7 @@ Decomposition::Decomposition(const Domain& domain, double range, const std::stri
 }
 
 int Decomposition::owner_of_cell(std::size_t c) const {
-  const std::size_t at = box_at(static_cast<int>(c % static_cast<std::size_t>(grid_.nx())),
-                                static_cast<int>(c / static_cast<std::size_t>(grid_.nx())));
+  const std::size_t at = box_at(c);
   return at != kOutside ? box_owner_[at] : map_->owner(c);
 }
 
@@ -83,9 +82,7 @@ std::vector<int> Decomposition::owners_in_box(const Partition& map, const std::v
   // This rank's cells are known; the map is asked only for the others' (a compact range's box holds few).
   std::vector<int> box(static_cast<std::size_t>(box_nx_) * static_cast<std::size_t>(box_ny_), -1);
   for (std::size_t c : mine) {
-    const std::size_t at = box_at(static_cast<int>(c % static_cast<std::size_t>(grid_.nx())),
-                                  static_cast<int>(c / static_cast<std::size_t>(grid_.nx())));
-    if (at != kOutside) box[at] = comm_.rank();
+    if (const std::size_t at = box_at(c); at != kOutside) box[at] = comm_.rank();
   }
   for (int y = 0; y < box_ny_; ++y)
     for (int x = 0; x < box_nx_; ++x)
@@ -95,16 +92,23 @@ std::vector<int> Decomposition::owners_in_box(const Partition& map, const std::v
 }
 
 template <class F>
-void Decomposition::owners_around(std::size_t cell, const std::vector<int>& box, const Partition& map, F f) const {
+void Decomposition::owners_around(std::size_t cell, std::size_t at, const std::vector<int>& box, const Partition& map,
+                                  F f) const {
+  const auto nx = static_cast<std::size_t>(box_nx_);
+  if (at != kOutside && at >= nx && at + nx < box.size() && at % nx > 0 && at % nx + 1 < nx) {
+    for (const std::size_t row : {at - nx, at, at + nx})  // inside the table: its eight neighbours there
+      for (std::size_t k = row - 1; k <= row + 1; ++k) f(box[k]);
+    return;
+  }
   grid_.for_each_in_stencil(cell, [&](int x, int y) {
-    const std::size_t at = box_at(x, y);
-    f(at != kOutside ? box[at] : map.owner(grid_.index(x, y)));
+    const std::size_t here = box_at(x, y);
+    f(here != kOutside ? box[here] : map.owner(grid_.index(x, y)));
   });
 }
 
 void Decomposition::ranks_around(std::size_t cell, std::vector<int>& out) const {
   out.clear();
-  owners_around(cell, box_owner_, *map_, [&](int r) {
+  owners_around(cell, box_at(cell), box_owner_, *map_, [&](int r) {
     if (r != comm_.rank() && std::find(out.begin(), out.end(), r) == out.end()) out.push_back(r);
   });
   std::sort(out.begin(), out.end());
@@ -135,19 +139,25 @@ void Decomposition::install(const Partition* old) {
   // cells' old owners; runs of one owner are common.
   std::vector<int> neighbours, from;
   int last = -1, last_old = -1;
-  for (std::size_t c : cells) {
+  const auto visit = [&](std::size_t c, std::size_t at) {
     bool border = false;
-    owners_around(c, box_owner_, *map_, [&](int r) {
+    owners_around(c, at, box_owner_, *map_, [&](int r) {
       border = border || r != me;
       if (r != last) add_rank(neighbours, last = r);
     });
-    if (border && box_nx_ > 0)
-      box_border_[box_at(static_cast<int>(c % static_cast<std::size_t>(grid_.nx())),
-                         static_cast<int>(c / static_cast<std::size_t>(grid_.nx())))] = 1;
+    if (border && at != kOutside) box_border_[at] = 1;
     if (old)
-      owners_around(c, box_old, *old, [&](int o) {
+      owners_around(c, at, box_old, *old, [&](int o) {
         if (o != last_old) add_rank(from, last_old = o);
       });
+  };
+  if (box_nx_ > 0) {  // this rank's cells in the table's rows
+    for (int y = 0; y < box_ny_; ++y)
+      for (int x = 0; x < box_nx_; ++x)
+        if (const std::size_t at = static_cast<std::size_t>(y) * box_nx_ + x; box_owner_[at] == me)
+          visit(grid_.index(box_x0_ + x, box_y0_ + y), at);
+  } else {
+    for (std::size_t c : cells) visit(c, kOutside);
   }
   neighbours_ = without(neighbours, me);
   if (!old) {
@@ -159,7 +169,7 @@ void Decomposition::install(const Partition* old) {
   std::vector<int> to = neighbours_;
   last = -1;
   for (std::size_t c : old_cells)
-    owners_around(c, box_owner_, *map_, [&](int r) {
+    owners_around(c, box_at(c), box_owner_, *map_, [&](int r) {
       if (r != last) add_rank(to, last = r);
     });
   for (int r : neighbours_) add_rank(from, r);
@@ -180,7 +190,7 @@ void Decomposition::initial_partition(const DiscStore& discs, bool replicated) {
   install(nullptr);
 }
 
-bool Decomposition::initial_partition(const CellUnits& units) {
+bool Decomposition::initial_partition(const Partition::RectUnits& units) {
   map_->initial(DiscStore{}, false);
   const bool weighed = map_->weigh(units);
   install(nullptr);

@@ -72,8 +72,7 @@ class Decomposition {
   void initial_partition(const DiscStore& discs, bool replicated);
   // First map, before any disc exists, weighted by the discs each cell will hold (Partition::weigh): true when
   // the partitioner could (no repartition() is due once the discs are built), else the equal-cell cut.
-  using CellUnits = std::function<std::uint64_t(std::size_t)>;
-  bool initial_partition(const CellUnits& units);
+  bool initial_partition(const Partition::RectUnits& units);
   // A new map from the present work (collective); returns true when it changed.
   bool repartition(const DiscStore& discs, const ContactTable& pairs);
 
@@ -97,14 +96,19 @@ class Decomposition {
   // (`mine`: this rank's cells by that map).
   void frame(const std::vector<std::size_t>& cells);
   std::vector<int> owners_in_box(const Partition& map, const std::vector<std::size_t>& mine) const;
-  // f(owner) for each cell of the stencil around `cell` by `map`, its table over the box `box`.
+  // f(owner) for each cell of the stencil around `cell` (`at`: its entry in the table, or kOutside) by `map`, its
+  // table over the box `box`.
   template <class F>
-  void owners_around(std::size_t cell, const std::vector<int>& box, const Partition& map, F f) const;
+  void owners_around(std::size_t cell, std::size_t at, const std::vector<int>& box, const Partition& map, F f) const;
   // The entry of cell (cx, cy) in the neighbourhood table, kOutside beyond it.
   static constexpr std::size_t kOutside = SIZE_MAX;
   std::size_t box_at(int cx, int cy) const {
     const int x = cx - box_x0_, y = cy - box_y0_;
     return x >= 0 && x < box_nx_ && y >= 0 && y < box_ny_ ? static_cast<std::size_t>(y) * box_nx_ + x : kOutside;
+  }
+  std::size_t box_at(std::size_t c) const {
+    return box_at(static_cast<int>(c % static_cast<std::size_t>(grid_.nx())),
+                  static_cast<int>(c / static_cast<std::size_t>(grid_.nx())));
   }
 
   const Communicator& comm_;

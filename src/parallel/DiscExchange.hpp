@@ -1,4 +1,5 @@
 #pragma once
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -34,6 +35,11 @@ class DiscExchange {
   void build_ghosts(DiscStore& discs, const Decomposition& dec, const Communicator& comm);
   void update_ghosts(DiscStore& discs, const Communicator& comm);
   std::size_t ghost_count() const { return ghosts_; }
+  // Room for the ghosts of n owned discs in a compact region (about 7.8 sqrt(n) measured, docs/scaling.md; twice
+  // that), reserved with the discs so that the first ghosts do not copy every field of the store to a new one.
+  static std::size_t ghost_room(std::size_t n) {
+    return static_cast<std::size_t>(16.0 * std::sqrt(static_cast<double>(n))) + 1024;
+  }
   // Bytes this rank holds for the exchanges (ghost lists and the reused send buffers).
   std::size_t memory_bytes() const;
 

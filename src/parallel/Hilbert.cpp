@@ -90,20 +90,68 @@ void HilbertGrid::for_each_in(std::uint64_t lo, std::uint64_t hi, const std::fun
 
 void HilbertGrid::for_each_key_in(std::uint64_t lo, std::uint64_t hi,
                                   const std::function<void(std::uint64_t, int, int)>& f) const {
-  if (lo < hi) visit(0, side_, lo, hi, f);
+  if (lo < hi) visit(root(), lo, hi, f);
 }
 
-void HilbertGrid::visit(std::uint64_t b, std::uint64_t s, std::uint64_t lo, std::uint64_t hi,
+HilbertGrid::Node HilbertGrid::child(const Node& n, int q) {
+  // The curve of side s is four curves of side h = s / 2, in the quadrants (0, 0), (0, 1), (1, 1), (1, 0) (in
+  // units of h), the first transposed and the last reflected about the other diagonal (point()'s rotate, read
+  // from the top): a cell p of the child is the node's cell offset + T(p).
+  const std::int64_t h = static_cast<std::int64_t>(n.s / 2);
+  static constexpr int kRx[4] = {0, 0, 1, 1}, kRy[4] = {0, 1, 1, 0};
+  // T(p) = (t0 + ta x + tb y, t1 + tc x + td y) in the node's own coordinates.
+  std::int64_t t0 = kRx[q] * h, t1 = kRy[q] * h;
+  int ta = 1, tb = 0, tc = 0, td = 1;
+  if (q == 0) ta = 0, tb = 1, tc = 1, td = 0;                              // (y, x)
+  if (q == 3) ta = 0, tb = -1, tc = -1, td = 0, t0 += h - 1, t1 += h - 1;  // (h - 1 - y, h - 1 - x)
+  Node out;
+  out.b = n.b + static_cast<std::uint64_t>(q) * static_cast<std::uint64_t>(h * h);
+  out.s = static_cast<std::uint64_t>(h);
+  out.ox = n.ox + n.a * t0 + n.bx * t1;
+  out.oy = n.oy + n.c * t0 + n.d * t1;
+  out.a = n.a * ta + n.bx * tc, out.bx = n.a * tb + n.bx * td;
+  out.c = n.c * ta + n.d * tc, out.d = n.c * tb + n.d * td;
+  return out;
+}
+
+void HilbertGrid::square(const Node& n, std::int64_t& x0, std::int64_t& y0, std::int64_t& x1, std::int64_t& y1) {
+  const auto s = static_cast<std::int64_t>(n.s) - 1;  // the far corner (s, s) of the node's own square
+  const std::int64_t fx = n.ox + (n.a + n.bx) * s, fy = n.oy + (n.c + n.d) * s;
+  x0 = std::min(n.ox, fx), x1 = std::max(n.ox, fx) + 1;
+  y0 = std::min(n.oy, fy), y1 = std::max(n.oy, fy) + 1;
+}
+
+void HilbertGrid::visit(const Node& n, std::uint64_t lo, std::uint64_t hi,
                         const std::function<void(std::uint64_t, int, int)>& f) const {
-  if (b + s * s <= lo || b >= hi || node_cells(b, s) == 0) return;
-  if (s == 1) {
-    int cx = 0, cy = 0;
-    point(b, cx, cy);
-    f(b, cx, cy);
+  if (n.b + n.s * n.s <= lo || n.b >= hi) return;
+  if (n.s == 1) {
+    if (n.ox < nx_ && n.oy < ny_) f(n.b, static_cast<int>(n.ox), static_cast<int>(n.oy));
     return;
   }
-  const std::uint64_t child = s * s / 4;
-  for (std::uint64_t c = 0; c < 4; ++c) visit(b + c * child, s / 2, lo, hi, f);
+  std::int64_t x0, y0, x1, y1;
+  square(n, x0, y0, x1, y1);
+  if (x0 >= nx_ || y0 >= ny_) return;  // the node lies beyond the grid
+  for (int q = 0; q < 4; ++q) visit(child(n, q), lo, hi, f);
+}
+
+std::uint64_t HilbertGrid::key_at_work(std::uint64_t t, const RectWeight& weight) const {
+  Node n = root();
+  while (n.s > 1) {
+    Node next = n;
+    for (int q = 0; q < 4; ++q) {
+      next = child(n, q);
+      std::int64_t x0, y0, x1, y1;
+      square(next, x0, y0, x1, y1);
+      x1 = std::min<std::int64_t>(x1, nx_), y1 = std::min<std::int64_t>(y1, ny_);
+      const std::uint64_t w = x0 < x1 && y0 < y1 ? weight(static_cast<int>(x0), static_cast<int>(y0),
+                                                          static_cast<int>(x1), static_cast<int>(y1))
+                                                 : 0;
+      if (t < w || q == 3) break;  // (t beyond the last child only by an inconsistent weight: stay in it)
+      t -= w;
+    }
+    n = next;
+  }
+  return n.b;
 }
 
 }  // namespace rondel

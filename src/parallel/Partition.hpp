@@ -38,10 +38,12 @@ class Partition {
   virtual void initial(const DiscStore& discs, bool replicated) = 0;
   // A new map from the present work (collective); false when it did not change or this partitioner keeps its map.
   virtual bool repartition(const DiscStore& discs, const ContactTable& pairs) = 0;
-  // After initial(): the map weighted by the discs each cell will hold, before any disc exists (collective;
-  // units(c) for the cells of this rank's map): the map repartition() would make from those discs. False when
-  // this partitioner cannot (the caller builds the discs on this map and calls repartition()).
-  virtual bool weigh(const std::function<std::uint64_t(std::size_t)>& /*units*/) { return false; }
+  // After initial(): the map weighted by the discs the cells will hold, before any disc exists: the map
+  // repartition() would make from those discs. `units(x0, y0, x1, y1)`: the discs of the cells [x0, x1) x
+  // [y0, y1). False when this partitioner cannot (the caller builds the discs on this map and calls
+  // repartition()).
+  using RectUnits = HilbertGrid::RectWeight;
+  virtual bool weigh(const RectUnits& /*units*/) { return false; }
   // The number of ranks that own no cell.
   virtual int empty_ranks() const = 0;
   virtual std::size_t memory_bytes() const = 0;

@@ -31,7 +31,7 @@ class SfcPartition final : public Partition {
   }
   void initial(const DiscStore& discs, bool replicated) override;
   bool repartition(const DiscStore& discs, const ContactTable& pairs) override;
-  bool weigh(const std::function<std::uint64_t(std::size_t)>& units) override;
+  bool weigh(const RectUnits& units) override;
   int empty_ranks() const override {
     int n = 0;
     for (int r = 0; r < comm_.size(); ++r)
@@ -157,14 +157,19 @@ bool SfcPartition::repartition(const DiscStore& discs, const ContactTable& pairs
   return cut(cells);
 }
 
-bool SfcPartition::weigh(const std::function<std::uint64_t(std::size_t)>& units) {
-  if (comm_.size() == 1) return true;  // one rank: the map is every cell whatever the work
-  Cells cells;
-  curve_.for_each_key_in(cuts_[comm_.rank()], cuts_[comm_.rank() + 1], [&](std::uint64_t key, int cx, int cy) {
-    if (const std::uint64_t u = units(grid_.index(cx, cy)); u > 0)
-      cells.emplace_back(key, u * Decomposition::kCurveScale);
-  });
-  cut(cells);
+bool SfcPartition::weigh(const RectUnits& units) {
+  // Each cell weighs one plus kCurveScale per disc, as repartition() weighs them; each rank finds every cut by a
+  // descent of the curve, O(P log side) rectangles and no cell visited, no communication.
+  const int P = comm_.size();
+  const auto work = [&](int x0, int y0, int x1, int y1) {
+    return static_cast<std::uint64_t>(x1 - x0) * static_cast<std::uint64_t>(y1 - y0) +
+           Decomposition::kCurveScale * units(x0, y0, x1, y1);
+  };
+  const std::uint64_t total = work(0, 0, grid_.nx(), grid_.ny());
+  __extension__ typedef unsigned __int128 Wide;  // j x total needs 128 bits (as weighted_cuts)
+  for (int j = 1; j < P; ++j)
+    cuts_[j] =
+        curve_.key_at_work(static_cast<std::uint64_t>((static_cast<Wide>(j) * total) / static_cast<Wide>(P)), work);
   return true;
 }
 

@@ -87,7 +87,7 @@ material_fractions = 0.5 0.3 0.2
 }
 
 // The lattice of `ini` cut into groups of cells (cell % groups): each group's discs are the whole build's discs of
-// its cells, once, in ascending gid, and cell_count gives each cell's number.
+// its cells, once, in ascending gid, and rect_count gives the number in each cell and rectangle of cells.
 void check_cells(const std::string& ini, const std::vector<std::string>& args, double range, std::size_t groups) {
   const Config c = parse_config_text(ini, args);
   const SceneInputs in{c.scene, c.domain, "", nullptr};
@@ -114,8 +114,25 @@ void check_cells(const std::string& ini, const std::vector<std::string>& args, d
     }
   }
   EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<std::ptrdiff_t>(whole.size())) << "each disc once";
-  for (std::size_t cell = 0; cell < grid.size(); ++cell)
-    EXPECT_EQ(c.scene.type->cell_count(in, grid, cell), in_cell[cell]) << "cell " << cell;
+  // rect_count of every cell, and of rectangles of many cells, against the discs the grid puts there.
+  const int nx = grid.nx(), ny = grid.ny();
+  const auto count = [&](int x0, int y0, int x1, int y1) {
+    std::uint64_t sum = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) sum += in_cell[grid.index(x, y)];
+    return sum;
+  };
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x)
+      ASSERT_EQ(c.scene.type->rect_count(in, grid, x, y, x + 1, y + 1), in_cell[grid.index(x, y)]) << x << ", " << y;
+  for (int x0 = 0; x0 < nx; x0 += 2)
+    for (int y0 = 0; y0 < ny; y0 += 3)
+      for (int w : {1, 2, 5, nx})
+        for (int h : {1, 3, ny}) {
+          const int x1 = std::min(nx, x0 + w), y1 = std::min(ny, y0 + h);
+          ASSERT_EQ(c.scene.type->rect_count(in, grid, x0, y0, x1, y1), count(x0, y0, x1, y1))
+              << "[" << x0 << ", " << x1 << ") x [" << y0 << ", " << y1 << ")";
+        }
 }
 
 const char* kCellLattice = R"(

@@ -79,10 +79,29 @@ TEST(Hilbert, KeysOrderEveryCellAndTheRangeQueriesAgreeWithBruteForce) {
       const auto below = static_cast<std::uint64_t>(std::lower_bound(keys.begin(), keys.end(), k) - keys.begin());
       ASSERT_EQ(h.count_below(k), below) << nx << " x " << ny << ", k = " << k;
       std::vector<std::uint64_t> seen;
-      h.for_each_in(k / 2, k, [&](int x, int y) { seen.push_back(h.key(x, y)); });
+      h.for_each_key_in(k / 2, k, [&](std::uint64_t key, int x, int y) {
+        ASSERT_EQ(key, h.key(x, y)) << x << ", " << y;
+        seen.push_back(key);
+      });
       const auto lo = std::lower_bound(keys.begin(), keys.end(), k / 2);
       ASSERT_EQ(seen, std::vector<std::uint64_t>(lo, keys.begin() + static_cast<std::ptrdiff_t>(below)));
     }
+    // key_at_work: the cell holding each point of the work along the curve, cells of weight 0 to 4.
+    const auto w = [](int x, int y) { return static_cast<std::uint64_t>((7 * x + 3 * y) % 5); };
+    const HilbertGrid::RectWeight rect = [&](int x0, int y0, int x1, int y1) {
+      std::uint64_t sum = 0;
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) sum += w(x, y);
+      return sum;
+    };
+    std::uint64_t before = 0;
+    for (const auto& [key, cell] : by_key) {
+      const std::uint64_t here = w(cell.first, cell.second);
+      for (std::uint64_t t = before; t < before + here; ++t)
+        ASSERT_EQ(h.key_at_work(t, rect), key) << nx << " x " << ny << ", t = " << t;
+      before += here;
+    }
+    EXPECT_EQ(before, rect(0, 0, nx, ny));
   }
 }
 
