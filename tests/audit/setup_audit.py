@@ -8,10 +8,18 @@ largest rank's resident set during the set-up (its peak less what it held before
 
 It prints a table and the ratio of each row's bytes to the 1-rank row's; it checks nothing (issue 31 is to make the
 strong rows fall as 1/P and the weak ones stay flat). Exit 0 when every run completed.
+
+    /usr/bin/python3 tests/audit/setup_audit.py --exe build/tests/rondel_scaling_audit --work /tmp/setup-audit \
+        --speedup 3163 --pairs 5
+
+times the set-up of a SIDE x SIDE lattice (3163: ten million discs, 0 steps) on 1 and on 2 ranks as interleaved
+pairs (1 2 1 2 ...) and prints each pair's ratio, the medians and the largest rank's set-up bytes.
 """
 import argparse
 import json
 import os
+import shutil
+import statistics
 import subprocess
 import sys
 
@@ -48,9 +56,10 @@ file = {file}
 """
 
 
-def run(args, ranks, ini, out, extra=()):
+def run(args, ranks, ini, out, extra=(), steps="1"):
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    cmd = [args.mpiexec, "-n", str(ranks), "--oversubscribe", args.exe, ini, "1", out] + list(extra)
+    shutil.rmtree(out, ignore_errors=True)
+    cmd = [args.mpiexec, "-n", str(ranks), "--oversubscribe", args.exe, ini, steps, out] + list(extra)
     p = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=900)
     if p.returncode != 0:
         sys.exit("setup_audit.py: %s exited %d\n%s\n%s" % (" ".join(cmd), p.returncode, p.stdout, p.stderr))
@@ -88,14 +97,40 @@ def table(title, rows):
                                                       r["setup_bytes"] / r["discs"], r["setup_seconds"]))
 
 
+def speedup(args):
+    """Interleaved 1-rank and 2-rank set-ups of one large lattice: pair ratios and medians."""
+    n = args.speedup
+    ini = scene(args, "speedup", n, n, GENERATED.format(nx=n, ny=n))
+    one, two = [], []
+    print("uptime: %s" % open("/proc/loadavg").read().split()[:3])
+    print("%d x %d = %d discs, 0 steps; set-up seconds (slowest rank), pair by pair:" % (n, n, n * n))
+    for k in range(args.pairs):
+        a = run(args, 1, ini, os.path.join(args.work, "speedup-1"), steps="0")
+        b = run(args, 2, ini, os.path.join(args.work, "speedup-2"), steps="0")
+        one.append(a)
+        two.append(b)
+        print("  pair %d: 1 rank %.3f s, 2 ranks %.3f s, ratio %.2f" %
+              (k + 1, a["setup_seconds"], b["setup_seconds"], a["setup_seconds"] / b["setup_seconds"]))
+    ratios = [a["setup_seconds"] / b["setup_seconds"] for a, b in zip(one, two)]
+    print("median: 1 rank %.3f s (%.0f MB), 2 ranks %.3f s (%.0f MB on the largest rank), ratio %.2f" %
+          (statistics.median(r["setup_seconds"] for r in one), one[0]["setup_bytes"] / 1e6,
+           statistics.median(r["setup_seconds"] for r in two), two[0]["setup_bytes"] / 1e6, statistics.median(ratios)))
+    return 0
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--exe", required=True)
     ap.add_argument("--work", required=True)
     ap.add_argument("--mpiexec", default="mpirun")
     ap.add_argument("--side", type=int, default=400, help="the strong lattice is SIDE x SIDE discs (default 400)")
+    ap.add_argument("--speedup", type=int, default=0, metavar="SIDE",
+                    help="instead: 1- and 2-rank set-up of a SIDE x SIDE lattice as interleaved pairs")
+    ap.add_argument("--pairs", type=int, default=5, help="pairs of --speedup (default 5)")
     args = ap.parse_args()
     os.makedirs(args.work, exist_ok=True)
+    if args.speedup:
+        return speedup(args)
     n = args.side
     generated = scene(args, "generated", n, n, GENERATED.format(nx=n, ny=n))
     csv_file = lattice_csv(os.path.join(args.work, "lattice.csv"), n, n)
