@@ -3,7 +3,9 @@
 N discs on P ranks, from a few machine constants (stated below; change them for another machine).
 
 usage: python3 tools/scaling_model.py [--c-ns 45] [--latency-us 1.5] [--bandwidth-gbs 10] [--fs-gbs 50]
-Prints one table row per (N, P) with the terms of the step time and the first term to dominate."""
+                                     [--memory-gb 4]
+Prints one table row per (N, P) with the terms of the step time, the peak memory of a rank and what stops the run
+first: its memory (a run's peak, or the whole-scene set-up of a random or CSV scene) before its time."""
 import argparse
 import math
 
@@ -17,6 +19,11 @@ REDUCE_BYTES = {"deposition": 48, "biaxial": 8 * (4 * 208 + 6)}
 # Steps per reduction without controlled walls (measured 10 in the deposition: parallel.check_every).
 STEPS_PER_REDUCTION = {"deposition": 10.0, "biaxial": 1.0}
 NEIGHBOURS = 8  # partners of a rank in 2D (measured 5 to 7 on 8 ranks)
+# Peak bytes per disc of a rank (docs/scaling.md, "Forty million discs": 4,000,000 discs with wang rolling on 2
+# ranks): 612 through the steps, 890 while a checkpoint is written; a random or CSV scene's set-up holds about
+# 315 B per disc of the whole scene on every rank.
+PEAK_BYTES = 890
+WHOLE_SCENE_BYTES = 315
 
 
 def step_terms(n, P, kind, a):
@@ -41,21 +48,30 @@ def main():
     ap.add_argument("--latency-us", type=float, default=1.5, help="MPI latency of a small message")
     ap.add_argument("--bandwidth-gbs", type=float, default=10.0, help="bandwidth per rank, GB/s")
     ap.add_argument("--fs-gbs", type=float, default=50.0, help="parallel file system bandwidth, GB/s")
+    ap.add_argument("--memory-gb", type=float, default=4.0, help="memory per rank (a core's share of a node), GB")
     a = ap.parse_args()
     print("| N | P | discs per rank | compute | exchange | reduction (deposition / biaxial) | "
-          "efficiency (deposition / biaxial) | checkpoint | dominant beyond compute |")
-    print("|---:|---:|---:|---:|---:|---:|---:|---:|---|")
-    for N in (1e6, 1e7, 1e8, 1e9):
+          "efficiency (deposition / biaxial) | checkpoint | peak per rank (random or CSV set-up) | stops first |")
+    print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+    for N in (1e6, 1e7, 1e8, 1e9, 1e10):
         for P in (64, 1024, 16384):
             n = N / P
             c, e, r_dep = step_terms(n, P, "deposition", a)
             _, _, r_bx = step_terms(n, P, "biaxial", a)
             eff_dep = c / (c + e + r_dep)
             eff_bx = c / (c + e + r_bx)
-            dominant = "reduction (biaxial)" if r_bx > e else "ghost exchange"
-            print("| %.0e | %d | %.0f | %.1f us | %.1f us | %.2f / %.1f us | %.2f / %.2f | %.2f s | %s |" % (
-                N, P, n, c * 1e6, e * 1e6, r_dep * 1e6, r_bx * 1e6, eff_dep, eff_bx, checkpoint_time(N, P, a),
-                dominant))
+            peak, whole = n * PEAK_BYTES / 1e9, N * WHOLE_SCENE_BYTES / 1e9
+            if peak > a.memory_gb:
+                first = "memory of the run"
+            elif eff_bx < 0.9:
+                first = "reduction (biaxial)" if r_bx > e else "ghost exchange"
+            elif whole > a.memory_gb:
+                first = "set-up of a random or CSV scene"
+            else:
+                first = "nothing (efficiency >= 0.9)"
+            print("| %.0e | %d | %.0f | %.1f us | %.1f us | %.2f / %.1f us | %.2f / %.2f | %.2f s | %.3g GB (%.3g GB) | %s |"
+                  % (N, P, n, c * 1e6, e * 1e6, r_dep * 1e6, r_bx * 1e6, eff_dep, eff_bx, checkpoint_time(N, P, a),
+                     peak, whole, first))
 
 
 if __name__ == "__main__":
