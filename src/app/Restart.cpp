@@ -63,11 +63,11 @@ StateHeader Restart::header(const RunState& state, const char* kind) {
 }
 
 std::vector<SceneDisc> Restart::scene_from_file(const std::string& file, const Config& config, WallSet& walls_out,
-                                                Domain& cell) {
-  // Every rank reads every disc (the scene is then distributed like any other). A directory means its
-  // newest complete checkpoint. Box walls take their positions from the file (a prepared sample keeps its
-  // box), a periodic cell its shape; contact history starts afresh, and step, time and strains start at zero: a
-  // new test stage.
+                                                Domain& cell, const Communicator& comm) {
+  // Each rank reads its block of the discs (then sent to their owners, as a restart's); every rank reads the
+  // header and the walls. A directory means its newest complete checkpoint. Box walls take their positions from the
+  // file (a prepared sample keeps its box), a periodic cell its shape; contact history starts afresh, and step, time
+  // and strains start at zero: a new test stage.
   const Communicator self = Communicator::self();
   std::string path = file;
   if (fs::is_directory(path)) path = Checkpointing::newest_checkpoint(path, self);
@@ -76,7 +76,7 @@ std::vector<SceneDisc> Restart::scene_from_file(const std::string& file, const C
   const bool recorded = records_cell(header, cell);
   cell = recorded_cell(header, cell);
   DiscStore d;
-  read_state_discs(path, d, self);
+  read_state_discs(path, d, comm);  // collective: this rank's block, the ids checked unique over the file
   check_disc_materials(path, d, config);
   const WallSet walls = read_state_walls(path, self);
   if (walls.size() == walls_out.size())

@@ -38,12 +38,12 @@ class Restart {
   // The ledger continues: every rank carries the scale, rank 0 the integrals.
   void read_ledger(EnergyLedger& ledger) const;
 
-  // scene.type = file: every disc of `path` (a directory: its newest complete checkpoint), read on each rank;
-  // box walls take their positions from the file. History, step, time and strains start afresh.
+  // scene.type = file: this rank's block of the discs of `path` (a directory: its newest complete checkpoint);
+  // box walls take their positions from the file. History, step, time and strains start afresh. Collective.
   // A cell periodic in x and y takes the file's shape (lengths and tilt; its rates stay the configuration's) into
   // `cell`.
   static std::vector<SceneDisc> scene_from_file(const std::string& path, const Config& config, WallSet& walls,
-                                                Domain& cell);
+                                                Domain& cell, const Communicator& comm);
 
  private:
   void check_laws_match() const;
@@ -56,18 +56,21 @@ class Restart {
   StateHeader header_;
 };
 
-// The reader of scene.type = file (core/SceneTypes.hpp): Restart::scene_from_file into these walls and cell.
+// The reader of scene.type = file (core/SceneTypes.hpp): Restart::scene_from_file into these walls and cell, each
+// rank its block.
 class FileScene final : public SceneFileReader {
  public:
-  FileScene(const Config& config, WallSet& walls, Domain& cell) : config_(config), walls_(walls), cell_(cell) {}
+  FileScene(const Config& config, WallSet& walls, Domain& cell, const Communicator& comm)
+      : config_(config), walls_(walls), cell_(cell), comm_(comm) {}
   std::vector<SceneDisc> discs(const std::string& path) const override {
-    return Restart::scene_from_file(path, config_, walls_, cell_);
+    return Restart::scene_from_file(path, config_, walls_, cell_, comm_);
   }
 
  private:
   const Config& config_;
   WallSet& walls_;
   Domain& cell_;
+  const Communicator& comm_;
 };
 
 }  // namespace rondel

@@ -1,6 +1,7 @@
 // The discs of a new scene (Simulation's set-up, Simulation.cpp): built whole on every rank or, for a lattice, each
-// rank its block (scene::in_blocks); measured over the ranks; glued to rough walls; sent to the owners of their cells;
-// and checked for initial overlaps on the first neighbour list, the same message on any rank count.
+// rank those of its cells or its block, and for a Rondel file its block (scene::in_blocks); measured over the ranks;
+// glued to rough walls; sent to the owners of their cells; and checked for initial overlaps on the first neighbour
+// list, the same message on any rank count.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -26,7 +27,11 @@ namespace fs = std::filesystem;
 
 void Simulation::build_discs() {
   agree(comm_, [&] { add_scene_discs(); });
-  measure_radii();  // every rank holds the whole scene here, or its block of it (scene::in_blocks)
+  measure_radii();    // every rank holds the whole scene here, or its block of it (scene::in_blocks)
+  if (n_discs_ == 0)  // over the ranks: a block may be empty (more ranks than discs)
+    throw InputError(config_.scene.type->source != SceneType::Source::keys
+                         ? "scene.file '" + config_.scene.file + "' holds no discs: the scene is empty"
+                         : std::string("the scene has no discs (scene.type = ") + config_.scene.type->name + ")");
   if (boundaries_.rough()) {
     Boundaries::glue(discs_, walls_, config_.rough_depth > 0.0 ? config_.rough_depth : 2.0 * R_max_);
     assign_rough_materials();
@@ -37,7 +42,7 @@ void Simulation::build_discs() {
 
 void Simulation::add_scene_discs() {
   const std::string dir = config_.source_file.empty() ? "" : fs::path(config_.source_file).parent_path().string();
-  const FileScene files(config_, walls_, config_.domain);
+  const FileScene files(config_, walls_, config_.domain, comm_);
   const SceneInputs in{config_.scene, config_.domain, dir, &files};
   std::vector<SceneDisc> scene;
   if (const double radius = config_.cell_deforms() ? 0.0 : scene::by_cells(in); radius > 0.0) {
@@ -52,13 +57,9 @@ void Simulation::add_scene_discs() {
     make_decomposition(false, range, &units);
     scene = config_.scene.type->cells(in, decomposition_->grid(), decomposition_->own_cells());
   } else {
-    scene = scene::in_blocks(config_.scene) ? build_scene_block(in, comm_.rank(), comm_.size()) : build_scene(in);
+    scene = config_.scene.type->block ? build_scene_block(in, comm_.rank(), comm_.size()) : build_scene(in);
   }
-  box0_ = Boundaries::box(walls_, config_.domain);        // a file scene may have moved the box walls
-  if (scene.empty() && !scene::in_blocks(config_.scene))  // a block may be empty (more ranks than discs)
-    throw InputError(config_.scene.type->source != SceneType::Source::keys
-                         ? "scene.file '" + config_.scene.file + "' holds no discs: the scene is empty"
-                         : std::string("the scene has no discs (scene.type = ") + config_.scene.type->name + ")");
+  box0_ = Boundaries::box(walls_, config_.domain);  // a file scene may have moved the box walls
   discs_.reserve(scene.size() + (comm_.size() > 1 ? DiscExchange::ghost_room(scene.size()) : 0));
   for (const auto& d : scene) {
     Vec2 x = d.x;

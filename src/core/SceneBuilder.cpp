@@ -124,7 +124,9 @@ std::string resolve(const std::string& file, const std::string& config_dir) {
 }  // namespace scene
 
 namespace scene {
-bool in_blocks(const SceneConfig& s) { return s.type->block != nullptr; }
+bool in_blocks(const SceneConfig& s) {
+  return s.type->block != nullptr || s.type->source == SceneType::Source::state_file;
+}
 double by_cells(const SceneInputs& in) {
   const SceneType& t = *in.scene.type;
   return t.by_cells && t.rect_count && t.cells ? t.by_cells(in) : 0.0;

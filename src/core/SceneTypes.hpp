@@ -17,6 +17,7 @@ namespace rondel {
 // scene.type = file. The composition root implements it (it needs HDF5); core only calls it.
 struct SceneFileReader {
   virtual ~SceneFileReader() = default;
+  // This rank's block of the file's discs (collective: every rank calls it).
   virtual std::vector<SceneDisc> discs(const std::string& path) const = 0;
 };
 

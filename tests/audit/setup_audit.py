@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The set-up audit (docs/scaling.md, "Set-up"): what the set-up of a run takes on its largest rank, on 1, 2, 4 and
-8 ranks (oversubscribed), for a generated scene, the same discs read from a CSV file, and a restart from a checkpoint
-(strong: 160,000 discs), and for a generated scene of 20,000 discs per rank (weak). Bytes are the growth of the
+8 ranks (oversubscribed), for a generated scene, the same discs read from a CSV file, a restart from a checkpoint
+and a new stage from it (scene.type = file) (strong: 160,000 discs), and for a generated scene of 20,000 discs per rank (weak). Bytes are the growth of the
 largest rank's resident set during the set-up (its peak less what it held before), seconds the slowest rank's.
 
     /usr/bin/python3 tests/audit/setup_audit.py --exe build/tests/rondel_scaling_audit --work /tmp/setup-audit
@@ -146,7 +146,10 @@ def main():
                            ["--resume", checkpoint_dir, "--run.steps=2"]))
     table("strong, %d discs generated (lattice_square):" % (n * n), strong)
     table("strong, the same discs read from a CSV file:", csv_rows)
+    stage = [run(args, p, generated, os.path.join(args.work, "stage-%d" % p),
+                 ["--scene.type=file", "--scene.file=" + checkpoint_dir]) for p in RANKS]
     table("strong, a restart from the 1-rank run's checkpoint:", restart)
+    table("strong, a new stage from it (scene.type = file):", stage)
     weak = []
     sizes = {1: (200, 100), 2: (200, 200), 4: (400, 200), 8: (400, 400)}
     for p in RANKS:

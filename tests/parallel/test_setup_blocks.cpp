@@ -72,6 +72,24 @@ TEST(SetupBlocks, ALatticeThatWrapsIsBuiltInBlocksAndGivesTheBitsOfOneRank) {
   check_scene("lattice in blocks", ini, 1500, 500, true);
 }
 
+TEST(SetupBlocks, ARondelFileSceneIsReadInBlocksAndGivesTheBitsOfOneRank) {
+  // A stage from the checkpoint of a 1-rank run (300 steps in: the lattice falling, turning, drifting): each rank
+  // reads its block of the file's discs (scene::in_blocks), sent to the owners of their cells.
+  SharedTempDir tmp("file-scene");
+  const std::string out = (tmp.path() / "prepare").string();
+  if (world_rank() == 0) {
+    const Communicator self(MPI_COMM_SELF);
+    Simulation prepare(parse_config_text(kLattice, {"--run.output=" + out, "--run.steps=300"}), self, true);
+    prepare.run();
+  }
+  world_barrier();
+  std::string ini = kLattice;
+  ini.replace(ini.find("[scene]"), std::string::npos, "[scene]\ntype = file\nfile = " + out + "\n");
+  const Config c = parse_config_text(ini);
+  ASSERT_TRUE(scene::in_blocks(c.scene));
+  check_scene("file scene in blocks", ini, 1500, 500, true);
+}
+
 TEST(SetupBlocks, EachRankBuildsOnlyItsBlockAndTheBlocksMakeTheScene) {
   const Config c = parse_config_text(kLattice);
   const SceneInputs in{c.scene, c.domain, "", nullptr};
