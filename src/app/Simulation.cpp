@@ -112,8 +112,7 @@ void Simulation::setup_neighbours() {
   // From the radii of every disc (measure_radii). The checks of the discs see this rank's discs only (a
   // block of a checkpoint on --resume): agreed.
   agree(comm_, [&] {
-    const double skin = config_.skin > 0.0 ? config_.skin : 0.25 * R_total_ / static_cast<double>(n_discs_);
-    neighbours_ = NeighbourList(skin);
+    neighbours_ = NeighbourList(skin_for(R_total_ / static_cast<double>(n_discs_)));
     start_checks::check_cells(config_, neighbours_.range(R_max_));
     check_periodic_lengths();
     for (std::size_t w = 0; w < walls_.size(); ++w)

@@ -154,6 +154,8 @@ class Simulation final : public RunTarget {
   void assign_rough_materials();
   void warn_unused_materials() const;
   void setup_neighbours();
+  // neighbour.skin, or by default a quarter of the discs' mean radius.
+  double skin_for(double mean_radius) const { return config_.skin > 0.0 ? config_.skin : 0.25 * mean_radius; }
   // A periodic length holds at least twice the interaction range.
   void check_periodic_lengths() const;
   void setup_boundaries();

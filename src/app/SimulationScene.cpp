@@ -52,7 +52,7 @@ void Simulation::add_scene_discs() {
     const Partition::RectUnits units = [&](int x0, int y0, int x1, int y1) {
       return config_.scene.type->rect_count(in, decomposition_->grid(), x0, y0, x1, y1);
     };
-    const double range = 2.0 * radius + (config_.skin > 0.0 ? config_.skin : 0.25 * radius);
+    const double range = NeighbourList(skin_for(radius)).range(radius);
     start_checks::check_cells(config_, range);  // as setup_neighbours will: a grid this machine can hold
     make_decomposition(false, range, &units);
     scene = config_.scene.type->cells(in, decomposition_->grid(), decomposition_->own_cells());

@@ -12,38 +12,29 @@ void NeighbourList::bin(const DiscStore& discs, const Domain& domain, double R_m
   std::vector<int> cx(n), cy(n);
   for (std::size_t i = 0; i < n; ++i)
     cx[i] = grid_.column_of(discs.position[i]), cy[i] = grid_.row_of(discs.position[i].y);
-  // The distinct values of v, ascending: marked over their span when it is not much wider than v (a rank's
-  // compact region), else sorted.
-  auto distinct = [](std::vector<int> v) {
+  // The distinct values of v, ascending, and each one's place among them by value over their span: marked over
+  // the span when it is not much wider than v (a rank's compact region), else sorted and found by binary search
+  // (a periodic wrap's far side; `slot` empty).
+  const auto compress = [](std::vector<int> v, std::vector<int>& slot) {
+    slot.clear();
     if (v.empty()) return v;
     const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
-    const auto span = static_cast<std::size_t>(*hi - *lo) + 1;
+    const int first = *lo;
+    const auto span = static_cast<std::size_t>(*hi - first) + 1;
     if (span > 4 * v.size() + 64) {
       std::sort(v.begin(), v.end());
       v.erase(std::unique(v.begin(), v.end()), v.end());
       return v;
     }
-    std::vector<char> present(span, 0);
-    const int first = *lo;
-    for (int c : v) present[static_cast<std::size_t>(c - first)] = 1;
+    slot.assign(span, -1);
+    for (int c : v) slot[static_cast<std::size_t>(c - first)] = 0;
     v.clear();
     for (std::size_t k = 0; k < span; ++k)
-      if (present[k]) v.push_back(first + static_cast<int>(k));
+      if (slot[k] == 0) slot[k] = static_cast<int>(v.size()), v.push_back(first + static_cast<int>(k));
     return v;
   };
-  columns_ = distinct(cx);
-  rows_ = distinct(cy);
-  // Each occupied column's and row's place among them, looked up directly over their span when that is not
-  // much wider than their number (a rank's compact region), else by binary search (a periodic wrap's far side).
-  const auto slots = [](const std::vector<int>& v) {
-    std::vector<int> slot;
-    if (v.empty() || static_cast<std::size_t>(v.back() - v.front()) > 4 * v.size() + 64) return slot;
-    slot.assign(static_cast<std::size_t>(v.back() - v.front()) + 1, -1);
-    for (std::size_t k = 0; k < v.size(); ++k) slot[static_cast<std::size_t>(v[k] - v.front())] = static_cast<int>(k);
-    return slot;
-  };
-  column_slot_ = slots(columns_);
-  row_slot_ = slots(rows_);
+  columns_ = compress(cx, column_slot_);
+  rows_ = compress(cy, row_slot_);
   const std::size_t n_bins = columns_.size() * rows_.size();
   cell_start_.assign(n_bins + 1, 0);
   std::vector<std::size_t> cell(n);

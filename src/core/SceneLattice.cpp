@@ -60,28 +60,43 @@ void check_extent(const SceneInputs& in, bool hex) {
   }
 }
 
-// The site of gid k (row k / nx, column k % nx).
-SceneDisc site(const SceneConfig& s, bool hex, std::int64_t k) {
-  const auto j = static_cast<int>(k / s.nx), i = static_cast<int>(k % s.nx);
-  return {k, position(s, hex, row_step(s, hex), i, j), s.radius, s.velocity, s.omega};
-}
-
 std::int64_t sites(const SceneConfig& s) { return static_cast<std::int64_t>(s.nx) * s.ny; }
 
-// The sites [first, first + count), each with its material slot from the keyed shuffle of the whole lattice's exact
-// counts (scene::material_slot_of: no list of every site).
+// The lattice's discs one at a time: the site of column i of row j (gid j nx + i) with its material slot from the
+// keyed shuffle of the whole lattice's exact counts (scene::material_slot_of: no list of every site).
+class Sites {
+ public:
+  Sites(const SceneConfig& s, bool hex)
+      : s_(s),
+        hex_(hex),
+        row_(row_step(s, hex)),
+        n_(static_cast<std::uint64_t>(sites(s))),
+        counts_(scene::material_counts(s, n_)) {}
+  SceneDisc at(int i, int j) const {
+    const std::int64_t k = static_cast<std::int64_t>(j) * s_.nx + i;
+    SceneDisc d{k, position(s_, hex_, row_, i, j), s_.radius, s_.velocity, s_.omega};
+    d.material = scene::slot_material(s_, scene::material_slot_of(s_, counts_, n_, static_cast<std::uint64_t>(k)));
+    return d;
+  }
+
+ private:
+  const SceneConfig& s_;
+  bool hex_;
+  double row_;
+  std::uint64_t n_;
+  std::vector<std::size_t> counts_;
+};
+
+// The sites [first, first + count).
 std::vector<SceneDisc> lattice_block(const SceneInputs& in, bool hex, std::int64_t first, std::int64_t count) {
   const SceneConfig& s = in.scene;
   check_memory(static_cast<double>(count), 0.0, 0.0, "scene.nx x scene.ny");
   check_extent(in, hex);
-  const auto n = static_cast<std::uint64_t>(sites(s));
-  const std::vector<std::size_t> counts = scene::material_counts(s, n);
+  const Sites lattice(s, hex);
   std::vector<SceneDisc> out;
   out.reserve(static_cast<std::size_t>(count));
-  for (std::int64_t k = first; k < first + count; ++k) {
-    out.push_back(site(s, hex, k));
-    out.back().material = scene::slot_material(s, scene::material_slot_of(s, counts, n, static_cast<std::uint64_t>(k)));
-  }
+  for (std::int64_t k = first; k < first + count; ++k)
+    out.push_back(lattice.at(static_cast<int>(k % s.nx), static_cast<int>(k / s.nx)));
   return out;
 }
 
@@ -163,8 +178,7 @@ std::vector<SceneDisc> lattice_cells(const SceneInputs& in, bool hex, const Cell
   const double share = static_cast<double>(n) * static_cast<double>(cells.size()) / static_cast<double>(grid.size());
   check_memory(share, 0.0, 0.0, "scene.nx x scene.ny");
   check_extent(in, hex);
-  const std::vector<std::size_t> counts = scene::material_counts(s, static_cast<std::uint64_t>(n));
-  const double row = row_step(s, hex);
+  const Sites lattice(s, hex);
   const LatticeWalk walk(s, hex, grid);
   if (!std::is_sorted(cells.begin(), cells.end())) std::sort(cells.begin(), cells.end());  // row-major
   const auto nx = static_cast<std::size_t>(grid.nx());
@@ -181,13 +195,7 @@ std::vector<SceneDisc> lattice_cells(const SceneInputs& in, bool hex, const Cell
         while (b < r1 && cells[b] == cells[b - 1] + 1) ++b;
         const auto [first, last] =
             walk.columns(j, static_cast<int>(cells[a] % nx), static_cast<int>(cells[b - 1] % nx));
-        for (int i = first; i <= last; ++i) {
-          SceneDisc d{static_cast<std::int64_t>(j) * s.nx + i, position(s, hex, row, i, j), s.radius, s.velocity,
-                      s.omega};
-          d.material = scene::slot_material(
-              s, scene::material_slot_of(s, counts, static_cast<std::uint64_t>(n), static_cast<std::uint64_t>(d.gid)));
-          out.push_back(d);
-        }
+        for (int i = first; i <= last; ++i) out.push_back(lattice.at(i, j));
         a = b;
       }
     }

@@ -39,8 +39,8 @@ Decomposition::Decomposition(const Domain& domain, double range, const std::stri
 }
 
 int Decomposition::owner_of_cell(std::size_t c) const {
-  const std::size_t at = box_at(c);
-  return at != kOutside ? box_owner_[at] : map_->owner(c);
+  return owner_at(static_cast<int>(c % static_cast<std::size_t>(grid_.nx())),
+                  static_cast<int>(c / static_cast<std::size_t>(grid_.nx())));
 }
 
 std::vector<std::size_t> Decomposition::own_cells() const {

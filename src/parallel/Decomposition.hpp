@@ -35,17 +35,12 @@ class Decomposition {
   const CellGrid& grid() const { return grid_; }
   // A deforming cell's shape now (the cells' counts and owners kept): before a migration.
   void follow(const Domain& domain) { grid_.follow(domain); }
-  int owner(Vec2 x) const {
-    const int cx = grid_.column_of(x), cy = grid_.row_of(x.y);
-    const std::size_t at = box_at(cx, cy);
-    return at != kOutside ? box_owner_[at] : map_->owner(grid_.index(cx, cy));
-  }
+  int owner(Vec2 x) const { return owner_at(grid_.column_of(x), grid_.row_of(x.y)); }
   // Any cell's owner: from the table of this rank's neighbourhood, else from the map.
   int owner_of_cell(std::size_t c) const;
   const std::string& partitioner() const { return partitioner_; }
-  // The ranks but this one owning a cell of the stencil around `cell`, ascending, into `out`; ghost_ranks: those
-  // of the cell of x (a ghost's destinations; none for an inner cell of this rank).
-  void ranks_around(std::size_t cell, std::vector<int>& out) const;
+  // The ranks but this one owning a cell of the stencil around the cell of x, ascending, into `out` (a ghost's
+  // destinations; none for an inner cell of this rank).
   void ghost_ranks(Vec2 x, std::vector<int>& out) const {
     const int cx = grid_.column_of(x), cy = grid_.row_of(x.y);
     const std::size_t at = box_at(cx, cy);
@@ -100,6 +95,13 @@ class Decomposition {
   // table over the box `box`.
   template <class F>
   void owners_around(std::size_t cell, std::size_t at, const std::vector<int>& box, const Partition& map, F f) const;
+  // The ranks but this one around `cell` (ghost_ranks beyond the inner cells).
+  void ranks_around(std::size_t cell, std::vector<int>& out) const;
+  // The owner of cell (cx, cy): the table's, else the map's (one rank: this one).
+  int owner_at(int cx, int cy) const {
+    const std::size_t at = box_at(cx, cy);
+    return at != kOutside ? box_owner_[at] : comm_.size() == 1 ? 0 : map_->owner(grid_.index(cx, cy));
+  }
   // The entry of cell (cx, cy) in the neighbourhood table, kOutside beyond it.
   static constexpr std::size_t kOutside = SIZE_MAX;
   std::size_t box_at(int cx, int cy) const {

@@ -18,6 +18,13 @@ namespace {
 
 using Cells = std::vector<std::pair<std::uint64_t, std::uint64_t>>;  // (cell key, extra weight), ascending key
 
+// The point j total / P of the work along the curve, where cut j opens rank j (j x total needs 128 bits: GCC's and
+// Clang's extension).
+std::uint64_t cut_target(std::uint64_t j, std::uint64_t total, std::uint64_t P) {
+  __extension__ typedef unsigned __int128 Wide;
+  return static_cast<std::uint64_t>((static_cast<Wide>(j) * total) / P);
+}
+
 class SfcPartition final : public Partition {
  public:
   explicit SfcPartition(const PartitionContext& c) : grid_(c.grid), curve_(c.curve), comm_(c.comm) {}
@@ -112,8 +119,7 @@ std::vector<std::uint64_t> SfcPartition::weighted_cuts(const Cells& cells, std::
   // rank finds each cut.
   const auto P = static_cast<std::uint64_t>(comm_.size());
   std::vector<std::uint64_t> cuts(P + 1, 0);
-  __extension__ typedef unsigned __int128 Wide;  // j x total needs 128 bits (GCC's and Clang's extension)
-  auto target = [&](std::uint64_t j) { return static_cast<std::uint64_t>((static_cast<Wide>(j) * total) / P); };
+  auto target = [&](std::uint64_t j) { return cut_target(j, total, P); };
   std::uint64_t j = 1;
   while (j < P && target(j) < offset) ++j;
   std::uint64_t acc = offset, pos = lo;
@@ -166,10 +172,9 @@ bool SfcPartition::weigh(const RectUnits& units) {
            Decomposition::kCurveScale * units(x0, y0, x1, y1);
   };
   const std::uint64_t total = work(0, 0, grid_.nx(), grid_.ny());
-  __extension__ typedef unsigned __int128 Wide;  // j x total needs 128 bits (as weighted_cuts)
   for (int j = 1; j < P; ++j)
     cuts_[j] =
-        curve_.key_at_work(static_cast<std::uint64_t>((static_cast<Wide>(j) * total) / static_cast<Wide>(P)), work);
+        curve_.key_at_work(cut_target(static_cast<std::uint64_t>(j), total, static_cast<std::uint64_t>(P)), work);
   return true;
 }
 
