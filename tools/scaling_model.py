@@ -10,19 +10,20 @@ import argparse
 import math
 
 # Measured on the test machine (docs/scaling.md, "Measured"): ghosts per rank g = G sqrt(n) for n discs per
-# rank (Hilbert ranges), 40 B per ghost and step, 280 B per disc in a checkpoint (with two contact rows).
+# rank (Hilbert ranges), 40 B per ghost and step, 232 B per disc in a checkpoint (with two contact rows: the file
+# of the 40,000,000-disc run).
 G_GHOSTS = 7.8
 GHOST_BYTES = 40
-CHECKPOINT_BYTES = 280
+CHECKPOINT_BYTES = 232
 # The step's reduction buffer: 5 slots without controlled walls; with four servo walls 4 x 208 + 5 slots.
 REDUCE_BYTES = {"deposition": 48, "biaxial": 8 * (4 * 208 + 6)}
 # Steps per reduction without controlled walls (measured 10 in the deposition: parallel.check_every).
 STEPS_PER_REDUCTION = {"deposition": 10.0, "biaxial": 1.0}
 NEIGHBOURS = 8  # partners of a rank in 2D (measured 5 to 7 on 8 ranks)
-# Peak bytes per disc of a rank (docs/scaling.md, "Forty million discs": 4,000,000 discs with wang rolling on 2
-# ranks): 612 through the steps, 890 while a checkpoint is written; a random or CSV scene's set-up holds about
-# 315 B per disc of the whole scene on every rank.
-PEAK_BYTES = 890
+# Peak bytes per disc of a rank (docs/scaling.md, "Forty million discs": 40,000,000 discs with wang rolling on 2
+# ranks, set-up, steps, checkpoint and final.csv); a random or CSV scene's set-up holds about 315 B per disc of the
+# whole scene on every rank.
+PEAK_BYTES = 381
 WHOLE_SCENE_BYTES = 315
 
 

@@ -20,6 +20,12 @@ struct ContactKey {
   friend bool operator==(const ContactKey& a, const ContactKey& b) { return a.lo == b.lo && a.hi == b.hi; }
 };
 
+// A row to be: its key and local disc (or wall) indices, as the neighbour search finds it.
+struct RowCandidate {
+  ContactKey key;
+  std::int32_t i1 = 0, i2 = 0;
+};
+
 // What each contact-table column is used for. Every operation on whole rows (push, copy, inheritance by
 // key, migration records, checkpoints, memory accounting) loops over the column table below instead of
 // naming columns one by one, so a new column is one line there.
@@ -93,6 +99,11 @@ class ContactTable {
   // Copies history and last forces, matched by key, from `old` (both tables in ascending key order).
   // Rows of `old` that are not candidates any more are dropped: their contact has opened.
   void inherit_history(const ContactTable& old);
+  // Replaces the rows by `found` (ascending keys; emptied and freed here), each new row taking the kept columns
+  // (kColumnInherit) of the row of its key held now, the other columns zero (param too: the caller sets it). One
+  // column at a time, each old column freed as soon as its successor is filled, so that the peak is the kept
+  // columns, `found` and the new keys and indices instead of two whole tables (docs/scaling.md, "Memory of a run").
+  void replace_rows(std::vector<RowCandidate>& found);
 
   // Visits every column present, in the checkpoint's order, with its name (the dataset name under the
   // contact group, "history/<slot>" for a slot), its uses and that column of each of `tables` (tables of

@@ -2,13 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
+#include <cstdint>
+#include <stdexcept>
 
 namespace rondel {
 
 void NeighbourList::bin(const DiscStore& discs, const Domain& domain, double R_max) {
   grid_ = CellGrid(domain, range(R_max));
   const std::size_t n = discs.size();
+  if (n >= UINT32_MAX) throw std::length_error("a neighbour list of 2^32 discs or more on one rank");
   std::vector<int> cx(n), cy(n);
   for (std::size_t i = 0; i < n; ++i)
     cx[i] = grid_.column_of(discs.position[i]), cy[i] = grid_.row_of(discs.position[i].y);
@@ -44,8 +46,8 @@ void NeighbourList::bin(const DiscStore& discs, const Domain& domain, double R_m
   }
   for (std::size_t c = 0; c < n_bins; ++c) cell_start_[c + 1] += cell_start_[c];
   cell_items_.resize(n);
-  std::vector<std::size_t> fill(cell_start_.begin(), cell_start_.end() - 1);
-  for (std::size_t i = 0; i < n; ++i) cell_items_[fill[cell[i]]++] = i;
+  std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
+  for (std::size_t i = 0; i < n; ++i) cell_items_[fill[cell[i]]++] = static_cast<std::uint32_t>(i);
 }
 
 namespace {
@@ -67,18 +69,18 @@ long NeighbourList::bin_of(int cx, int cy) const {
   return y * static_cast<long>(columns_.size()) + x;
 }
 
-std::vector<NeighbourList::Candidate> NeighbourList::candidates(const DiscStore& discs, const Domain& domain,
-                                                                std::size_t expected) const {
+std::vector<RowCandidate> NeighbourList::candidates(const DiscStore& discs, const Domain& domain,
+                                                    std::size_t expected) const {
   if (domain.standing()) return candidates_by(discs, MinimumImage(domain), expected);
   return candidates_by(discs, ShearedImage(domain), expected);
 }
 
 template <class Image>
-std::vector<NeighbourList::Candidate> NeighbourList::candidates_by(const DiscStore& discs, const Image& image,
-                                                                   std::size_t expected) const {
+std::vector<RowCandidate> NeighbourList::candidates_by(const DiscStore& discs, const Image& image,
+                                                       std::size_t expected) const {
   // About as many as the rows held now: reserved so that the list does not double past its size (the rebuild's
-  // peak memory is the old rows, the new rows and this list).
-  std::vector<Candidate> found;
+  // peak memory is the kept columns of the old rows, this list and the new keys: ContactTable::replace_rows).
+  std::vector<RowCandidate> found;
   found.reserve(expected + expected / 16 + 64);
   const std::size_t n_owned = discs.n_owned();
   std::vector<std::size_t> around;
@@ -103,13 +105,13 @@ std::vector<NeighbourList::Candidate> NeighbourList::candidates_by(const DiscSto
           const Vec2 d = image.separation(discs.position[i], discs.position[j]);
           const double reach = discs.radius[i] + discs.radius[j] + skin_;
           if (dot(d, d) < reach * reach)
-            found.emplace_back(ContactKey{discs.gid[i], discs.gid[j]}, static_cast<std::int32_t>(i),
-                               static_cast<std::int32_t>(j));
+            found.push_back(
+                {ContactKey{discs.gid[i], discs.gid[j]}, static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)});
         }
       }
     }
   }
-  std::sort(found.begin(), found.end(), [](const auto& x, const auto& y) { return std::get<0>(x) < std::get<0>(y); });
+  std::sort(found.begin(), found.end(), [](const RowCandidate& x, const RowCandidate& y) { return x.key < y.key; });
   return found;
 }
 
@@ -119,14 +121,11 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
   for (double R : discs.radius) R_max = std::max(R_max, R);
   bin(discs, domain, R_max);
   {
-    std::vector<Candidate> found = candidates(discs, domain, pairs.size());
-    const ContactTable old_pairs = std::move(pairs);
-    pairs = old_pairs.empty_like();
-    pairs.reserve(found.size());
-    for (const auto& [k, i, j] : found)
-      pairs.push(k, i, j, static_cast<std::int32_t>(params.pair_index(discs.material[i], discs.material[j])));
-    found = {};  // freed before the history is copied
-    pairs.inherit_history(old_pairs);
+    std::vector<RowCandidate> found = candidates(discs, domain, pairs.size());
+    pairs.replace_rows(found);
+    for (std::size_t r = 0; r < pairs.size(); ++r)
+      pairs.param[r] =
+          static_cast<std::int32_t>(params.pair_index(discs.material[pairs.i1[r]], discs.material[pairs.i2[r]]));
   }
   build_wall_rows(discs, walls, params, wall_rows);
   position_at_build_.assign(discs.position.begin(), discs.position.begin() + discs.n_owned());

@@ -1,7 +1,7 @@
 #pragma once
 #include <cmath>
 #include <cstddef>
-#include <tuple>
+#include <cstdint>
 #include <vector>
 
 #include "core/CellGrid.hpp"
@@ -52,7 +52,7 @@ class NeighbourList {
   // Bytes this list holds (bins and the positions at the last build; the rows are the ContactTables').
   std::size_t memory_bytes() const {
     return (columns_.capacity() + rows_.capacity() + column_slot_.capacity() + row_slot_.capacity()) * sizeof(int) +
-           (cell_start_.capacity() + cell_items_.capacity()) * sizeof(std::size_t) +
+           (cell_start_.capacity() + cell_items_.capacity()) * sizeof(std::uint32_t) +
            position_at_build_.capacity() * sizeof(Vec2);
   }
 
@@ -65,10 +65,9 @@ class NeighbourList {
   long bin_of(int cx, int cy) const;
   // The pairs within the interaction range (key, local indices), in ascending key, each once from its lower gid,
   // at least one owned disc, no rigid body with itself; `expected`: about how many (the rows held now).
-  using Candidate = std::tuple<ContactKey, std::int32_t, std::int32_t>;
-  std::vector<Candidate> candidates(const DiscStore& discs, const Domain& domain, std::size_t expected) const;
+  std::vector<RowCandidate> candidates(const DiscStore& discs, const Domain& domain, std::size_t expected) const;
   template <class Image>
-  std::vector<Candidate> candidates_by(const DiscStore& discs, const Image& image, std::size_t expected) const;
+  std::vector<RowCandidate> candidates_by(const DiscStore& discs, const Image& image, std::size_t expected) const;
   // A deforming cell's strain since the build, G = F - I with F = h h0^-1 (upper triangular), and half its
   // Frobenius norm times the interaction range: a pair whose discs moved with the mean flow comes closer by at
   // most |G| (2 R_max + skin), across the boundary too (F maps the lattice of the build onto today's).
@@ -81,9 +80,10 @@ class NeighbourList {
 
   double skin_;
   CellGrid grid_;
-  std::vector<int> columns_, rows_;                   // the occupied columns and rows, ascending
-  std::vector<int> column_slot_, row_slot_;           // their places by column and row over their span (or empty)
-  std::vector<std::size_t> cell_start_, cell_items_;  // bin b is column b % columns_.size(), row b / it
+  std::vector<int> columns_, rows_;          // the occupied columns and rows, ascending
+  std::vector<int> column_slot_, row_slot_;  // their places by column and row over their span (or empty)
+  // Bin b is column b % columns_.size(), row b / it; its discs are cell_items_[cell_start_[b], cell_start_[b + 1]).
+  std::vector<std::uint32_t> cell_start_, cell_items_;
   std::vector<Vec2> position_at_build_;
   Domain cell_at_build_;
   double dt_ = 0.0, cell_range_ = 0.0;  // set_cell_bound

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <type_traits>
 
 #include "parallel/Agreement.hpp"
 
@@ -48,8 +49,8 @@ void ByteExchange::run(const char* send, const std::vector<std::uint64_t>& send_
   MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
 }
 
-void CanonicalOrder::prepare(std::size_t bytes, const Communicator& comm) {
-  bytes_ = bytes;
+void CanonicalOrder::prepare(const Communicator& comm) {
+  bytes_ = sizeof(OrderKey);
   const int ranks = comm.size(), me = comm.rank();
   agree(comm, [&] {
     if (!std::is_sorted(order_.begin(), order_.end(), key_less)) std::sort(order_.begin(), order_.end(), key_less);
@@ -68,11 +69,29 @@ void CanonicalOrder::prepare(std::size_t bytes, const Communicator& comm) {
   for (int r = 1; r < ranks; ++r)
     ranges_[r] = static_cast<std::size_t>(
         std::lower_bound(order_.begin(), order_.end(), Entry{splitters_[r - 1], 0}, key_less) - order_.begin());
-  const std::size_t record = sizeof(OrderKey) + bytes_;
-  std::uint64_t send = 0;
+  std::uint64_t sent = 0;
   for (int r = 0; r < ranks; ++r)
-    if (r != me) send += send_bytes_[r] = (ranges_[r + 1] - ranges_[r]) * record;
-  agree(comm, [&] { resize_buffer(send_, send); });
+    if (r != me) sent += ranges_[r + 1] - ranges_[r];
+  agree(comm, [&] { resize_buffer(sent_, sent); });
+  size_exchange(sizeof(OrderKey), comm);
+}
+
+void CanonicalOrder::size_exchange(std::size_t bytes, const Communicator& comm) {
+  bytes_ = bytes;
+  const int ranks = comm.size(), me = comm.rank();
+  if (ranks == 1) return;
+  send_bytes_.assign(static_cast<std::size_t>(ranks), 0);
+  for (int r = 0; r < ranks; ++r)
+    if (r != me) send_bytes_[r] = (ranges_[r + 1] - ranges_[r]) * bytes;
+  agree(comm, [&] { resize_buffer(send_, sent_.size() * bytes); });
+}
+
+void CanonicalOrder::release() {
+  const auto drop = [](auto& v) { std::decay_t<decltype(v)>().swap(v); };
+  drop(order_), drop(runs_), drop(samples_), drop(all_samples_), drop(splitters_), drop(ranges_);
+  drop(sent_), drop(send_bytes_), drop(recv_bytes_), drop(send_), drop(recv_);
+  exchange_ = ByteExchange();
+  total_ = offset_ = 0;
 }
 
 void CanonicalOrder::choose_splitters(const Communicator& comm) {
@@ -109,7 +128,7 @@ void CanonicalOrder::choose_splitters(const Communicator& comm) {
 
 void CanonicalOrder::finish(const Communicator& comm) {
   const int ranks = comm.size(), me = comm.rank();
-  const std::size_t record = sizeof(OrderKey) + bytes_;
+  constexpr std::size_t record = sizeof(OrderKey);
   std::uint64_t received = 0;
   if (ranks > 1) {
     exchange_.run(send_.data(), send_bytes_, recv_, recv_bytes_, comm);
@@ -142,24 +161,23 @@ void CanonicalOrder::finish(const Communicator& comm) {
 }
 
 void CanonicalOrder::merge_runs() {
+  // Pairwise, in place: std::inplace_merge borrows a buffer of the shorter run at most (or merges without one), so
+  // that the merge does not hold a second copy of this rank's keys.
   while (runs_.size() > 2) {
-    resize_buffer(spare_, order_.size());
     std::size_t next = 1;
     for (std::size_t r = 0; r + 1 < runs_.size(); r += 2) {
       const std::size_t lo = runs_[r], mid = runs_[r + 1], hi = r + 2 < runs_.size() ? runs_[r + 2] : mid;
-      std::merge(order_.begin() + lo, order_.begin() + mid, order_.begin() + mid, order_.begin() + hi,
-                 spare_.begin() + lo, key_less);
+      std::inplace_merge(order_.begin() + lo, order_.begin() + mid, order_.begin() + hi, key_less);
       runs_[next++] = hi;
     }
     runs_.resize(next);
-    std::swap(order_, spare_);
   }
 }
 
 std::size_t CanonicalOrder::capacity_bytes() const {
-  return (order_.capacity() + spare_.capacity()) * sizeof(Entry) + runs_.capacity() * sizeof(std::size_t) +
-         (samples_.capacity() + all_samples_.capacity()) * sizeof(Sample) + splitters_.capacity() * sizeof(OrderKey) +
-         ranges_.capacity() * sizeof(std::size_t) +
+  return order_.capacity() * sizeof(Entry) + runs_.capacity() * sizeof(std::size_t) +
+         sent_.capacity() * sizeof(std::uint32_t) + (samples_.capacity() + all_samples_.capacity()) * sizeof(Sample) +
+         splitters_.capacity() * sizeof(OrderKey) + ranges_.capacity() * sizeof(std::size_t) +
          (send_bytes_.capacity() + recv_bytes_.capacity()) * sizeof(std::uint64_t) + send_.capacity() +
          recv_.capacity() + exchange_.capacity_bytes();
 }

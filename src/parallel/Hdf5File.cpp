@@ -379,31 +379,57 @@ void Hdf5File::verify_dataset(const std::string& name, std::uint64_t rows) const
 template <class T>
 void Hdf5File::write_block(const std::string& name, const T* local, std::uint64_t values, std::uint64_t total,
                            std::uint64_t offset, int width) {
+  const std::uint64_t rows = values * components<T>() / (width * components<T>());
+  write_rows<T>(name, rows, total, offset, width, total, [local, width](std::uint64_t first, std::uint64_t) {
+    return local + first * static_cast<std::uint64_t>(width);
+  });
+}
+
+template <class T>
+void Hdf5File::write_pieces(const std::string& name, std::uint64_t rows, std::uint64_t total, std::uint64_t offset,
+                            std::uint64_t piece, const std::function<const T*(std::uint64_t, std::uint64_t)>& fill) {
+  write_rows<T>(name, rows, total, offset, 1, piece, fill);
+}
+
+template <class T>
+void Hdf5File::write_rows(const std::string& name, std::uint64_t n_local, std::uint64_t total, std::uint64_t offset,
+                          int width, std::uint64_t piece,
+                          const std::function<const T*(std::uint64_t, std::uint64_t)>& fill) {
+  const std::size_t row_bytes = static_cast<std::size_t>(width) * sizeof(T);
   width *= components<T>();
   const int rank = width == 1 ? 1 : 2;
   hsize_t dims[2] = {total, static_cast<hsize_t>(width)};
   Handle space{H5Screate_simple(rank, dims, nullptr), H5Sclose};
   Handle set{H5Dcreate2(file_, name.c_str(), memory_type<T>(), space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
              H5Dclose};
-  const hsize_t n_local = values * components<T>() / width;
   // Agreed before the collective write, which a rank with a bad selection would not join.
   check(set.id >= 0 && offset + n_local <= total,
         set.id < 0 ? "cannot create dataset " + name
                    : "rows [" + std::to_string(offset) + ", " + std::to_string(offset + n_local) +
                          ") are outside dataset " + name + " of " + std::to_string(total) + " rows",
         true);
-  hsize_t start[2] = {offset, 0}, count[2] = {n_local, static_cast<hsize_t>(width)};
-  H5Sselect_hyperslab(space.id, H5S_SELECT_SET, start, nullptr, count, nullptr);
-  Handle mem{H5Screate_simple(rank, count, nullptr), H5Sclose};
-  if (n_local == 0) H5Sselect_none(mem.id), H5Sselect_none(space.id);
-  if (total > 0)
-    keep(H5Dwrite(set.id, memory_type<T>(), mem.id, space.id, xfer_, local) >= 0 &&
+  // Every rank makes the same number of collective writes (an empty one when its block is done).
+  std::uint64_t pieces = total == 0 ? 0 : 1;
+  if (piece < total) {
+    pieces = (n_local + piece - 1) / piece;
+    if (comm_.size() > 1) MPI_Allreduce(MPI_IN_PLACE, &pieces, 1, MPI_UINT64_T, MPI_MAX, comm_.comm());
+  }
+  std::uint64_t sums[2] = {0, 0};
+  for (std::uint64_t p = 0; p < pieces; ++p) {
+    const std::uint64_t first = std::min(p * piece, n_local), n = std::min(piece, n_local - first);
+    const T* data = n > 0 ? fill(first, n) : nullptr;
+    Handle slab{H5Dget_space(set.id), H5Sclose};
+    hsize_t start[2] = {offset + first, 0}, count[2] = {n, static_cast<hsize_t>(width)};
+    H5Sselect_hyperslab(slab.id, H5S_SELECT_SET, start, nullptr, count, nullptr);
+    Handle mem{H5Screate_simple(rank, count, nullptr), H5Sclose};
+    if (n == 0) H5Sselect_none(mem.id), H5Sselect_none(slab.id);
+    keep(H5Dwrite(set.id, memory_type<T>(), mem.id, slab.id, xfer_, data) >= 0 &&
              !injected_fault(FaultSite::hdf5_write, comm_.rank()),
          "cannot write dataset " + name);
+    sums[0] += row_checksum(reinterpret_cast<const char*>(data), row_bytes, n, offset + first);
+  }
   // One reduction: the checksum and the number of ranks that failed so far.
-  std::uint64_t sums[2] = {
-      row_checksum(reinterpret_cast<const char*>(local), width / components<T>() * sizeof(T), n_local, offset),
-      kept_ ? 1u : 0u};
+  sums[1] = kept_ ? 1u : 0u;
   if (comm_.size() > 1) MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_UINT64_T, MPI_SUM, comm_.comm());
   if (sums[1] > 0) settle_kept();
   Handle scalar{H5Screate(H5S_SCALAR), H5Sclose};
@@ -443,6 +469,8 @@ std::vector<T> Hdf5File::read(const std::string& name, std::uint64_t offset, std
 
 #define RONDEL_HDF5_TYPE(T)                                                                                            \
   template void Hdf5File::write_block(const std::string&, const T*, std::uint64_t, std::uint64_t, std::uint64_t, int); \
+  template void Hdf5File::write_pieces(const std::string&, std::uint64_t, std::uint64_t, std::uint64_t, std::uint64_t, \
+                                       const std::function<const T*(std::uint64_t, std::uint64_t)>&);                  \
   template std::vector<T> Hdf5File::read(const std::string&, std::uint64_t, std::uint64_t, int, bool) const;
 RONDEL_HDF5_TYPE(double)
 RONDEL_HDF5_TYPE(Vec2)

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <exception>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -80,6 +81,12 @@ class Hdf5File {
   template <class T>
   void write_block(const std::string& name, const T* local, std::uint64_t values, std::uint64_t total,
                    std::uint64_t offset, int width = 1);
+  // The same for a dataset of one T a row, written in collective pieces of at most `piece` rows (every rank makes
+  // as many writes as the rank with the most pieces): fill(first, n) returns this rank's rows [first, first + n)
+  // of its block (a buffer of the caller's, reused from piece to piece).
+  template <class T>
+  void write_pieces(const std::string& name, std::uint64_t rows, std::uint64_t total, std::uint64_t offset,
+                    std::uint64_t piece, const std::function<const T*(std::uint64_t, std::uint64_t)>& fill);
   // Collective block read of rows [offset, offset + count). Every dataset carries a checksum of its rows
   // (order-independent, so it does not depend on how the rows were split over ranks); it is verified
   // after reading: `partitioned` when the ranks' blocks cover the dataset once, otherwise (every rank reads
@@ -106,6 +113,10 @@ class Hdf5File {
   // Collective: throws on every rank (InputError, or IoError when `writing`) if `ok` is false on any, or
   // if any rank kept an error (that one then).
   void check(bool ok, const std::string& what, bool writing = false) const;
+  // write_block and write_pieces: `n_local` rows of `width` T each.
+  template <class T>
+  void write_rows(const std::string& name, std::uint64_t n_local, std::uint64_t total, std::uint64_t offset, int width,
+                  std::uint64_t piece, const std::function<const T*(std::uint64_t, std::uint64_t)>& fill);
   // Keeps the first failure of this rank for the next settlement (not collective).
   void keep(bool ok, const std::string& what);
   // Collective: every rank throws the kept error of the lowest failing rank, if any.

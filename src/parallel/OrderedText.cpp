@@ -15,7 +15,6 @@
 namespace rondel {
 
 namespace {
-constexpr std::uint64_t kPiece = std::uint64_t{1} << 30;
 
 std::string mpi_error(int code) {
   char text[MPI_MAX_ERROR_STRING];
@@ -35,20 +34,27 @@ void settle_or_remove(const Communicator& comm, const std::exception_ptr& error,
 }  // namespace
 
 void write_ordered_text(const std::string& path, const std::string& header, const CanonicalOrder& order,
-                        const std::function<void(std::size_t, std::string&)>& line, const Communicator& comm) {
+                        const std::function<void(std::size_t, std::string&)>& line, const Communicator& comm,
+                        std::size_t piece) {
+  // Two passes over the lines: their length first (for the offsets), then the pieces written, so that no rank
+  // holds more than a piece of text whatever the size of its block.
   std::string text;
+  std::uint64_t length = 0;
   agree(comm, [&] {
     if (injected_fault(FaultSite::alloc, comm.rank())) throw std::bad_alloc();
-    text = comm.root() ? header : std::string();
-    for (std::size_t k = 0; k < order.count(); ++k) line(k, text);
+    text.reserve(piece + 4096);
+    length = comm.root() ? header.size() : 0;
+    for (std::size_t k = 0; k < order.count(); ++k) {
+      text.clear();
+      line(k, text);
+      length += text.size();
+    }
   });
-  std::uint64_t length = text.size(), offset = 0, pieces = (length + kPiece - 1) / kPiece;
-  std::uint64_t total = length;
+  std::uint64_t offset = 0, total = length;
   if (comm.size() > 1) {
     comm.count_collective();
     MPI_Exscan(&length, &offset, 1, MPI_UINT64_T, MPI_SUM, comm.comm());
     if (comm.root()) offset = 0;
-    pieces = static_cast<std::uint64_t>(comm.max(static_cast<std::int64_t>(pieces)));
     total = static_cast<std::uint64_t>(comm.sum(static_cast<std::int64_t>(length)));
   }
   // The whole file's space first: a full disk is found before any rank writes (a collective write that
@@ -68,15 +74,21 @@ void write_ordered_text(const std::string& path, const std::string& header, cons
   settle_or_remove(comm, error, path);                           // every rank opened it, or every rank throws
   rc = MPI_File_set_size(file, static_cast<MPI_Offset>(total));  // what the file held before goes
   comm.count_collective();
-  // Every rank makes the same number of collective writes (an empty one when its block is done).
-  for (std::uint64_t p = 0; p < pieces; ++p) {
-    const std::uint64_t at = std::min(p * kPiece, length), n = std::min(kPiece, length - at);
+  // Each rank writes its pieces on its own (independent writes: the ranks' piece counts differ).
+  text.assign(comm.root() ? header : std::string());
+  std::uint64_t at = offset;
+  for (std::size_t k = 0; k <= order.count(); ++k) {
+    if (k < order.count()) line(k, text);
+    if (text.size() < piece && k < order.count()) continue;
     MPI_Status status;
-    const int w = MPI_File_write_at_all(file, static_cast<MPI_Offset>(offset + at), text.data() + at,
-                                        static_cast<int>(n), MPI_CHAR, &status);
-    comm.count_collective();
+    const int w = text.empty() ? MPI_SUCCESS
+                               : MPI_File_write_at(file, static_cast<MPI_Offset>(at), text.data(),
+                                                   static_cast<int>(text.size()), MPI_CHAR, &status);
     if (rc == MPI_SUCCESS) rc = w;
+    at += text.size();
+    text.clear();
   }
+  if (rc == MPI_SUCCESS && at != offset + length) rc = MPI_ERR_OTHER;  // a line that formats differently twice
   const int c = MPI_File_close(&file);
   comm.count_collective();
   if (rc == MPI_SUCCESS) rc = c;

@@ -120,63 +120,61 @@ bool listed(const std::vector<std::string>& fields, const char* name) {
 }  // namespace
 
 template <class T, class Local>
-void StateWriter::write_column(Hdf5File& f, const std::string& name, Local&& local, std::size_t at) {
+void StateWriter::write_column(Hdf5File& f, const std::string& name, Local&& local, const Communicator& comm) {
   const double t0 = now();
-  std::size_t n = order_.count();
+  order_.exchange(
+      sizeof(T), [&local](std::size_t i, char* out) { std::memcpy(out, local(i), sizeof(T)); }, comm);
+  times_.order += now() - t0;
+  write_arranged<T>(f, name, local, 0);
+}
+
+template <class T, class Local>
+void StateWriter::write_arranged(Hdf5File& f, const std::string& name, Local&& local, std::size_t at) {
+  // In pieces of at most 2^20 rows: the copy in file order is 16 MiB at most, whatever this rank's block.
+  constexpr std::uint64_t kPiece = std::uint64_t{1} << 20;
+  std::uint64_t n = order_.count();
   try {
-    resize_buffer(column_, (n * sizeof(T) + sizeof(std::uint64_t) - 1) / sizeof(std::uint64_t));
+    resize_buffer(column_, (std::min(n, kPiece) * sizeof(T) + sizeof(std::uint64_t) - 1) / sizeof(std::uint64_t));
   } catch (...) {
     f.defer_error(std::current_exception());  // thrown on every rank by the write below
     n = 0;
   }
-  char* out = reinterpret_cast<char*>(column_.data());
-  for (std::size_t k = 0; k < n; ++k) {
-    const void* from = order_.is_local(k) ? static_cast<const void*>(local(order_.local_index(k)))
-                                          : static_cast<const void*>(order_.received(k) + at);
-    std::memcpy(out + k * sizeof(T), from, sizeof(T));
-  }
-  times_.columns += now() - t0;
-  f.write_block(name, reinterpret_cast<const T*>(out), n, order_.total(), order_.offset());
+  T* out = reinterpret_cast<T*>(column_.data());
+  f.write_pieces<T>(name, n, order_.total(), order_.offset(), kPiece, [&](std::uint64_t first, std::uint64_t count) {
+    const double t0 = now();
+    for (std::uint64_t k = first; k < first + count; ++k) {
+      const void* from = order_.is_local(k) ? static_cast<const void*>(local(order_.local_index(k)))
+                                            : static_cast<const void*>(order_.received(k) + at);
+      std::memcpy(out + (k - first), from, sizeof(T));
+    }
+    times_.columns += now() - t0;
+    return static_cast<const T*>(out);
+  });
 }
 
 void StateWriter::write_discs(Hdf5File& f, DiscStore& discs, const Communicator& comm,
                               const std::vector<std::string>& fields) {
-  const std::size_t n = discs.n_owned();
-  // A record: the checkpoint fields, then the rank that owned the disc (a snapshot's "rank").
-  const std::int32_t me = comm.rank();
-  const std::size_t bytes = record_bytes(discs, kCheckpoint) + sizeof me;
   const double t0 = now();
   const std::int64_t* gid = discs.gid.data();
-  order_.arrange(
-      n,
+  order_.arrange_keys(
+      discs.n_owned(),
       [gid](std::size_t i) {
         return OrderKey{gid[i], 0};
-      },
-      bytes,
-      [&](std::size_t i, char* out) {
-        discs.for_each_field([&](const char*, unsigned uses, auto& field) {
-          if (!(uses & kCheckpoint)) return;
-          std::memcpy(out, &field[i], sizeof field[i]);
-          out += sizeof field[i];
-        });
-        std::memcpy(out, &me, sizeof me);
       },
       comm);
   times_.order += now() - t0;
   f.create_group("/discs");
-  std::size_t at = 0;
   discs.for_each_field([&](const char* name, unsigned uses, auto& field) {
     using T = typename std::decay_t<decltype(field)>::value_type;
-    if (!(uses & kCheckpoint)) return;
-    if (fields.empty() || listed(fields, name))
+    if ((uses & kCheckpoint) && (fields.empty() || listed(fields, name)))
       write_column<T>(
-          f, std::string("/discs/") + name, [&field](std::size_t i) { return &field[i]; }, at);
-    at += sizeof(T);
+          f, std::string("/discs/") + name, [&field](std::size_t i) { return &field[i]; }, comm);
   });
   // The owner rank is run metadata: in snapshots on request (for pictures), never in checkpoints.
+  const std::int32_t me = comm.rank();
   if (!fields.empty() && listed(fields, kRankField))
     write_column<std::int32_t>(
-        f, std::string("/discs/") + kRankField, [&me](std::size_t) { return &me; }, at);
+        f, std::string("/discs/") + kRankField, [&me](std::size_t) { return &me; }, comm);
   // A snapshot's row numbers, the connectivity of its XDMF vertex cells (without cells ParaView shows
   // nothing on Apply).
   if (!fields.empty()) {
@@ -184,7 +182,7 @@ void StateWriter::write_discs(Hdf5File& f, DiscStore& discs, const Communicator&
     for (std::uint64_t k = 0; k < order_.count(); ++k) index[k] = static_cast<std::int64_t>(order_.offset() + k);
     f.write(std::string("/discs/") + kIndexField, index, order_.total(), order_.offset());
   }
-  note_bytes(checkpoint_structure_bytes());
+  note(checkpoint_buffer_bytes());
 }
 
 // Rows this rank books (disc 1 owned), with state, in ascending key order over all ranks.
@@ -193,27 +191,24 @@ void StateWriter::write_rows(Hdf5File& f, const std::string& group, const Contac
   resize_buffer(booked_, rows.size());  // room for every row: no doubling while booking
   booked_.clear();
   for (std::size_t r = 0; r < rows.size(); ++r)
-    if (static_cast<std::size_t>(rows.i1[r]) < n_owned && rows.has_state(r)) booked_.push_back(r);
+    if (static_cast<std::size_t>(rows.i1[r]) < n_owned && rows.has_state(r))
+      booked_.push_back(static_cast<std::uint32_t>(r));
   const auto key_of = [&](std::size_t i) {
     const ContactKey& k = rows.key[booked_[i]];
     return OrderKey{k.lo, k.hi};
   };
   const double t0 = now();
-  order_.arrange(
-      booked_.size(), key_of, row_bytes(rows), [&](std::size_t i, char* out) { pack_row_bytes(rows, booked_[i], out); },
-      comm);
+  order_.arrange_keys(booked_.size(), key_of, comm);
   times_.order += now() - t0;
   f.create_group(group);
   f.create_group(group + "/history");
-  std::size_t at = 0;
   rows.for_each_column([&](std::string_view name, unsigned uses, const auto& column) {
     using T = typename std::decay_t<decltype(column)>::value_type;
-    if (!(uses & kColumnRecord)) return;
-    write_column<T>(
-        f, group + "/" + std::string(name), [&](std::size_t i) { return &column[booked_[i]]; }, at);
-    at += sizeof(T);
+    if (uses & kColumnRecord)
+      write_column<T>(
+          f, group + "/" + std::string(name), [&](std::size_t i) { return &column[booked_[i]]; }, comm);
   });
-  note_bytes(checkpoint_structure_bytes());
+  note(checkpoint_buffer_bytes());
 }
 
 void StateWriter::write_records(Hdf5File& f, const std::string& group, const RecordTable& t, const Communicator& comm) {
@@ -239,7 +234,7 @@ void StateWriter::write_records(Hdf5File& f, const std::string& group, const Rec
       comm);
   times_.order += now() - t0;
   f.create_group(group);
-  write_column<ContactKey>(
+  write_arranged<ContactKey>(
       f, group + "/key", [&](std::size_t i) { return &t.key[i]; }, 0);
   std::size_t at = sizeof(ContactKey);
   std::array<std::size_t, 2> end_at{};             // the ends' byte offsets in a record
@@ -252,7 +247,7 @@ void StateWriter::write_records(Hdf5File& f, const std::string& group, const Rec
         for (std::size_t e = 0; e < 2; ++e)
           if (t.segments && name == (e == 0 ? "end1" : "end2")) end_at[e] = at, ends[e] = &values, end = true;
       if (!end)
-        write_column<T>(
+        write_arranged<T>(
             f, group + "/" + name, [&values](std::size_t i) { return &values[i]; }, at);
       at += sizeof(T);
     }
@@ -275,9 +270,19 @@ void StateWriter::write_records(Hdf5File& f, const std::string& group, const Rec
   f.write(group + "/points", points, 2 * order_.total(), 2 * offset);
 }
 
-std::size_t StateWriter::checkpoint_structure_bytes() const {
-  return order_.capacity_bytes() + booked_.capacity() * sizeof(std::size_t) +
-         column_.capacity() * sizeof(std::uint64_t);
+std::size_t StateWriter::checkpoint_buffer_bytes() const {
+  return order_.capacity_bytes() + booked_.capacity() * sizeof(booked_[0]) + column_.capacity() * sizeof(column_[0]);
+}
+
+void StateWriter::note(std::size_t bytes) {
+  peak_bytes_ = std::max(peak_bytes_, bytes);
+  note_bytes(bytes);
+}
+
+void StateWriter::release() {
+  order_.release();
+  std::vector<std::uint32_t>().swap(booked_);
+  std::vector<std::uint64_t>().swap(column_);
 }
 
 void StateWriter::write(const std::string& path, const StateHeader& h, DiscStore& discs, const ContactTable& pairs,
@@ -321,6 +326,7 @@ void StateWriter::write(const std::string& path, const StateHeader& h, DiscStore
     f.write_attribute("/integrity", "attributes_checksum", static_cast<std::int64_t>(digest));
     f.write_attribute("/", "complete", std::int64_t{1});  // last: a file without it was cut short
   });
+  release();
   times_.hdf5 += now() - t0 - times_.order - times_.columns;
 }
 

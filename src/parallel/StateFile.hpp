@@ -100,19 +100,18 @@ struct StateExtras {
 // every checkpointed field plus the contacts); a snapshot also gets the owner rank when "rank" is listed,
 // and its row numbers ("index"). Records are put in file order by a distributed sample sort (CanonicalOrder:
 // no rank holds a list of all keys) and each rank writes its block of every dataset at its prefix-sum
-// offset. Keep one writer per output directory: its buffers keep their capacity from one file to the next.
+// offset. The records travel one dataset at a time, and every buffer is freed when the file is written: a
+// checkpoint adds to the run's memory only while it is written, and at most the sort's 24 B of key and index a
+// record, 4 B a row booked, one dataset's element (16 B at most) a record and, for the records that change rank,
+// 4 B of index and one dataset's element sent or received (docs/scaling.md, "Memory of a run").
 class StateWriter {
  public:
   // `extras`: what the run has besides (its bonds and their breaks).
   void write(const std::string& path, const StateHeader& header, DiscStore& discs, const ContactTable& pairs,
              const ContactTable& wall_rows, const WallSet& walls, const Communicator& comm,
              const std::vector<std::string>& fields, double wall_seconds, const StateExtras& extras = {});
-  // The bytes of this rank's checkpoint structures, as held now: their capacity only grows, so this is
-  // the peak of every file written so far. Per record this rank writes: 24 B of key and index (48 B
-  // while merging received runs), 8 B of row index, and the largest dataset's element (16 B); per record
-  // that changes rank: 16 B of key plus the record (116 B a disc, 84 B a row with two history slots),
-  // once sent and once received; and O(P) counts and splitters (CanonicalOrder).
-  std::size_t checkpoint_structure_bytes() const;
+  // The largest bytes this rank's checkpoint buffers held while writing any file so far.
+  std::size_t checkpoint_structure_bytes() const { return peak_bytes_; }
   // Where the last write() spent its wall time on this rank: putting records in file order (sort,
   // splitters, exchange, merge), copying each dataset's block into place, and HDF5 (datasets, checksums,
   // attributes, opening and closing the file).
@@ -126,15 +125,22 @@ class StateWriter {
   void write_rows(Hdf5File& f, const std::string& group, const ContactTable& rows, std::size_t n_owned,
                   const Communicator& comm);
   void write_records(Hdf5File& f, const std::string& group, const RecordTable& records, const Communicator& comm);
-  // Writes one dataset from this rank's records in file order: a local record's value is *local(i), a
-  // received one's is at byte `at` of its record.
+  // Writes one dataset of the arranged records in file order: its values *local(i) sent to the ranks whose block
+  // holds them, then written (write_column); or from whole records exchanged before, a received one's value at
+  // byte `at` of its record (write_arranged).
   template <class T, class Local>
-  void write_column(Hdf5File& f, const std::string& name, Local&& local, std::size_t at);
+  void write_column(Hdf5File& f, const std::string& name, Local&& local, const Communicator& comm);
+  template <class T, class Local>
+  void write_arranged(Hdf5File& f, const std::string& name, Local&& local, std::size_t at);
+  std::size_t checkpoint_buffer_bytes() const;  // held now
+  void note(std::size_t bytes);                 // into peak_bytes_ and the process's peak
+  void release();
 
   CanonicalOrder order_;
-  std::vector<std::size_t> booked_;    // the rows written, by index in their table
+  std::vector<std::uint32_t> booked_;  // the rows written, by index in their table
   std::vector<std::uint64_t> column_;  // one dataset's block (8-byte words: aligned for every type)
   Times times_;
+  std::size_t peak_bytes_ = 0;
 };
 
 // One file with a writer of its own (tests and tools; a run keeps its writer in Checkpointing).

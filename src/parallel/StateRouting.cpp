@@ -142,6 +142,11 @@ void route_rows_to_owners(ContactTable& rows, bool both_ends, const DiscStore& d
       std::memcpy(&end_owner[k], replies.data() + (at[home_rank(gid_of(k), ranks)]++) * sizeof(std::int32_t),
                   sizeof(std::int32_t));
   });
+  note_bytes(x.send.capacity() + x.recv.capacity() + owner.capacity() * sizeof(owner[0]) + answers.capacity() +
+             replies.capacity() + end_owner.capacity() * sizeof(std::int32_t));
+  // Each buffer is freed as soon as it is used up (a restart's rows are the largest thing a rank reads).
+  const auto release = [](auto& v) { std::decay_t<decltype(v)>().swap(v); };
+  release(answers), release(replies), release(x.recv);
   // 3. Each row to the owner of each end (once when both ends have the same owner; none: dropped).
   const std::size_t bytes = row_bytes(rows);
   agree(comm, [&] {
@@ -150,13 +155,16 @@ void route_rows_to_owners(ContactTable& rows, bool both_ends, const DiscStore& d
         [&](std::size_t k) { return (k % ends && end_owner[k] == end_owner[k - 1]) ? -1 : end_owner[k]; },
         [&](std::size_t k, char* out) { pack_row_bytes(rows, k / ends, out); }, x.send, x.send_bytes);
   });
+  release(end_owner);
+  rows = rows.empty_like();  // the rows are in x.send now
   x.exchange.run(x.send.data(), x.send_bytes, x.recv, x.recv_bytes, comm);
-  note_bytes(x.send.capacity() + x.recv.capacity() + owner.capacity() * sizeof(owner[0]) + answers.capacity() +
-             replies.capacity() + end_owner.capacity() * sizeof(std::int32_t));
+  note_bytes(x.send.capacity() + x.recv.capacity() + owner.capacity() * sizeof(owner[0]));
+  release(x.send);
   agree(comm, [&] {
-    rows.clear();
+    rows.reserve(bytes > 0 ? x.recv.size() / bytes : 0);
     ByteReader reader(x.recv.data(), x.recv.size());
     while (!reader.done()) unpack_row(rows, reader);
+    release(x.recv);
     rows.sort_unique_by_key();
   });
 }

@@ -129,6 +129,34 @@ TEST(ContactTable, InheritHistoryCopiesTheKeptColumnsOfMatchingKeys) {
   EXPECT_EQ(t.i1[2], 8);
 }
 
+TEST(ContactTable, ReplaceRowsTakesTheFoundRowsWithTheKeptColumnsOfTheirKeys) {
+  ContactTable t = own_couples_wall_table();
+  for (ContactKey k : {ContactKey{1, 2}, ContactKey{1, 3}, ContactKey{2, 5}, ContactKey{4, 6}}) t.push(k, 3, 4, 5);
+  for (std::size_t r = 0; r < t.size(); ++r) fill_row(t, r);
+  const ContactTable old = t;
+  std::vector<RowCandidate> found = {{{0, 9}, 1, 2}, {{1, 3}, 7, 8}, {{2, 4}, 7, 9}, {{4, 6}, 8, 9}};
+  t.replace_rows(found);
+  expect_consistent(t);
+  EXPECT_TRUE(found.empty());
+  EXPECT_EQ(found.capacity(), 0u) << "the candidates are freed before the kept columns are copied";
+  ASSERT_EQ(t.size(), 4u);
+  EXPECT_EQ(row_text(t, 1, kColumnInherit), row_text(old, 1, kColumnInherit));
+  EXPECT_EQ(row_text(t, 3, kColumnInherit), row_text(old, 3, kColumnInherit));
+  EXPECT_FALSE(t.has_state(0)) << "a key before every old one starts without history";
+  EXPECT_FALSE(t.has_state(2)) << "a new key between old ones starts without history";
+  for (std::size_t r = 0; r < t.size(); ++r) {
+    EXPECT_EQ(t.key[r], (std::vector<ContactKey>{{0, 9}, {1, 3}, {2, 4}, {4, 6}}[r]));
+    EXPECT_EQ(t.i1[r], r == 0 ? 1 : (r == 3 ? 8 : 7));
+    EXPECT_EQ(t.param[r], 0) << "the parameter index is the caller's to set";
+  }
+  // The same rows as a table built row by row and given the history by inherit_history.
+  ContactTable built = old.empty_like();
+  for (ContactKey k : {ContactKey{0, 9}, ContactKey{1, 3}, ContactKey{2, 4}, ContactKey{4, 6}}) built.push(k, 0, 0, 0);
+  built.inherit_history(old);
+  for (std::size_t r = 0; r < t.size(); ++r)
+    EXPECT_EQ(row_text(t, r, kColumnInherit), row_text(built, r, kColumnInherit));
+}
+
 TEST(ContactTable, MemoryBytesCountsEveryColumnsCapacity) {
   for (const ContactTable& empty :
        {ContactTable(), ContactTable({"xi"}, 0), rolling_table(), own_couples_wall_table()}) {

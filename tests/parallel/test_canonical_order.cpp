@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,6 +24,7 @@
 #include "parallel/CanonicalOrder.hpp"
 #include "parallel/Communicator.hpp"
 #include "parallel/Hdf5File.hpp"
+#include "parallel/OrderedText.hpp"
 #include "parallel/StateFile.hpp"
 
 namespace rondel {
@@ -133,6 +136,74 @@ TEST(CanonicalOrder, KeysAllOnOneRankAreSpreadOverEveryRank) { expect_global_ord
 TEST(CanonicalOrder, BlocksThatAllMoveArriveWhole) { expect_global_order(Spread::reversed_blocks, 12345); }
 
 TEST(CanonicalOrder, NoRecordsAnywhere) { expect_global_order(Spread::interleaved, 0); }
+
+// A checkpoint's way: the keys first, then one dataset at a time, each exchange of its own size replacing the last.
+TEST(CanonicalOrder, ExchangesAfterTheKeysBringEachRecordsBytesOfThatExchange) {
+  const Communicator comm;
+  const std::int32_t me = comm.rank();
+  for (const Spread spread : {Spread::interleaved, Spread::reversed_blocks}) {
+    const std::vector<OrderKey> keys = keys_for(spread, 5003, comm.rank(), comm.size());
+    CanonicalOrder order;
+    order.arrange_keys(
+        keys.size(), [&keys](std::size_t i) { return keys[i]; }, comm);
+    std::int64_t wrong = 0, remote = 0;
+    order.exchange(
+        sizeof(std::int64_t), [&](std::size_t i, char* out) { std::memcpy(out, &keys[i].b, 8); }, comm);
+    for (std::size_t k = 0; k < order.count(); ++k) {
+      std::int64_t b = 0;
+      if (order.is_local(k))
+        b = keys[order.local_index(k)].b;
+      else
+        std::memcpy(&b, order.received(k), 8), ++remote;
+      wrong += b != order.key(k).b;
+    }
+    order.exchange(
+        sizeof me, [&](std::size_t, char* out) { std::memcpy(out, &me, sizeof me); }, comm);
+    for (std::size_t k = 0; k < order.count(); ++k) {
+      std::int32_t from = me;
+      if (!order.is_local(k)) std::memcpy(&from, order.received(k), sizeof from);
+      wrong += order.is_local(k) ? 0 : (from == me || from < 0 || from >= comm.size());
+    }
+    EXPECT_EQ(comm.sum(wrong), 0) << "a record's bytes did not follow its key";
+    if (comm.size() > 1) EXPECT_GT(comm.sum(remote), 0) << "no record changed rank: the test shows nothing";
+    order.release();
+    EXPECT_EQ(order.capacity_bytes(), 0u) << "release() keeps a buffer";
+  }
+}
+
+// A text file in ranks' blocks, each written in pieces of a few lines: the lines in global key order, each once.
+TEST(CanonicalOrder, OrderedTextWrittenInSmallPiecesHoldsEveryLineInOrder) {
+  const Communicator comm;
+  std::string path;
+  if (comm.root())
+    path = (std::filesystem::temp_directory_path() / ("rondel-text-" + std::to_string(::getpid()) + ".csv")).string();
+  path = partest::broadcast(path);
+  const std::vector<OrderKey> keys = keys_for(Spread::interleaved, 1001, comm.rank(), comm.size());
+  CanonicalOrder order;
+  order.arrange_keys(
+      keys.size(), [&keys](std::size_t i) { return keys[i]; }, comm);
+  for (const std::size_t piece : {std::size_t{1}, std::size_t{40}, std::size_t{1} << 20}) {
+    write_ordered_text(
+        path, "a,b\n", order,
+        [&](std::size_t k, std::string& out) {
+          out += std::to_string(order.key(k).a) + "," + std::to_string(order.key(k).b) + "\n";
+        },
+        comm, piece);
+    if (comm.root()) {
+      std::vector<OrderKey> all;
+      for (int r = 0; r < comm.size(); ++r)
+        for (const OrderKey& k : keys_for(Spread::interleaved, 1001, r, comm.size())) all.push_back(k);
+      std::sort(all.begin(), all.end());
+      std::string expected = "a,b\n";
+      for (const OrderKey& k : all) expected += std::to_string(k.a) + "," + std::to_string(k.b) + "\n";
+      std::ifstream in(path, std::ios::binary);
+      const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      EXPECT_EQ(text, expected) << "pieces of " << piece << " bytes";
+    }
+    MPI_Barrier(MPI_COMM_WORLD);
+  }
+  if (comm.root()) std::filesystem::remove(path);
+}
 
 // The largest rank's structure bytes when world ranks 0 .. ranks-1 arrange `total` keys.
 double structure_bytes(int ranks, std::int64_t total) {
