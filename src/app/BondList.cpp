@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cstdint>
-#include <fstream>
 #include <limits>
 #include <string>
 #include <vector>
@@ -11,30 +10,11 @@
 #include "core/DiscStore.hpp"
 #include "core/Errors.hpp"
 #include "parallel/Agreement.hpp"
-#include "parallel/ByteBuffer.hpp"
+#include "parallel/TextBlocks.hpp"
 
 namespace rondel::bond_list {
 
 namespace {
-
-// The file's bytes from `begin` to the end of the line that holds byte `end` - 1: the lines that start in
-// [begin, end), after the rest of the line that holds byte begin - 1 (read by the block before).
-std::string block_text(std::ifstream& in, std::uint64_t size, std::uint64_t begin, std::uint64_t end) {
-  std::string text;
-  if (begin >= end) return text;
-  const std::uint64_t from = begin == 0 ? 0 : begin - 1;
-  in.seekg(static_cast<std::streamoff>(from));
-  std::string line;
-  if (begin > 0) std::getline(in, line);  // the line that byte begin - 1 ends or is in belongs to the block before
-  std::uint64_t at = static_cast<std::uint64_t>(in.tellg());
-  if (!in || at >= end || at >= size) return text;
-  while (at < end && std::getline(in, line)) {
-    text += line;
-    text += '\n';
-    at += line.size() + 1;
-  }
-  return text;
-}
 
 bool parse_id(const std::string& field, std::int64_t& id) {
   const auto first = field.find_first_not_of(" \t\r"), last = field.find_last_not_of(" \t\r");
@@ -48,26 +28,15 @@ bool parse_id(const std::string& field, std::int64_t& id) {
 }  // namespace
 
 void read_block(const std::string& path, ContactTable& rows, const Communicator& comm) {
-  std::string text;
-  std::uint64_t size = 0;
-  agree(comm, [&] {
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
-    if (!in) throw InputError("bonds.file '" + path + "' cannot be read");
-    size = static_cast<std::uint64_t>(in.tellg());
-    const auto P = static_cast<std::uint64_t>(comm.size()), r = static_cast<std::uint64_t>(comm.rank());
-    text = block_text(in, size, size * r / P, size * (r + 1) / P);
-  });
+  const std::string text = read_line_blocks(path, "bonds.file", comm);
   // The first line of this block: the lines of the blocks before, counted there.
-  ByteBuffer mine;
-  mine.put(static_cast<std::int64_t>(std::count(text.begin(), text.end(), '\n')));
-  std::int64_t line = 1;
-  const std::vector<ByteBuffer> counts = comm.all_gather(mine);
-  for (int k = 0; k < comm.rank(); ++k)
-    line += ByteReader(counts[k].bytes.data(), counts[k].bytes.size()).get<std::int64_t>();
+  std::int64_t lines = std::count(text.begin(), text.end(), '\n');
+  if (!text.empty() && text.back() != '\n') ++lines;  // the file's last line, without its '\n'
+  std::int64_t line = first_line_number(lines, comm);
   agree(comm, [&] {
     std::size_t at = 0;
     for (; at < text.size(); ++line) {
-      const std::size_t nl = text.find('\n', at);
+      const std::size_t nl = std::min(text.find('\n', at), text.size());
       const std::string l = text.substr(at, nl - at);
       at = nl + 1;
       const auto first = l.find_first_not_of(" \t\r");

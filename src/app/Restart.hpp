@@ -57,7 +57,7 @@ class Restart {
 };
 
 // The reader of scene.type = file (core/SceneTypes.hpp): Restart::scene_from_file into these walls and cell, each
-// rank its block.
+// rank its block; and of a CSV scene in blocks of its bytes (CsvScene.cpp).
 class FileScene final : public SceneFileReader {
  public:
   FileScene(const Config& config, WallSet& walls, Domain& cell, const Communicator& comm)
@@ -65,6 +65,7 @@ class FileScene final : public SceneFileReader {
   std::vector<SceneDisc> discs(const std::string& path) const override {
     return Restart::scene_from_file(path, config_, walls_, cell_, comm_);
   }
+  std::vector<SceneDisc> csv(const SceneConfig& s, const std::string& path) const override;
 
  private:
   const Config& config_;

@@ -125,7 +125,9 @@ std::string resolve(const std::string& file, const std::string& config_dir) {
 
 namespace scene {
 bool in_blocks(const SceneConfig& s) {
-  return s.type->block != nullptr || s.type->source == SceneType::Source::state_file;
+  const bool replicated = s.replicate_x != 1 || s.replicate_y != 1;
+  return s.type->block != nullptr || s.type->source == SceneType::Source::state_file ||
+         (s.type->source == SceneType::Source::csv_file && !replicated);
 }
 double by_cells(const SceneInputs& in) {
   const SceneType& t = *in.scene.type;

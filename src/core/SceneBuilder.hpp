@@ -56,8 +56,8 @@ std::size_t material_slot_of(const SceneConfig& s, const std::vector<std::size_t
                              std::uint64_t k);
 // The material of a slot (0 without scene.materials).
 int slot_material(const SceneConfig& s, std::size_t slot);
-// Whether each rank holds a block of the scene, not the whole: a type with a block builder (a lattice), or a Rondel
-// file (each rank reads its block of the rows).
+// Whether each rank holds a block of the scene, not the whole: a type with a block builder (a lattice), a Rondel
+// file (each rank reads its block of the rows) or a CSV file not replicated (each rank its block of the bytes).
 bool in_blocks(const SceneConfig& s);
 // The radius of the discs of a scene built cell by cell (SceneType::by_cells), 0 when it is not.
 double by_cells(const SceneInputs& in);

@@ -2,11 +2,14 @@
 // header line names (decimal or C99 hexadecimal floats, as final.csv writes them, so a final.csv is a scene; '#'
 // comments), optionally replicated scene.replicate_x x scene.replicate_y times over the periodic box and then
 // numbered in rows.
+#include "core/SceneCsv.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "core/ConfigRead.hpp"
@@ -60,33 +63,29 @@ bool is_number(const std::string& f, double& v) {
   return !f.empty() && end == f.c_str() + f.size();
 }
 
-// The reader of one file: the column of each field, then its rows as discs.
+// The reader of a block of the file: the column of each field from the file's first line with content, then the
+// block's rows as discs.
 class CsvReader {
  public:
-  explicit CsvReader(const SceneConfig& s) : s_(s) {}
-
-  void line(const std::string& text, std::size_t lineno) {
-    lineno_ = lineno;
-    if (first_) commas_ = text.find(',') != std::string::npos;
-    const std::vector<std::string> f = fields_of(text, commas_);
+  CsvReader(const SceneConfig& s, const std::string& head, std::int64_t head_at) : s_(s), lineno_(head_at) {
+    commas_ = head.find(',') != std::string::npos;
+    const std::vector<std::string> f = fields_of(head, commas_);
     double v = 0.0;
-    if (first_ && f.size() > 1 && !is_number(f[0], v)) return header(f);  // names, not an id
-    if (first_) positional(f.size());
-    first_ = false;
-    row(f);
+    if (f.size() > 1 && !is_number(f[0], v)) {  // names, not an id
+      header(f);
+      header_at_ = head_at;
+    } else {
+      positional(f.size());
+    }
   }
 
-  std::vector<SceneDisc>& discs() { return discs_; }
-  void check_ids() const {
-    std::vector<std::pair<std::int64_t, std::size_t>> ids(discs_.size());
-    for (std::size_t k = 0; k < discs_.size(); ++k) ids[k] = {discs_[k].gid, lines_[k]};
-    std::sort(ids.begin(), ids.end());
-    for (std::size_t k = 1; k < ids.size(); ++k)
-      if (ids[k].first == ids[k - 1].first)
-        throw InputError("scene.file '" + s_.file + "' lines " + std::to_string(ids[k - 1].second) + " and " +
-                         std::to_string(ids[k].second) + ": disc id " + std::to_string(ids[k].first) +
-                         " appears twice (every disc has an id of its own)");
+  void line(const std::string& text, std::int64_t lineno) {
+    lineno_ = lineno;
+    if (lineno == header_at_) return;
+    row(fields_of(text, commas_));
   }
+
+  scene_csv::Rows& rows() { return rows_; }
 
  private:
   [[noreturn]] void refuse(const std::string& what) const {
@@ -94,7 +93,6 @@ class CsvReader {
   }
 
   void header(const std::vector<std::string>& f) {
-    first_ = false;
     for (std::size_t k = 0; k < f.size(); ++k) {
       std::string name = f[k];
       if (name == "gid") name = "id";  // final.csv's name of the id: a final.csv is a scene
@@ -167,18 +165,46 @@ class CsvReader {
     if (given[kOmega]) d.omega += value[kOmega];
     if (!std::isfinite(d.v.x) || !std::isfinite(d.v.y) || !std::isfinite(d.omega))
       refuse("the velocity plus scene.vx, scene.vy, scene.omega is not finite");
-    discs_.push_back(d);
-    lines_.push_back(lineno_);
+    rows_.discs.push_back(d);
+    rows_.lines.push_back(lineno_);
   }
 
   const SceneConfig& s_;
   std::vector<int> columns_;
-  std::vector<SceneDisc> discs_;
-  std::vector<std::size_t> lines_;
-  std::size_t lineno_ = 0;
-  bool first_ = true, commas_ = true;
+  scene_csv::Rows rows_;
+  std::int64_t lineno_ = 0, header_at_ = -1;
+  bool commas_ = true;
 };
 
+// Calls f(line, number) for each line of a block (blank and comment lines too); returns the number of lines. LF
+// pieces are split at CRs (a CR before the LF ends nothing).
+template <class F>
+std::int64_t for_each_line(std::string_view text, bool file_start, std::int64_t first_line, F&& f) {
+  if (file_start && text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // a UTF-8 byte order mark
+  std::int64_t lineno = first_line;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t lf = std::min(text.find('\n', at), text.size());
+    std::string_view chunk = text.substr(at, lf - at);
+    at = lf + 1;
+    if (!chunk.empty() && chunk.back() == '\r') chunk.remove_suffix(1);
+    for (std::size_t from = 0;;) {
+      const std::size_t cr = chunk.find('\r', from);
+      if (!f(chunk.substr(from, cr == std::string_view::npos ? std::string_view::npos : cr - from), lineno++))
+        return lineno - first_line;
+      if (cr == std::string_view::npos) break;
+      from = cr + 1;
+    }
+  }
+  return lineno - first_line;
+}
+
+bool has_content(std::string_view line) {
+  const std::size_t first = line.find_first_not_of(" \t");
+  return first != std::string_view::npos && line[first] != '#';
+}
+
+// The whole file on this process (a replicated scene, or no parallel reader).
 std::vector<SceneDisc> read_rows(const SceneConfig& s, const std::string& path) {
   // A file larger than the memory this process may use cannot become a scene (0: no bound known).
   const std::uint64_t bound = memory_bound().bytes;
@@ -186,28 +212,19 @@ std::vector<SceneDisc> read_rows(const SceneConfig& s, const std::string& path) 
     throw InputError(why);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("scene.file '" + s.file + "' cannot be read");
-  CsvReader reader(s);
-  std::string chunk;
-  std::size_t lineno = 0;
-  // Lines end in LF, CR LF or a lone CR (old Mac files): a chunk up to LF is split at CRs. A UTF-8 byte order
-  // mark at the start is dropped; blank lines and lines starting with '#' are skipped.
-  while (std::getline(in, chunk)) {
-    if (lineno == 0 && chunk.rfind("\xEF\xBB\xBF", 0) == 0) chunk.erase(0, 3);
-    if (!chunk.empty() && chunk.back() == '\r') chunk.pop_back();
-    std::size_t at = 0;
-    for (;;) {
-      const std::size_t cr = chunk.find('\r', at);
-      const std::string line = chunk.substr(at, cr == std::string::npos ? std::string::npos : cr - at);
-      ++lineno;
-      if (line.find_first_not_of(" \t") != std::string::npos && line[line.find_first_not_of(" \t")] != '#')
-        reader.line(line, lineno);
-      if (cr == std::string::npos) break;
-      at = cr + 1;
-    }
-  }
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw InputError("scene.file '" + s.file + "' cannot be read (an I/O error)");
-  reader.check_ids();
-  return std::move(reader.discs());
+  std::string head;
+  std::int64_t head_at = 0;
+  if (!scene_csv::head_line(text, true, 1, head, head_at)) return {};
+  scene_csv::Rows rows = scene_csv::rows(s, head, head_at, text, true, 1);
+  std::vector<std::pair<std::int64_t, std::int64_t>> ids(rows.discs.size());
+  for (std::size_t k = 0; k < ids.size(); ++k) ids[k] = {rows.discs[k].gid, rows.lines[k]};
+  std::sort(ids.begin(), ids.end());
+  for (std::size_t k = 1; k < ids.size(); ++k)
+    if (ids[k].first == ids[k - 1].first)
+      throw InputError(scene_csv::duplicate_message(s, ids[k].first, ids[k - 1].second, ids[k].second));
+  return std::move(rows.discs);
 }
 
 // The copies, numbered anew in rows across the whole box: numbered one after the other, every row of the file
@@ -232,12 +249,48 @@ std::vector<SceneDisc> replicate(const SceneConfig& s, const Domain& domain, con
 
 std::vector<SceneDisc> csv(const SceneInputs& in) {
   const SceneConfig& s = in.scene;
-  std::vector<SceneDisc> base = read_rows(s, scene::resolve(s.file, in.config_dir));
+  const std::string path = scene::resolve(s.file, in.config_dir);
+  if (in.files && scene::in_blocks(s)) return in.files->csv(s, path);  // each rank its block
+  std::vector<SceneDisc> base = read_rows(s, path);
   if (s.replicate_x == 1 && s.replicate_y == 1) return base;
   return replicate(s, in.domain, base);
 }
 
 }  // namespace
+
+namespace scene_csv {
+
+std::int64_t count_lines(std::string_view text, bool file_start) {
+  return for_each_line(text, file_start, 0, [](std::string_view, std::int64_t) { return true; });
+}
+
+bool head_line(std::string_view text, bool file_start, std::int64_t first_line, std::string& head, std::int64_t& at) {
+  bool found = false;
+  for_each_line(text, file_start, first_line, [&](std::string_view line, std::int64_t lineno) {
+    if (!has_content(line)) return true;
+    head.assign(line), at = lineno, found = true;
+    return false;
+  });
+  return found;
+}
+
+Rows rows(const SceneConfig& s, const std::string& head, std::int64_t head_at, std::string_view text, bool file_start,
+          std::int64_t first_line) {
+  CsvReader reader(s, head, head_at);
+  std::string line;
+  for_each_line(text, file_start, first_line, [&](std::string_view l, std::int64_t lineno) {
+    if (has_content(l)) line.assign(l), reader.line(line, lineno);
+    return true;
+  });
+  return std::move(reader.rows());
+}
+
+std::string duplicate_message(const SceneConfig& s, std::int64_t gid, std::int64_t a, std::int64_t b) {
+  return "scene.file '" + s.file + "' lines " + std::to_string(a) + " and " + std::to_string(b) + ": disc id " +
+         std::to_string(gid) + " appears twice (every disc has an id of its own)";
+}
+
+}  // namespace scene_csv
 
 extern const SceneType kCsvScene{"csv",       "the discs of scene.file, a CSV file", check_csv, csv_keys,
                                  file_radius, SceneType::Source::csv_file,           false,     csv};

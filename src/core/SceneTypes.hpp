@@ -13,19 +13,23 @@
 
 namespace rondel {
 
-// Reads the discs of a Rondel file (a checkpoint or snapshot; a directory: its newest complete checkpoint) for
-// scene.type = file. The composition root implements it (it needs HDF5); core only calls it.
+// Reads a scene's file in blocks over the ranks: the discs of a Rondel file (a checkpoint or snapshot; a directory:
+// its newest complete checkpoint) for scene.type = file, and of a CSV file for scene.type = csv. The composition root
+// implements it (it needs HDF5 and MPI); core only calls it. Without one, a CSV file is read whole.
 struct SceneFileReader {
   virtual ~SceneFileReader() = default;
   // This rank's block of the file's discs (collective: every rank calls it).
   virtual std::vector<SceneDisc> discs(const std::string& path) const = 0;
+  // This rank's block of the discs of the CSV file `path` of scene `s` (core/SceneCsv.hpp), its ids checked distinct
+  // over all the ranks (collective).
+  virtual std::vector<SceneDisc> csv(const SceneConfig& s, const std::string& path) const = 0;
 };
 
 struct SceneInputs {
   const SceneConfig& scene;
   const Domain& domain;
   std::string config_dir;                  // a relative scene.file not found is looked up there (the INI's directory)
-  const SceneFileReader* files = nullptr;  // scene.type = file
+  const SceneFileReader* files = nullptr;  // scene.type = file, and csv read in blocks
 };
 
 struct SceneType {

@@ -1,7 +1,8 @@
 // A lattice built by each rank (docs/scaling.md, "Set-up"): the discs of its own cells (SceneType::by_cells, a
 // lattice inside the domain) or, when the lattice wraps round a periodic side, its block of gids sent to the owners
 // of their cells (scene::in_blocks). The run gives the bits of the 1-rank run with every partitioner (check_scene),
-// each rank holds only its block before the discs move, and the set-up's refusals are the same on any rank count.
+// each rank holds only its block before the discs move, and the set-up's refusals are the same on any rank count. A
+// Rondel file and a CSV file are read in blocks too.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -88,6 +89,24 @@ TEST(SetupBlocks, ARondelFileSceneIsReadInBlocksAndGivesTheBitsOfOneRank) {
   const Config c = parse_config_text(ini);
   ASSERT_TRUE(scene::in_blocks(c.scene));
   check_scene("file scene in blocks", ini, 1500, 500, true);
+}
+
+TEST(SetupBlocks, ACsvSceneIsReadInBlocksOfItsBytesAndGivesTheBitsOfOneRank) {
+  // The final.csv of a 1-rank run (300 steps in) as a CSV scene: each rank parses the lines that start in its block of
+  // the file's bytes, and the discs go to the owners of their cells.
+  SharedTempDir tmp("csv-scene");
+  const std::string out = (tmp.path() / "prepare").string();
+  if (world_rank() == 0) {
+    const Communicator self(MPI_COMM_SELF);
+    Simulation prepare(parse_config_text(kLattice, {"--run.output=" + out, "--run.steps=300"}), self, true);
+    prepare.run();
+  }
+  world_barrier();
+  std::string ini = kLattice;
+  ini.replace(ini.find("[scene]"), std::string::npos, "[scene]\ntype = csv\nfile = " + out + "/final.csv\n");
+  const Config c = parse_config_text(ini);
+  ASSERT_TRUE(scene::in_blocks(c.scene));
+  check_scene("csv scene in blocks", ini, 1500, 500, true);
 }
 
 TEST(SetupBlocks, EachRankBuildsOnlyItsBlockAndTheBlocksMakeTheScene) {

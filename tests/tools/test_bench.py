@@ -98,8 +98,10 @@ def main():
     if m and r and rates:
         median, lo, hi, totals = (float(g) for g in r.groups())
         check("--against: median within the pairs' range", 0 < lo <= median <= hi, r.group(0))
+        # The rates are printed to 4 significant digits (each off by up to 5e-4 of itself) and the ratio to 3
+        # decimals (off by up to 5e-4): a loaded machine's small ratio made a relative bound of 2e-3 fail.
         check("--against: ratio of the totals = ratio of the printed rates",
-              abs(totals - rates[0] / float(m.group(1))) < 2e-3 * totals, (totals, rates[0], m.group(1)))
+              abs(totals - rates[0] / float(m.group(1))) <= 1.01e-3 * totals + 5.01e-4, (totals, rates[0], m.group(1)))
     base = ["--warmup", "0", "--no-stream", "--steps"]
     for args, option in ((base + ["6", "--against", "sideways"], "--against"),
                          (base + ["6", "--against", "none", "--chunk", "0"], "--chunk"),
