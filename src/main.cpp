@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "app/HugePages.hpp"
 #include "app/Launch.hpp"
 #include "app/Simulation.hpp"
 #include "core/Errors.hpp"
@@ -67,6 +68,12 @@ int report(std::exception_ptr error, MPI_Comm exit_comm, const rondel::Communica
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Before MPI starts: may run the program again with huge pages for malloc (app/HugePages.hpp).
+  const char* why = nullptr;
+  if (!rondel::use_huge_pages(argv, why)) {
+    std::cerr << "rondel: configuration error: " << why << '\n';
+    return rondel::kExitInput.code;
+  }
   rondel::MpiEnvironment mpi(&argc, &argv);
   // Before anything is read or written: a stop signal during set-up is recorded, not fatal (core/StopSignal.hpp).
   rondel::StopSignal::install();

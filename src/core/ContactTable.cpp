@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "core/Buffers.hpp"
+
 namespace rondel {
 
 ContactTable::ContactTable(std::vector<std::string> slot_names, int couples, bool wall_rows)
@@ -57,11 +59,6 @@ std::vector<std::uint32_t> match_rows(const std::vector<ContactKey>& from, std::
     if (j < from.size() && from[j] == k) row[r] = static_cast<std::uint32_t>(j);
   }
   return row;
-}
-
-template <class T>
-void release(std::vector<T>& column) {
-  std::vector<T>().swap(column);
 }
 
 }  // namespace

@@ -87,9 +87,8 @@ void CanonicalOrder::size_exchange(std::size_t bytes, const Communicator& comm) 
 }
 
 void CanonicalOrder::release() {
-  const auto drop = [](auto& v) { std::decay_t<decltype(v)>().swap(v); };
-  drop(order_), drop(runs_), drop(samples_), drop(all_samples_), drop(splitters_), drop(ranges_);
-  drop(sent_), drop(send_bytes_), drop(recv_bytes_), drop(send_), drop(recv_);
+  rondel::release(order_, runs_, samples_, all_samples_, splitters_, ranges_, sent_, send_bytes_, recv_bytes_, send_,
+                  recv_);
   exchange_ = ByteExchange();
   total_ = offset_ = 0;
 }

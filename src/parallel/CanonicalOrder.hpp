@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/Buffers.hpp"
 #include "parallel/Agreement.hpp"
 #include "parallel/Communicator.hpp"
 
@@ -15,14 +16,6 @@ namespace rondel {
 // Rows [r total/P, (r+1) total/P) of a file's dataset are read by rank r.
 inline std::uint64_t block_begin(std::uint64_t total, int rank, int ranks) {
   return total * static_cast<std::uint64_t>(rank) / static_cast<std::uint64_t>(ranks);
-}
-
-// Resizes a reused buffer: when it must grow, to n and 1/16 more (not the doubling of push_back and
-// resize), so that its capacity stays near what one checkpoint needs and later ones fit.
-template <class T>
-void resize_buffer(std::vector<T>& v, std::size_t n) {
-  if (n > v.capacity()) v.reserve(n + n / 16);
-  v.resize(n);
 }
 
 // A record's place in the file order: discs by (gid, 0), contact rows by (lo, hi) (a wall row: (gid, wall)).

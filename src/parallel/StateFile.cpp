@@ -281,8 +281,7 @@ void StateWriter::note(std::size_t bytes) {
 
 void StateWriter::release() {
   order_.release();
-  std::vector<std::uint32_t>().swap(booked_);
-  std::vector<std::uint64_t>().swap(column_);
+  rondel::release(booked_, column_);
 }
 
 void StateWriter::write(const std::string& path, const StateHeader& h, DiscStore& discs, const ContactTable& pairs,

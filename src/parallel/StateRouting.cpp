@@ -145,8 +145,7 @@ void route_rows_to_owners(ContactTable& rows, bool both_ends, const DiscStore& d
   note_bytes(x.send.capacity() + x.recv.capacity() + owner.capacity() * sizeof(owner[0]) + answers.capacity() +
              replies.capacity() + end_owner.capacity() * sizeof(std::int32_t));
   // Each buffer is freed as soon as it is used up (a restart's rows are the largest thing a rank reads).
-  const auto release = [](auto& v) { std::decay_t<decltype(v)>().swap(v); };
-  release(answers), release(replies), release(x.recv);
+  release(answers, replies, x.recv);
   // 3. Each row to the owner of each end (once when both ends have the same owner; none: dropped).
   const std::size_t bytes = row_bytes(rows);
   agree(comm, [&] {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "BenchSupport.hpp"
+#include "app/HugePages.hpp"
 #include "app/Launch.hpp"
 #include "app/Simulation.hpp"
 #include "parallel/Communicator.hpp"
@@ -19,6 +20,11 @@
 #include "physics/LawRegistry.hpp"
 
 int main(int argc, char** argv) {
+  const char* why = nullptr;
+  if (!rondel::use_huge_pages(argv, why)) {  // as the executable does
+    std::cerr << "rondel_scaling_audit: " << why << '\n';
+    return 2;
+  }
   rondel::MpiEnvironment mpi(&argc, &argv);
   rondel::Communicator comm;
   if (argc < 4) {
