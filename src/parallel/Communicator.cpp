@@ -46,6 +46,21 @@ double Communicator::sum(double local) const {
   return out;
 }
 
+std::uint64_t Communicator::exclusive_sum(std::uint64_t local) const {
+  if (size_ == 1) return 0;
+  std::uint64_t below = 0;
+  ++stats_.collectives;
+  MPI_Exscan(&local, &below, 1, MPI_UINT64_T, MPI_SUM, comm_);
+  return rank_ == 0 ? 0 : below;  // MPI_Exscan leaves rank 0's result undefined
+}
+
+std::string mpi_error_text(int code) {
+  char text[MPI_MAX_ERROR_STRING];
+  int n = 0;
+  MPI_Error_string(code, text, &n);
+  return std::string(text, static_cast<std::size_t>(n));
+}
+
 std::int64_t Communicator::sum(std::int64_t local) const {
   std::int64_t out = local;
   ++stats_.collectives;

@@ -2,12 +2,16 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/ExactSum.hpp"
 #include "parallel/ByteBuffer.hpp"
 
 namespace rondel {
+
+// The text MPI gives for an error code.
+std::string mpi_error_text(int code);
 
 // Initialises and finalises MPI for the process (one object, in main or the test runner).
 class MpiEnvironment {
@@ -38,6 +42,8 @@ class Communicator {
   std::int64_t sum(std::int64_t local) const;
   bool any(bool local) const;
   std::int64_t max(std::int64_t local) const;
+  // The sum of `local` over the ranks below this one (0 on rank 0; no collective on one rank): a block's offset.
+  std::uint64_t exclusive_sum(std::uint64_t local) const;
   // Order-independent exact sum over ranks: the same bits on any rank count.
   double exact_sum(ExactSum local) const;
   void exact_sum_in_place(ExactSum& local) const;

@@ -16,12 +16,6 @@ namespace rondel {
 
 namespace {
 
-std::string mpi_error(int code) {
-  char text[MPI_MAX_ERROR_STRING];
-  int n = 0;
-  MPI_Error_string(code, text, &n);
-  return std::string(text, static_cast<std::size_t>(n));
-}
 // Agrees on every rank's error (settle); when there is one, the partial file goes (rank 0) before every rank throws.
 void settle_or_remove(const Communicator& comm, const std::exception_ptr& error, const std::string& path) {
   try {
@@ -50,13 +44,9 @@ void write_ordered_text(const std::string& path, const std::string& header, cons
       length += text.size();
     }
   });
-  std::uint64_t offset = 0, total = length;
-  if (comm.size() > 1) {
-    comm.count_collective();
-    MPI_Exscan(&length, &offset, 1, MPI_UINT64_T, MPI_SUM, comm.comm());
-    if (comm.root()) offset = 0;
-    total = static_cast<std::uint64_t>(comm.sum(static_cast<std::int64_t>(length)));
-  }
+  const std::uint64_t offset = comm.exclusive_sum(length);
+  const std::uint64_t total =
+      comm.size() > 1 ? static_cast<std::uint64_t>(comm.sum(static_cast<std::int64_t>(length))) : length;
   // The whole file's space first: a full disk is found before any rank writes (a collective write that
   // fails on one rank is not reported on every rank by every MPI-IO layer).
   const std::string name = path.substr(path.find_last_of('/') + 1);
@@ -70,7 +60,7 @@ void write_ordered_text(const std::string& path, const std::string& header, cons
   int rc = MPI_File_open(comm.comm(), path.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &file);
   comm.count_collective();
   if (rc != MPI_SUCCESS)
-    error = std::make_exception_ptr(IoError("cannot open '" + path + "' for writing: " + mpi_error(rc)));
+    error = std::make_exception_ptr(IoError("cannot open '" + path + "' for writing: " + mpi_error_text(rc)));
   settle_or_remove(comm, error, path);                           // every rank opened it, or every rank throws
   rc = MPI_File_set_size(file, static_cast<MPI_Offset>(total));  // what the file held before goes
   comm.count_collective();
@@ -92,7 +82,8 @@ void write_ordered_text(const std::string& path, const std::string& header, cons
   const int c = MPI_File_close(&file);
   comm.count_collective();
   if (rc == MPI_SUCCESS) rc = c;
-  if (rc != MPI_SUCCESS) error = std::make_exception_ptr(IoError("writing '" + path + "' failed: " + mpi_error(rc)));
+  if (rc != MPI_SUCCESS)
+    error = std::make_exception_ptr(IoError("writing '" + path + "' failed: " + mpi_error_text(rc)));
   settle_or_remove(comm, error, path);
 }
 

@@ -13,13 +13,6 @@ namespace rondel {
 
 namespace {
 
-std::string mpi_message(int code) {
-  char text[MPI_MAX_ERROR_STRING];
-  int n = 0;
-  MPI_Error_string(code, text, &n);
-  return std::string(text, static_cast<std::size_t>(n));
-}
-
 // This rank's bytes [S r/P, S (r+1)/P) of the file, in independent reads of at most 1 GiB: each rank opens the file
 // alone (its blocks are contiguous, so collective buffering would gain nothing, and a rank need not wait for another).
 std::string read_bytes(const std::string& path, const std::string& what, const Communicator& comm) {
@@ -27,7 +20,8 @@ std::string read_bytes(const std::string& path, const std::string& what, const C
   agree(comm, [&] {
     MPI_File file = MPI_FILE_NULL;
     const int opened = MPI_File_open(MPI_COMM_SELF, path.c_str(), MPI_MODE_RDONLY, MPI_INFO_NULL, &file);
-    if (opened != MPI_SUCCESS) throw InputError(what + " '" + path + "' cannot be read (" + mpi_message(opened) + ")");
+    if (opened != MPI_SUCCESS)
+      throw InputError(what + " '" + path + "' cannot be read (" + mpi_error_text(opened) + ")");
     MPI_Offset size = 0;
     int code = MPI_File_get_size(file, &size);
     const auto S = static_cast<std::uint64_t>(size);
@@ -44,7 +38,7 @@ std::string read_bytes(const std::string& path, const std::string& what, const C
       if (code == MPI_SUCCESS && got != n) code = MPI_ERR_TRUNCATE;  // the file shrank while it was read
     }
     MPI_File_close(&file);
-    if (code != MPI_SUCCESS) throw InputError(what + " '" + path + "' cannot be read (" + mpi_message(code) + ")");
+    if (code != MPI_SUCCESS) throw InputError(what + " '" + path + "' cannot be read (" + mpi_error_text(code) + ")");
   });
   return bytes;
 }
@@ -87,13 +81,7 @@ std::string read_line_blocks(const std::string& path, const std::string& what, c
 }
 
 std::int64_t first_line_number(std::int64_t lines, const Communicator& comm) {
-  std::int64_t before = 0;
-  if (comm.size() > 1) {
-    comm.count_collective();
-    MPI_Exscan(&lines, &before, 1, MPI_INT64_T, MPI_SUM, comm.comm());
-    if (comm.root()) before = 0;
-  }
-  return before + 1;
+  return static_cast<std::int64_t>(comm.exclusive_sum(static_cast<std::uint64_t>(lines))) + 1;
 }
 
 }  // namespace rondel
