@@ -237,7 +237,9 @@ std::string config_help(const LawCatalog& laws) {
   s << "Usage: mpirun -n N rondel FILE.ini [--section.key=value ...]\n"
        "Every key may be set in FILE.ini (under [section] as 'key = value') or on the command line,\n"
        "which wins. Units in brackets; the range a value must lie in after its meaning (every number,\n"
-       "and every number of a list, must be finite).\n\n"
+       "and every number of a list, must be finite).\n"
+       "Environment: RONDEL_HUGE_PAGES = 1 (the default: malloc asks for transparent huge pages, the program\n"
+       "running itself again with GLIBC_TUNABLES=glibc.malloc.hugetlb=1) or 0 (4 KiB pages).\n\n"
     << config_schema(laws, {}, true);
   return s.str();
 }

@@ -73,6 +73,9 @@ def main():
         p = subprocess.run([exe, "--version"], env=dict(base, RONDEL_HUGE_PAGES="yes"), capture_output=True, text=True)
         check("RONDEL_HUGE_PAGES=yes refused with exit 1, naming the variable and its values",
               p.returncode == 1 and "RONDEL_HUGE_PAGES" in p.stderr and "0" in p.stderr and not p.stdout, p)
+        p = subprocess.run([exe, "--help"], env=base, capture_output=True, text=True)
+        check("--help names RONDEL_HUGE_PAGES and its values", "RONDEL_HUGE_PAGES = 1" in p.stdout and "or 0" in p.stdout,
+              p.stdout[:600])
         p = subprocess.run([exe, "--version"], env=base, capture_output=True, text=True)
         check("run again, the arguments kept (--version answers)", p.returncode == 0 and "rondel" in p.stdout, p)
         seen, code, err = run_environment(exe, os.path.join(tmp, "a"), base)
