@@ -6,15 +6,17 @@ cell, the cell's four edges are line cells at the corners its /cell records, and
 
     test_paraview.py RONDEL_BINARY
 
-Exit 0 pass, 1 fail, 77 skipped (no pvpython or xvfb-run: ctest SKIP_RETURN_CODE; with CI=true, where
+Exit 0 pass, 1 fail, 77 skipped (no pvpython or Xvfb: ctest SKIP_RETURN_CODE; with CI=true, where
 tools/setup.sh installs them, their absence fails).
 """
 
 import os
+import re
 import shutil
 import subprocess
 import sys
 import tempfile
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCRIPT = os.path.join(HERE, "..", "..", "tools", "paraview_frames.py")
@@ -91,14 +93,66 @@ def run(cmd, **kw):
     return p.returncode, p.stdout
 
 
+class XServer:
+    """One Xvfb for the whole test, on a display it picks itself (-displayfd: no race for a display number, as
+    `xvfb-run -a` has with any other X server starting at the same moment), restarted if a client could not use it."""
+
+    def __init__(self):
+        self.proc, self.display = None, None
+
+    def start(self):
+        r, w = os.pipe()
+        self.proc = subprocess.Popen(["Xvfb", "-displayfd", str(w), "-screen", "0", "1280x1024x24", "-nolisten",
+                                      "tcp"], pass_fds=(w,), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        os.close(w)
+        with os.fdopen(r) as f:  # Xvfb writes the display number once it accepts connections; EOF if it died
+            number = f.readline().strip()
+        if not number.isdigit():
+            err = self.proc.stderr.read().decode(errors="replace") if self.proc.poll() is not None else ""
+            self.stop()
+            raise RuntimeError("Xvfb did not start: " + err[-500:])
+        self.display = ":" + number
+
+    def stop(self):
+        if self.proc is not None:
+            self.proc.terminate()
+            try:
+                self.proc.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait()
+            self.proc.stderr.close()
+        self.proc, self.display = None, None
+
+
+X = XServer()
+UNUSABLE = ("CreateAWindow", "vtkXOpenGLRenderWindow", "XSync", "cannot open display", "bad X server",
+            "Could not find a decent")
+
+
+def why(out):
+    """The lines of a ParaView failure that are not its stack frames, without terminal colours."""
+    plain = (re.sub(r"\x1b\[[0-9;]*m", "", l).strip() for l in out.splitlines())
+    return [l for l in plain if l and not re.match(r"^\d+\s+0x", l)][:4]
+
+
 def pvpython(args):
-    # xvfb-run -a picks a free display number racily: another xvfb-run starting at the same moment can take
-    # it, and ParaView then aborts creating its window. Such a start is retried; nothing else is.
-    for attempt in range(3):
-        rc, out = run(["xvfb-run", "-a", "pvpython"] + args)
-        if not any(s in out for s in ("CreateAWindow", "Xvfb failed", "cannot open display", "bad X server")):
+    # A client that finds the X server unusable (ParaView aborts creating its window) gets a new server, after a
+    # pause that grows; nothing else is retried. The first lines of a failure are printed: they say why.
+    rc, out = 1, "no X server"
+    for attempt in range(4):
+        try:
+            if X.display is None:
+                X.start()
+            rc, out = run(["pvpython"] + args, env=dict(os.environ, DISPLAY=X.display))
+        except RuntimeError as e:
+            rc, out = 1, "cannot open display: " + str(e)
+        if not any(s in out for s in UNUSABLE):
             break
-        print("note: the X server of xvfb-run was not usable (attempt %d), retrying" % (attempt + 1))
+        print("note: the X server %s was not usable (attempt %d), restarting it: %s"
+              % (X.display, attempt + 1, " | ".join(why(out))[:400]))
+        X.stop()
+        time.sleep(2 * (attempt + 1))
     return rc, out
 
 
@@ -132,7 +186,7 @@ def main():
     if len(sys.argv) != 2:
         print("usage: test_paraview.py RONDEL_BINARY")
         return 1
-    missing = [t for t in ("pvpython", "xvfb-run") if shutil.which(t) is None]
+    missing = [t for t in ("pvpython", "Xvfb") if shutil.which(t) is None]
     if missing and os.environ.get("CI") == "true":  # CI installs them (tools/setup.sh): missing is a failure
         print("FAIL: %s not installed although CI=true (tools/setup.sh installs paraview python3-paraview xvfb)"
               % " and ".join(missing))
@@ -211,6 +265,7 @@ def main():
             rc, got = pvpython([SCRIPT] + args + ["--out", frames])
             check("bad input %s: exit 1 naming it" % " ".join(args[1:] or args), rc == 1 and words in got, (rc, got))
     finally:
+        X.stop()
         shutil.rmtree(tmp, ignore_errors=True)
     print("%d failure(s)" % len(failures))
     return 1 if failures else 0
