@@ -12,6 +12,7 @@ tools/setup.sh installs them, their absence fails).
 
 import os
 import re
+import select
 import shutil
 import subprocess
 import sys
@@ -98,20 +99,31 @@ class XServer:
     `xvfb-run -a` has with any other X server starting at the same moment), restarted if a client could not use it."""
 
     def __init__(self):
-        self.proc, self.display = None, None
+        self.proc, self.display, self.log = None, None, None
 
     def start(self):
+        # Its messages go to a file, not a pipe nobody reads (a full pipe would stop the server).
+        self.log = tempfile.TemporaryFile()
         r, w = os.pipe()
         self.proc = subprocess.Popen(["Xvfb", "-displayfd", str(w), "-screen", "0", "1280x1024x24", "-nolisten",
-                                      "tcp"], pass_fds=(w,), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                                      "tcp"], pass_fds=(w,), stdout=subprocess.DEVNULL, stderr=self.log)
         os.close(w)
-        with os.fdopen(r) as f:  # Xvfb writes the display number once it accepts connections; EOF if it died
-            number = f.readline().strip()
-        if not number.isdigit():
-            err = self.proc.stderr.read().decode(errors="replace") if self.proc.poll() is not None else ""
+        # Xvfb writes the display number once it accepts connections; EOF if it died; 60 s at most.
+        number = b""
+        with os.fdopen(r, "rb") as f:
+            while not number.endswith(b"\n") and select.select([f], [], [], 60)[0]:
+                byte = f.read(1)
+                if not byte:
+                    break
+                number += byte
+        if not number.strip().isdigit():
             self.stop()
-            raise RuntimeError("Xvfb did not start: " + err[-500:])
-        self.display = ":" + number
+            raise RuntimeError("Xvfb gave no display (it ended, or 60 s passed): " + self.messages())
+        self.display = ":" + number.decode().strip()
+
+    def messages(self):
+        self.log.seek(0)
+        return self.log.read().decode(errors="replace")[-500:]
 
     def stop(self):
         if self.proc is not None:
@@ -121,7 +133,6 @@ class XServer:
             except subprocess.TimeoutExpired:
                 self.proc.kill()
                 self.proc.wait()
-            self.proc.stderr.close()
         self.proc, self.display = None, None
 
 
@@ -149,8 +160,8 @@ def pvpython(args):
             rc, out = 1, "cannot open display: " + str(e)
         if not any(s in out for s in UNUSABLE):
             break
-        print("note: the X server %s was not usable (attempt %d), restarting it: %s"
-              % (X.display, attempt + 1, " | ".join(why(out))[:400]))
+        print("note: the X server %s was not usable (attempt %d), starting another: %s"
+              % (X.display or "(none)", attempt + 1, " | ".join(why(out))[:400]))
         X.stop()
         time.sleep(2 * (attempt + 1))
     return rc, out
