@@ -4,8 +4,8 @@
 Discs are drawn at their true radius (Point Gaussian representation, "Plain circle" shader, scaled by the
 snapshot's `radius` dataset), coloured by a chosen field; walls and a periodic cell's edges are drawn as black lines.
 
-    xvfb-run -a pvpython tools/paraview_frames.py RUN_DIR [--field velocity] [--out DIR] [--size 1200x900]
-                                                 [--every K] [--step N] [--bounds XLO XHI YLO YHI]
+    xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" pvpython tools/paraview_frames.py RUN_DIR \
+        [--field velocity] [--out DIR] [--size 1200x900] [--every K] [--step N] [--bounds XLO XHI YLO YHI]
 
 RUN_DIR is a run's output directory (with snapshots.xdmf), or snapshots.xdmf itself, or one snapshot_*.h5
 of it (that snapshot only). --field names a point array of the snapshots (velocity, omega, radius, flags,
@@ -13,7 +13,8 @@ rank, ...; vectors are coloured by their magnitude) or `solid` (every disc pure 
 the test that counts the disc pixels). Frames are frame_<step>.png in --out (default RUN_DIR/frames).
 
 Exit status: 0 frames written; 1 bad input (a missing file, an unknown field, a bad option), with a message.
-Tested with Debian's paraview and python3-paraview 5.11 (pvpython) under xvfb-run.
+Tested with Debian's paraview and python3-paraview 5.11 (pvpython) under xvfb-run. -noreset keeps the X server
+from resetting when ParaView closes its OpenGL probe, which on a busy machine refuses the window opened next.
 """
 
 import argparse

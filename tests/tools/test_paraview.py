@@ -105,8 +105,12 @@ class XServer:
         # Its messages go to a file, not a pipe nobody reads (a full pipe would stop the server).
         self.log = tempfile.TemporaryFile()
         r, w = os.pipe()
-        self.proc = subprocess.Popen(["Xvfb", "-displayfd", str(w), "-screen", "0", "1280x1024x24", "-nolisten",
-                                      "tcp"], pass_fds=(w,), stdout=subprocess.DEVNULL, stderr=self.log)
+        # -noreset: an X server resets when its last client leaves, and ParaView opens and closes a display to
+        # probe OpenGL before it opens its window; on a busy machine that window's connection came during the
+        # reset and was refused ("bad X server connection": the CI failed so twice; here, under load, 7 refusals
+        # in 3 runs without -noreset, none in 4 with it).
+        self.proc = subprocess.Popen(["Xvfb", "-displayfd", str(w), "-screen", "0", "1280x1024x24", "-noreset",
+                                      "-nolisten", "tcp"], pass_fds=(w,), stdout=subprocess.DEVNULL, stderr=self.log)
         os.close(w)
         # Xvfb writes the display number once it accepts connections; EOF if it died; 60 s at most.
         number = b""
