@@ -40,28 +40,15 @@ void Simulation::build_discs() {
   setup_neighbours();
 }
 
-void Simulation::add_scene_discs() {
-  const std::string dir = config_.source_file.empty() ? "" : fs::path(config_.source_file).parent_path().string();
-  const FileScene files(config_, walls_, config_.domain, comm_);
-  const SceneInputs in{config_.scene, config_.domain, dir, &files};
-  std::vector<SceneDisc> scene;
-  if (const double radius = config_.cell_deforms() ? 0.0 : scene::by_cells(in); radius > 0.0) {
-    // Each rank finds the discs of its cells: the decomposition first, on the range of the discs' radius (the
-    // neighbour skin's default is a quarter of the mean radius), weighted by the discs each cell will hold; no
-    // disc moves to its owner.
-    const Partition::RectUnits units = [&](int x0, int y0, int x1, int y1) {
-      return config_.scene.type->rect_count(in, decomposition_->grid(), x0, y0, x1, y1);
-    };
-    const double range = NeighbourList(skin_for(radius)).range(radius);
-    start_checks::check_cells(config_, range);  // as setup_neighbours will: a grid this machine can hold
-    make_decomposition(false, range, &units);
-    scene = config_.scene.type->cells(in, decomposition_->grid(), decomposition_->own_cells());
-  } else {
-    scene = config_.scene.type->block ? build_scene_block(in, comm_.rank(), comm_.size()) : build_scene(in);
-  }
-  box0_ = Boundaries::box(walls_, config_.domain);  // a file scene may have moved the box walls
-  discs_.reserve(scene.size() + (comm_.size() > 1 ? DiscExchange::ghost_room(scene.size()) : 0));
-  for (const auto& d : scene) {
+namespace {
+
+// Puts a new scene's discs into the rank's store, each wrapped into the domain (refused outside it) and, in a moving
+// cell, given the mean flow's velocity (cell.flow_start); room for the ghosts is reserved with them.
+class StoreScene final : public SceneSink {
+ public:
+  StoreScene(const Config& config, DiscStore& discs, bool ghosts) : config_(config), discs_(discs), ghosts_(ghosts) {}
+  void reserve(std::size_t n) override { discs_.reserve(n + (ghosts_ ? DiscExchange::ghost_room(n) : 0)); }
+  void add(const SceneDisc& d) override {
     Vec2 x = d.x;
     config_.domain.wrap(x);
     if (!config_.domain.contains(x))
@@ -69,10 +56,42 @@ void Simulation::add_scene_discs() {
                        ") lies outside the domain [" + fmt(config_.domain.xlo) + ", " + fmt(config_.domain.xhi) +
                        "] x [" + fmt(config_.domain.ylo) + ", " + fmt(config_.domain.yhi) + "] (from " +
                        start_checks::scene_keys(config_) + ")");
-    // In a moving cell the discs start with the mean flow's velocity added (cell.flow_start).
     const Vec2 v = config_.cell_flow_start && config_.domain.moving ? d.v + config_.domain.flow(x) : d.v;
     discs_.add(d.gid, d.material, d.radius, config_.materials[static_cast<std::size_t>(d.material)], x, v, d.omega);
   }
+
+ private:
+  const Config& config_;
+  DiscStore& discs_;
+  bool ghosts_;
+};
+
+}  // namespace
+
+void Simulation::add_scene_discs() {
+  const std::string dir = config_.source_file.empty() ? "" : fs::path(config_.source_file).parent_path().string();
+  const FileScene files(config_, walls_, config_.domain, comm_);
+  const SceneInputs in{config_.scene, config_.domain, dir, &files};
+  StoreScene store(config_, discs_, comm_.size() > 1);
+  if (const double radius = config_.cell_deforms() ? 0.0 : scene::by_cells(in); radius > 0.0) {
+    // Each rank finds the discs of its cells: the decomposition first, on the range of the discs' radius (the
+    // neighbour skin's default is a quarter of the mean radius), weighted by the discs each cell will hold; no
+    // disc moves to its owner, and they go straight into the store.
+    const Partition::RectUnits units = [&](int x0, int y0, int x1, int y1) {
+      return config_.scene.type->rect_count(in, decomposition_->grid(), x0, y0, x1, y1);
+    };
+    const double range = NeighbourList(skin_for(radius)).range(radius);
+    start_checks::check_cells(config_, range);  // as setup_neighbours will: a grid this machine can hold
+    make_decomposition(false, range, &units);
+    box0_ = Boundaries::box(walls_, config_.domain);
+    config_.scene.type->cells(in, decomposition_->grid(), decomposition_->own_cells(), store);
+    return;
+  }
+  const std::vector<SceneDisc> scene =
+      config_.scene.type->block ? build_scene_block(in, comm_.rank(), comm_.size()) : build_scene(in);
+  box0_ = Boundaries::box(walls_, config_.domain);  // a file scene may have moved the box walls
+  store.reserve(scene.size());
+  for (const auto& d : scene) store.add(d);
 }
 
 void Simulation::assign_rough_materials() {

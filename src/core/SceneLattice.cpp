@@ -169,39 +169,46 @@ std::uint64_t lattice_rect_count(const SceneInputs& in, bool hex, const CellGrid
 }
 
 // The sites whose cell of `grid` is one of `cells`, in ascending gid: grid row by grid row, the lattice rows in
-// it, and along each the sites of each run of adjacent cells of the grid row.
-std::vector<SceneDisc> lattice_cells(const SceneInputs& in, bool hex, const CellGrid& grid,
-                                     std::vector<std::size_t> cells) {
+// it, and along each the sites of each run of adjacent cells of the grid row. Walked twice: first their count (a
+// few operations a lattice row and run of cells), then the sites themselves, given to `out`.
+void lattice_cells(const SceneInputs& in, bool hex, const CellGrid& grid, std::vector<std::size_t> cells,
+                   SceneSink& out) {
   const SceneConfig& s = in.scene;
-  const std::int64_t n = sites(s);
   // About the share of the sites that these cells' share of the grid holds (a lattice that fills the domain).
-  const double share = static_cast<double>(n) * static_cast<double>(cells.size()) / static_cast<double>(grid.size());
+  const double share =
+      static_cast<double>(sites(s)) * static_cast<double>(cells.size()) / static_cast<double>(grid.size());
   check_memory(share, 0.0, 0.0, "scene.nx x scene.ny");
   check_extent(in, hex);
-  const Sites lattice(s, hex);
   const LatticeWalk walk(s, hex, grid);
   if (!std::is_sorted(cells.begin(), cells.end())) std::sort(cells.begin(), cells.end());  // row-major
   const auto nx = static_cast<std::size_t>(grid.nx());
-  std::vector<SceneDisc> out;
-  out.reserve(static_cast<std::size_t>(std::min(share * 1.01, static_cast<double>(n))) + 64);
-  for (std::size_t r0 = 0; r0 < cells.size();) {
-    std::size_t r1 = r0;
-    while (r1 < cells.size() && cells[r1] / nx == cells[r0] / nx) ++r1;  // this grid row's cells: [r0, r1)
-    const int cy = static_cast<int>(cells[r0] / nx);
-    const auto [j0, j1] = walk.rows(cy, cy);
-    for (int j = j0; j <= j1; ++j) {
-      for (std::size_t a = r0; a < r1;) {
-        std::size_t b = a + 1;  // a run of adjacent cells [a, b)
-        while (b < r1 && cells[b] == cells[b - 1] + 1) ++b;
-        const auto [first, last] =
-            walk.columns(j, static_cast<int>(cells[a] % nx), static_cast<int>(cells[b - 1] % nx));
-        for (int i = first; i <= last; ++i) out.push_back(lattice.at(i, j));
-        a = b;
+  // Calls site(i, j) for every site, in ascending gid.
+  const auto walk_sites = [&](auto&& site) {
+    for (std::size_t r0 = 0; r0 < cells.size();) {
+      std::size_t r1 = r0;
+      while (r1 < cells.size() && cells[r1] / nx == cells[r0] / nx) ++r1;  // this grid row's cells: [r0, r1)
+      const int cy = static_cast<int>(cells[r0] / nx);
+      const auto [j0, j1] = walk.rows(cy, cy);
+      for (int j = j0; j <= j1; ++j) {
+        for (std::size_t a = r0; a < r1;) {
+          std::size_t b = a + 1;  // a run of adjacent cells [a, b)
+          while (b < r1 && cells[b] == cells[b - 1] + 1) ++b;
+          const auto [first, last] =
+              walk.columns(j, static_cast<int>(cells[a] % nx), static_cast<int>(cells[b - 1] % nx));
+          site(first, last, j);
+          a = b;
+        }
       }
+      r0 = r1;
     }
-    r0 = r1;
-  }
-  return out;
+  };
+  std::size_t count = 0;
+  walk_sites([&](int first, int last, int) { count += static_cast<std::size_t>(std::max(last - first + 1, 0)); });
+  out.reserve(count);
+  const Sites lattice(s, hex);
+  walk_sites([&](int first, int last, int j) {
+    for (int i = first; i <= last; ++i) out.add(lattice.at(i, j));
+  });
 }
 
 std::vector<SceneDisc> lattice(const SceneInputs& in, bool hex) { return lattice_block(in, hex, 0, sites(in.scene)); }
@@ -219,11 +226,11 @@ std::uint64_t hexagonal_count(const SceneInputs& in, const CellGrid& grid, int x
   return lattice_rect_count(in, true, grid, x0, y0, x1, y1);
 }
 double hexagonal_by_cells(const SceneInputs& in) { return lattice_by_cells(in, true); }
-std::vector<SceneDisc> square_cells(const SceneInputs& in, const CellGrid& grid, const std::vector<std::size_t>& c) {
-  return lattice_cells(in, false, grid, c);
+void square_cells(const SceneInputs& in, const CellGrid& grid, const std::vector<std::size_t>& c, SceneSink& out) {
+  lattice_cells(in, false, grid, c, out);
 }
-std::vector<SceneDisc> hexagonal_cells(const SceneInputs& in, const CellGrid& grid, const std::vector<std::size_t>& c) {
-  return lattice_cells(in, true, grid, c);
+void hexagonal_cells(const SceneInputs& in, const CellGrid& grid, const std::vector<std::size_t>& c, SceneSink& out) {
+  lattice_cells(in, true, grid, c, out);
 }
 std::vector<SceneDisc> hexagonal_block(const SceneInputs& in, std::int64_t first, std::int64_t count) {
   return lattice_block(in, true, first, count);

@@ -56,11 +56,12 @@ struct SceneType {
   // A scene of one radius whose discs can be found cell by cell (a lattice inside an untilted domain) gives that
   // radius (0: it cannot here, nullptr: never), the number of its discs in a rectangle of cells [x0, x1) x
   // [y0, y1) of the decomposition's grid (the first map is weighted by them) and the discs of a rank's cells in
-  // ascending gid, so that no disc moves to its owner (Simulation::add_scene_discs; the same discs as block's).
+  // ascending gid, given to `out` one at a time after their exact count, so that no disc moves to its owner and
+  // no list of them is made (Simulation::add_scene_discs; the same discs as block's).
   double (*by_cells)(const SceneInputs& in) = nullptr;
   std::uint64_t (*rect_count)(const SceneInputs& in, const CellGrid& grid, int x0, int y0, int x1, int y1) = nullptr;
-  std::vector<SceneDisc> (*cells)(const SceneInputs& in, const CellGrid& grid,
-                                  const std::vector<std::size_t>& cells) = nullptr;
+  void (*cells)(const SceneInputs& in, const CellGrid& grid, const std::vector<std::size_t>& cells,
+                SceneSink& out) = nullptr;
 };
 
 std::span<const SceneType* const> scene_types();

@@ -101,7 +101,16 @@ void check_cells(const std::string& ini, const std::vector<std::string>& args, d
   for (std::size_t g = 0; g < groups; ++g) {
     std::vector<std::size_t> cells;
     for (std::size_t cell = g; cell < grid.size(); cell += groups) cells.push_back(cell);
-    const auto part = c.scene.type->cells(in, grid, cells);
+    struct Counted final : SceneSink {  // the count announced first, then the discs
+      std::size_t announced = 0, reserves = 0;
+      std::vector<SceneDisc> discs;
+      void reserve(std::size_t n) override { announced = n, ++reserves; }
+      void add(const SceneDisc& d) override { discs.push_back(d); }
+    } sink;
+    c.scene.type->cells(in, grid, cells, sink);
+    const auto& part = sink.discs;
+    EXPECT_EQ(sink.reserves, 1u);
+    EXPECT_EQ(sink.announced, part.size()) << "the exact count before the discs";
     for (std::size_t k = 0; k < part.size(); ++k) {
       const auto& d = part[k];
       const auto& w = whole.at(static_cast<std::size_t>(d.gid));
@@ -109,7 +118,9 @@ void check_cells(const std::string& ini, const std::vector<std::string>& args, d
                   d.material == w.material)
           << "disc " << d.gid;
       EXPECT_EQ(grid.cell_of(d.x) % groups, g) << "disc " << d.gid << " of another group's cell";
-      if (k > 0) EXPECT_LT(part[k - 1].gid, d.gid) << "ascending gid";
+      if (k > 0) {
+        EXPECT_LT(part[k - 1].gid, d.gid) << "ascending gid";
+      }
       ++seen[static_cast<std::size_t>(d.gid)];
     }
   }
