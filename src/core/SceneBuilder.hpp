@@ -22,17 +22,11 @@ struct SceneDisc {
 struct SceneInputs;
 
 // Where a builder that finds its discs one at a time puts them (SceneType::cells): the set-up's disc store
-// directly, with no list of the rank's discs beside it (64 B a disc), or a list (SceneList).
+// directly (Simulation::add_scene_discs), with no list of the rank's discs beside it (64 B a disc).
 struct SceneSink {
   virtual ~SceneSink() = default;
   virtual void reserve(std::size_t n) = 0;  // the exact number of discs that follow
   virtual void add(const SceneDisc& d) = 0;
-};
-
-struct SceneList final : SceneSink {
-  std::vector<SceneDisc> discs;
-  void reserve(std::size_t n) override { discs.reserve(n); }
-  void add(const SceneDisc& d) override { discs.push_back(d); }
 };
 
 // The discs of the scene of `in.scene.type`, in ascending gid. Every rank builds the same list from the

@@ -182,7 +182,7 @@ void lattice_cells(const SceneInputs& in, bool hex, const CellGrid& grid, std::v
   const LatticeWalk walk(s, hex, grid);
   if (!std::is_sorted(cells.begin(), cells.end())) std::sort(cells.begin(), cells.end());  // row-major
   const auto nx = static_cast<std::size_t>(grid.nx());
-  // Calls site(i, j) for every site, in ascending gid.
+  // Calls site(first, last, j) for each run of sites [first, last] of lattice row j, in ascending gid.
   const auto walk_sites = [&](auto&& site) {
     for (std::size_t r0 = 0; r0 < cells.size();) {
       std::size_t r1 = r0;
