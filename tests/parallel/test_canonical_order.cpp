@@ -165,7 +165,9 @@ TEST(CanonicalOrder, ExchangesAfterTheKeysBringEachRecordsBytesOfThatExchange) {
       wrong += order.is_local(k) ? 0 : (from == me || from < 0 || from >= comm.size());
     }
     EXPECT_EQ(comm.sum(wrong), 0) << "a record's bytes did not follow its key";
-    if (comm.size() > 1) EXPECT_GT(comm.sum(remote), 0) << "no record changed rank: the test shows nothing";
+    if (comm.size() > 1) {
+      EXPECT_GT(comm.sum(remote), 0) << "no record changed rank: the test shows nothing";
+    }
     order.release();
     EXPECT_EQ(order.capacity_bytes(), 0u) << "release() keeps a buffer";
   }

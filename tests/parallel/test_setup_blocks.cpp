@@ -124,7 +124,9 @@ TEST(SetupBlocks, EachRankBuildsOnlyItsBlockAndTheBlocksMakeTheScene) {
                   d.material == w.material)
           << "disc " << d.gid << " of block " << r;
     }
-    if (!block.empty()) EXPECT_EQ(block.front().gid, static_cast<std::int64_t>(total)) << "blocks follow each other";
+    if (!block.empty()) {
+      EXPECT_EQ(block.front().gid, static_cast<std::int64_t>(total)) << "blocks follow each other";
+    }
     total += block.size();
   }
   EXPECT_EQ(total, whole.size());
