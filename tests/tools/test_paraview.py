@@ -107,8 +107,8 @@ class XServer:
         r, w = os.pipe()
         # -noreset: an X server resets when its last client leaves, and ParaView opens and closes a display to
         # probe OpenGL before it opens its window; on a busy machine that window's connection came during the
-        # reset and was refused ("bad X server connection": the CI failed so twice; here, under load, 7 refusals
-        # in 3 runs without -noreset, none in 4 with it).
+        # reset and was refused ("bad X server connection": the CI failed so twice; here, under load, 9 refusals
+        # in 3 runs without -noreset, none in 9 with it).
         self.proc = subprocess.Popen(["Xvfb", "-displayfd", str(w), "-screen", "0", "1280x1024x24", "-noreset",
                                       "-nolisten", "tcp"], pass_fds=(w,), stdout=subprocess.DEVNULL, stderr=self.log)
         os.close(w)
