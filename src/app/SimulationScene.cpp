@@ -83,15 +83,14 @@ void Simulation::add_scene_discs() {
     const double range = NeighbourList(skin_for(radius)).range(radius);
     start_checks::check_cells(config_, range);  // as setup_neighbours will: a grid this machine can hold
     make_decomposition(false, range, &units);
-    box0_ = Boundaries::box(walls_, config_.domain);
     config_.scene.type->cells(in, decomposition_->grid(), decomposition_->own_cells(), store);
-    return;
+  } else {
+    const std::vector<SceneDisc> scene =
+        config_.scene.type->block ? build_scene_block(in, comm_.rank(), comm_.size()) : build_scene(in);
+    store.reserve(scene.size());
+    for (const auto& d : scene) store.add(d);
   }
-  const std::vector<SceneDisc> scene =
-      config_.scene.type->block ? build_scene_block(in, comm_.rank(), comm_.size()) : build_scene(in);
   box0_ = Boundaries::box(walls_, config_.domain);  // a file scene may have moved the box walls
-  store.reserve(scene.size());
-  for (const auto& d : scene) store.add(d);
 }
 
 void Simulation::assign_rough_materials() {

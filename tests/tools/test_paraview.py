@@ -121,8 +121,9 @@ class XServer:
                     break
                 number += byte
         if not number.strip().isdigit():
+            why = self.messages()
             self.stop()
-            raise RuntimeError("Xvfb gave no display (it ended, or 60 s passed): " + self.messages())
+            raise RuntimeError("Xvfb gave no display (it ended, or 60 s passed): " + why)
         self.display = ":" + number.decode().strip()
 
     def messages(self):
@@ -137,7 +138,9 @@ class XServer:
             except subprocess.TimeoutExpired:
                 self.proc.kill()
                 self.proc.wait()
-        self.proc, self.display = None, None
+        if self.log is not None:
+            self.log.close()
+        self.proc, self.display, self.log = None, None, None
 
 
 X = XServer()
