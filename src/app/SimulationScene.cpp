@@ -42,6 +42,9 @@ void Simulation::build_discs() {
 
 namespace {
 
+// A scene built whole on every rank of a run on several ranks draws a warning above this many discs.
+constexpr std::size_t kWholeSceneWarning = 1'000'000;
+
 // Puts a new scene's discs into the rank's store, each wrapped into the domain (refused outside it) and, in a moving
 // cell, given the mean flow's velocity (cell.flow_start); room for the ghosts is reserved with them.
 class StoreScene final : public SceneSink {
@@ -74,19 +77,29 @@ void Simulation::add_scene_discs() {
   const SceneInputs in{config_.scene, config_.domain, dir, &files};
   StoreScene store(config_, discs_, comm_.size() > 1);
   if (const double radius = config_.cell_deforms() ? 0.0 : scene::by_cells(in); radius > 0.0) {
-    // Each rank finds the discs of its cells: the decomposition first, on the range of the discs' radius (the
-    // neighbour skin's default is a quarter of the mean radius), weighted by the discs each cell will hold; no
+    // Each rank finds the discs of its cells: the decomposition first, on the range of the discs' largest radius
+    // (the neighbour skin's default is a quarter of the mean radius), weighted by the discs each cell will hold; no
     // disc moves to its owner, and they go straight into the store.
+    const SceneType& type = *config_.scene.type;
     const Partition::RectUnits units = [&](int x0, int y0, int x1, int y1) {
-      return config_.scene.type->rect_count(in, decomposition_->grid(), x0, y0, x1, y1);
+      return type.rect_count(in, decomposition_->grid(), x0, y0, x1, y1);
     };
-    const double range = NeighbourList(skin_for(radius)).range(radius);
+    const double mean = type.mean_radius ? type.mean_radius(config_.scene) : radius;
+    const double range = NeighbourList(skin_for(mean)).range(radius);
     start_checks::check_cells(config_, range);  // as setup_neighbours will: a grid this machine can hold
     make_decomposition(false, range, &units);
-    config_.scene.type->cells(in, decomposition_->grid(), decomposition_->own_cells(), store);
+    type.cells(in, decomposition_->grid(), decomposition_->own_cells(), store);
   } else {
     const std::vector<SceneDisc> scene =
         config_.scene.type->block ? build_scene_block(in, comm_.rank(), comm_.size()) : build_scene(in);
+    if (!scene::in_blocks(config_.scene) && comm_.size() > 1 && scene.size() > kWholeSceneWarning && comm_.root())
+      std::cerr << "rondel: warning: scene.type = " << config_.scene.type->name << " builds all its " << scene.size()
+                << " discs on every rank (" << fmt(static_cast<double>(scene.size()) * 315e-9)
+                << " GB each during the set-up)"
+                << (config_.scene.type->draws_radii && !config_.scene.type->by_cells
+                        ? "; scene.type = random_tiles places each rank's own"
+                        : "")
+                << " (docs/scaling.md, \"Set-up\")\n";
     store.reserve(scene.size());
     for (const auto& d : scene) store.add(d);
   }

@@ -253,15 +253,15 @@ void add_scene_section(po::options_description& all, std::vector<KeySpec>& keys,
       .number("scene.spacing", s(&SceneConfig::spacing), 0.0, "m", kNonNegative, "lattice: centre distance; 0 = 2 x radius")
       .number("scene.x0", s(&SceneConfig::x0), 0.0, "m", kFinite, "lattice: centre of the first disc, x")
       .number("scene.y0", s(&SceneConfig::y0), 0.0, "m", kFinite, "lattice: centre of the first disc, y")
-      .number("scene.count", s(&SceneConfig::count), I64{0}, "-", kCount, "random: number of discs")
-      .numbers("scene.region", s(&SceneConfig::region_given), "m", kFinite, "random: 'xlo xhi ylo yhi' region of the discs; empty = walls.box_region, else the domain")
-      .choice("scene.distribution", s(&SceneConfig::distribution), "uniform_radius", kDistributions, "random: the radii")
-      .number("scene.radius_min", s(&SceneConfig::radius_min), 0.0, "m", kNonNegative, "random: smallest radius")
-      .number("scene.radius_max", s(&SceneConfig::radius_max), 0.0, "m", kNonNegative, "random: largest radius")
-      .numbers("scene.sizes", s(&SceneConfig::sizes), "m", kPositive, "random, list: radii 'r1 r2 ...'")
-      .numbers("scene.fractions", s(&SceneConfig::fractions), "-", kNonNegative, "random, list: number fractions 'f1 f2 ...' (sum 1)")
-      .number("scene.seed", s(&SceneConfig::seed), I64{1}, "-", kCount, "random: seed (same scene on any rank count)")
-      .number("scene.max_attempts", s(&SceneConfig::max_attempts), I64{1000}, "-", Range{1.0, 1e6, false, false}, "random: placement attempts per disc")
+      .number("scene.count", s(&SceneConfig::count), I64{0}, "-", kCount, "random, random_tiles: number of discs")
+      .numbers("scene.region", s(&SceneConfig::region_given), "m", kFinite, "random, random_tiles: 'xlo xhi ylo yhi' region of the discs; empty = walls.box_region, else the domain")
+      .choice("scene.distribution", s(&SceneConfig::distribution), "uniform_radius", kDistributions, "random, random_tiles: the radii")
+      .number("scene.radius_min", s(&SceneConfig::radius_min), 0.0, "m", kNonNegative, "random, random_tiles: smallest radius")
+      .number("scene.radius_max", s(&SceneConfig::radius_max), 0.0, "m", kNonNegative, "random, random_tiles: largest radius")
+      .numbers("scene.sizes", s(&SceneConfig::sizes), "m", kPositive, "random, random_tiles, list: radii 'r1 r2 ...'")
+      .numbers("scene.fractions", s(&SceneConfig::fractions), "-", kNonNegative, "random, random_tiles, list: number fractions 'f1 f2 ...' (sum 1)")
+      .number("scene.seed", s(&SceneConfig::seed), I64{1}, "-", kCount, "random, random_tiles: seed (same scene on any rank count)")
+      .number("scene.max_attempts", s(&SceneConfig::max_attempts), I64{1000}, "-", Range{1.0, 1e6, false, false}, "random, random_tiles: placement attempts per disc")
       .choice("scene.numbering", s(&SceneConfig::numbering), "placement", kNumberings, "random: the discs' ids")
       .text("scene.file", s(&SceneConfig::file), "", "path", "csv: 'id,x,y,radius[,vx,vy,omega]' rows, # comments; file: a Rondel "
                                                               "checkpoint or snapshot (.h5)")
@@ -272,16 +272,16 @@ void add_scene_section(po::options_description& all, std::vector<KeySpec>& keys,
       .number("scene.omega", s(&SceneConfig::omega), 0.0, "rad/s", kFinite, "initial angular velocity")
       .number("scene.max_initial_overlap", s(&SceneConfig::max_initial_overlap), 0.01, "-", Range{0.0, 1.0, false, false},
               "largest initial overlap allowed, / smaller radius")
-      .words("scene.materials", s(&SceneConfig::material_words), "", "-", "lattice, random: the materials of the discs 'NAME1 NAME2 ...'; "
+      .words("scene.materials", s(&SceneConfig::material_words), "", "-", "lattice, random, random_tiles: the materials of the discs 'NAME1 NAME2 ...'; "
                                                                         "empty = the first material")
-      .numbers("scene.material_fractions", s(&SceneConfig::material_fractions), "-", kNonNegative, "lattice, random: the fraction of each of "
+      .numbers("scene.material_fractions", s(&SceneConfig::material_fractions), "-", kNonNegative, "lattice, random, random_tiles: the fraction of each of "
                                                                                                   "scene.materials (sum 1); exact counts (largest remainder), placed by scene.seed")
       .choice("scene.material_by", s(&SceneConfig::material_by), "number", kMaterialBy, "what scene.material_fractions count")
       .numbers("scene.material_radius_min", s(&SceneConfig::material_radius_min), "m", kPositive,
-               "random: smallest radius of each of scene.materials (replaces scene.radius_min)")
+               "random, random_tiles: smallest radius of each of scene.materials (replaces scene.radius_min)")
       .numbers("scene.material_radius_max", s(&SceneConfig::material_radius_max), "m", kPositive,
-               "random: largest radius of each of scene.materials (replaces scene.radius_max)")
-      .words("scene.size_materials", s(&SceneConfig::size_material_words), "", "-", "random, list: the material of each of scene.sizes "
+               "random, random_tiles: largest radius of each of scene.materials (replaces scene.radius_max)")
+      .words("scene.size_materials", s(&SceneConfig::size_material_words), "", "-", "random, random_tiles, list: the material of each of scene.sizes "
                                                                                   "'NAME1 NAME2 ...'; csv: a last column 'material' (a name) after radius or omega");
   // clang-format on
   all.add(scene);

@@ -2,6 +2,8 @@
 // without overlap; radii uniform in radius or in area between scene.radius_min and scene.radius_max (or each
 // material's own range), or drawn from the list scene.sizes with scene.fractions. The same discs on any rank
 // count (scene.seed); numbered in the order they are placed, or in rows (scene.numbering = rows).
+#include "core/ScenePacking.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -14,12 +16,12 @@
 
 namespace rondel {
 
-namespace {
+namespace packing {
 
 using config::check;
 using config::num;
 
-void check_random(SceneConfig& s) {
+void check_keys(SceneConfig& s) {
   check(s.count > 0, "scene.count", "must be > 0 for a random scene", std::to_string(s.count));
   if (s.distribution == Distribution::list) {
     check(!s.sizes.empty() && s.sizes.size() == s.fractions.size(), "scene.fractions",
@@ -43,8 +45,6 @@ std::string placement_keys(const SceneConfig& s) {
   return "scene.count, scene.region (or walls.box_region), " + radius_keys(s);
 }
 
-// A radius, and its material: that of the slot (its own radius range when scene.material_radius_min is
-// given), or of the size drawn (scene.size_materials).
 std::pair<double, int> draw_radius(const SceneConfig& s, std::size_t slot, SceneRandom& rng) {
   const double u = rng.uniform();
   const bool own = !s.material_radius_min.empty();
@@ -63,6 +63,57 @@ std::pair<double, int> draw_radius(const SceneConfig& s, std::size_t slot, Scene
   }
   return size(s.sizes.size() - 1);
 }
+
+double largest_radius(const SceneConfig& s) {
+  double r = 0.0;
+  if (s.distribution == Distribution::list)
+    for (double size : s.sizes) r = std::max(r, size);
+  else if (!s.material_radius_max.empty())
+    for (double m : s.material_radius_max) r = std::max(r, m);
+  else
+    r = s.radius_max;
+  return r;
+}
+
+double mean_radius(const SceneConfig& s) {
+  const auto mean = [&s](double lo, double hi) {
+    if (s.distribution == Distribution::uniform_radius || hi == lo) return 0.5 * (lo + hi);
+    return 2.0 / 3.0 * (hi * hi * hi - lo * lo * lo) / (hi * hi - lo * lo);  // uniform in area
+  };
+  if (s.distribution == Distribution::list) {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < s.sizes.size(); ++k) sum += s.fractions[k] * s.sizes[k];
+    return sum;
+  }
+  if (s.material_radius_min.empty()) return mean(s.radius_min, s.radius_max);
+  const auto n = static_cast<std::size_t>(s.count);
+  const std::vector<std::size_t> counts = scene::material_counts(s, n);
+  double sum = 0.0;
+  for (std::size_t slot = 0; slot < counts.size(); ++slot)
+    sum += static_cast<double>(counts[slot]) * mean(s.material_radius_min[slot], s.material_radius_max[slot]);
+  return sum / static_cast<double>(n);
+}
+
+double smallest_radius(const SceneConfig& s) {
+  if (s.distribution == Distribution::list) return *std::min_element(s.sizes.begin(), s.sizes.end());
+  if (!s.material_radius_min.empty())
+    return *std::min_element(s.material_radius_min.begin(), s.material_radius_min.end());
+  return s.radius_min;
+}
+
+void check_region(const SceneConfig& s, double r_max) {
+  if (s.region[1] - s.region[0] < 2 * r_max || s.region[3] - s.region[2] < 2 * r_max)
+    throw InputError(
+        "scene.region (empty: walls.box_region, else the domain) is smaller than the largest disc "
+        "(diameter " +
+        std::to_string(2 * r_max).substr(0, 12) + " m; scene.radius_max, scene.sizes or scene.material_radius_max)");
+}
+
+}  // namespace packing
+
+namespace {
+
+using packing::draw_radius;
 
 // Every radius with its material, largest first; equal radii by material (a fixed order for a fixed seed).
 std::vector<std::pair<double, int>> draw_radii(const SceneConfig& s, SceneRandom& rng) {
@@ -131,11 +182,7 @@ std::vector<SceneDisc> random_packing(const SceneInputs& in) {
   const auto radii = draw_radii(s, rng);
   const double xlo = s.region[0], xhi = s.region[1], ylo = s.region[2], yhi = s.region[3];
   const double r_max = radii.front().first;
-  if (xhi - xlo < 2 * r_max || yhi - ylo < 2 * r_max)
-    throw InputError(
-        "scene.region (empty: walls.box_region, else the domain) is smaller than the largest disc "
-        "(diameter " +
-        std::to_string(2 * r_max).substr(0, 12) + " m; scene.radius_max, scene.sizes or scene.material_radius_max)");
+  packing::check_region(s, r_max);
   PlacementGrid grid(s.region, r_max, radii.size());
   std::vector<SceneDisc> out;
   out.reserve(radii.size());
@@ -162,9 +209,13 @@ std::vector<SceneDisc> random_packing(const SceneInputs& in) {
 
 }  // namespace
 
-extern const SceneType kRandomScene{"random",     "scene.count discs placed at random without overlap",
-                                    check_random, placement_keys,
-                                    radius_keys,  SceneType::Source::keys,
-                                    true,         random_packing};
+extern const SceneType kRandomScene{"random",
+                                    "scene.count discs placed at random without overlap, largest first",
+                                    packing::check_keys,
+                                    packing::placement_keys,
+                                    packing::radius_keys,
+                                    SceneType::Source::keys,
+                                    true,
+                                    random_packing};
 
 }  // namespace rondel

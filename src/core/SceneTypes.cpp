@@ -3,11 +3,11 @@
 namespace rondel {
 
 // The rows, each defined in its builder's file.
-extern const SceneType kLatticeSquareScene, kLatticeHexScene, kRandomScene, kCsvScene, kFileScene;
+extern const SceneType kLatticeSquareScene, kLatticeHexScene, kRandomScene, kRandomTilesScene, kCsvScene, kFileScene;
 
 namespace {
-const SceneType* const kSceneTypes[] = {&kLatticeSquareScene, &kLatticeHexScene, &kRandomScene, &kCsvScene,
-                                        &kFileScene};
+const SceneType* const kSceneTypes[] = {&kLatticeSquareScene, &kLatticeHexScene, &kRandomScene,
+                                        &kRandomTilesScene,   &kCsvScene,        &kFileScene};
 }  // namespace
 
 std::span<const SceneType* const> scene_types() { return kSceneTypes; }

@@ -53,15 +53,19 @@ struct SceneType {
   // (scene::in_blocks says when; docs/scaling.md, "Set-up"). nullptr: every rank builds the whole scene.
   std::int64_t (*total)(const SceneConfig& scene) = nullptr;
   std::vector<SceneDisc> (*block)(const SceneInputs& in, std::int64_t first, std::int64_t count) = nullptr;
-  // A scene of one radius whose discs can be found cell by cell (a lattice inside an untilted domain) gives that
-  // radius (0: it cannot here, nullptr: never), the number of its discs in a rectangle of cells [x0, x1) x
-  // [y0, y1) of the decomposition's grid (the first map is weighted by them) and the discs of a rank's cells in
-  // ascending gid, given to `out` one at a time after their exact count, so that no disc moves to its owner and
-  // no list of them is made (Simulation::add_scene_discs; the same discs as block's).
+  // A scene whose discs can be found cell by cell (a lattice inside an untilted domain, a random packing placed
+  // tile by tile) gives its largest radius (0: it cannot here, nullptr: never), the number of its discs in a rectangle
+  // of cells [x0, x1) x [y0, y1) of the decomposition's grid (the first map is weighted by them) and the discs of a
+  // rank's cells in ascending gid, given to `out` one at a time after their exact count, so that no disc moves to its
+  // owner and no list of them is made (Simulation::add_scene_discs; the same discs as block's).
   double (*by_cells)(const SceneInputs& in) = nullptr;
   std::uint64_t (*rect_count)(const SceneInputs& in, const CellGrid& grid, int x0, int y0, int x1, int y1) = nullptr;
   void (*cells)(const SceneInputs& in, const CellGrid& grid, const std::vector<std::size_t>& cells,
                 SceneSink& out) = nullptr;
+  // A scene of several radii built cell by cell gives by_cells its largest radius and here the mean radius it
+  // expects (the neighbour skin's default is a quarter of the mean), so that the grid of the first map is, but for
+  // rounding, the grid of the discs' own range (nullptr: by_cells's radius, a scene of one radius).
+  double (*mean_radius)(const SceneConfig& scene) = nullptr;
 };
 
 std::span<const SceneType* const> scene_types();

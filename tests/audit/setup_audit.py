@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The set-up audit (docs/scaling.md, "Set-up"): what the set-up of a run takes on its largest rank, on 1, 2, 4 and
-8 ranks (oversubscribed), for a generated scene, the same discs read from a CSV file, a restart from a checkpoint
-and a new stage from it (scene.type = file) (strong: 160,000 discs), and for a generated scene of 20,000 discs per rank (weak). Bytes are the growth of the
+8 ranks (oversubscribed), for a generated scene, the same discs read from a CSV file, as many placed at random (random_tiles), a
+restart from a checkpoint and a new stage from it (scene.type = file) (strong: 160,000 discs), and for a generated scene of 20,000 discs per rank (weak). Bytes are the growth of the
 largest rank's resident set during the set-up (its peak less what it held before), seconds the slowest rank's.
 
     /usr/bin/python3 tests/audit/setup_audit.py --exe build/tests/rondel_scaling_audit --work /tmp/setup-audit
@@ -13,7 +13,8 @@ strong rows fall as 1/P and the weak ones stay flat). Exit 0 when every run comp
         --speedup 3163 --pairs 5
 
 times the set-up of a SIDE x SIDE lattice (3163: ten million discs, 0 steps) on 1 and on 2 ranks as interleaved
-pairs (1 2 1 2 ...) and prints each pair's ratio, the medians and the largest rank's set-up bytes. The byte tables are
+pairs (1 2 1 2 ...) and prints each pair's ratio, the medians and the largest rank's set-up bytes; with
+--random, of as many discs placed at random (scene.type = random_tiles) in the same box. The byte tables are
 counted in 4 KiB pages (RONDEL_HUGE_PAGES=0); --speedup runs as rondel does, with huge pages.
 """
 import argparse
@@ -51,6 +52,12 @@ radius = 0.00049
 spacing = 0.001
 x0 = 0.0005
 y0 = 0.0005
+"""
+# The same number of discs placed at random, tile by tile, in the lattice's box (packing fraction 0.33).
+TILES = """type = random_tiles
+count = {count}
+radius_min = 0.0003
+radius_max = 0.00035
 """
 CSV = """type = csv
 file = {file}
@@ -103,10 +110,12 @@ def table(title, rows):
 def speedup(args):
     """Interleaved 1-rank and 2-rank set-ups of one large lattice: pair ratios and medians."""
     n = args.speedup
-    ini = scene(args, "speedup", n, n, GENERATED.format(nx=n, ny=n))
+    body = TILES.format(count=n * n) if args.random else GENERATED.format(nx=n, ny=n)
+    ini = scene(args, "speedup", n, n, body)
     one, two = [], []
     print("uptime: %s" % open("/proc/loadavg").read().split()[:3])
-    print("%d x %d = %d discs, 0 steps; set-up seconds (slowest rank), pair by pair:" % (n, n, n * n))
+    print("%d discs (%s), 0 steps; set-up seconds (slowest rank), pair by pair:" %
+          (n * n, "random_tiles" if args.random else "lattice_square %d x %d" % (n, n)))
     for k in range(args.pairs):
         a = run(args, 1, ini, os.path.join(args.work, "speedup-1"), steps="0")
         b = run(args, 2, ini, os.path.join(args.work, "speedup-2"), steps="0")
@@ -130,6 +139,7 @@ def main():
     ap.add_argument("--speedup", type=int, default=0, metavar="SIDE",
                     help="instead: 1- and 2-rank set-up of a SIDE x SIDE lattice as interleaved pairs")
     ap.add_argument("--pairs", type=int, default=5, help="pairs of --speedup (default 5)")
+    ap.add_argument("--random", action="store_true", help="--speedup of a random packing (random_tiles), not a lattice")
     args = ap.parse_args()
     os.makedirs(args.work, exist_ok=True)
     if args.speedup:
@@ -138,17 +148,20 @@ def main():
     generated = scene(args, "generated", n, n, GENERATED.format(nx=n, ny=n))
     csv_file = lattice_csv(os.path.join(args.work, "lattice.csv"), n, n)
     from_csv = scene(args, "csv", n, n, CSV.format(file=csv_file))
-    strong, csv_rows, restart = [], [], []
+    tiles = scene(args, "tiles", n, n, TILES.format(count=n * n))
+    strong, csv_rows, restart, random_rows = [], [], [], []
     for p in RANKS:
         out = os.path.join(args.work, "generated-%d" % p)
         strong.append(run(args, p, generated, out))
         csv_rows.append(run(args, p, from_csv, os.path.join(args.work, "csv-%d" % p)))
+        random_rows.append(run(args, p, tiles, os.path.join(args.work, "tiles-%d" % p)))
     checkpoint_dir = os.path.join(args.work, "generated-1")  # its checkpoint at step 1
     for p in RANKS:
         restart.append(run(args, p, generated, os.path.join(args.work, "restart-%d" % p),
                            ["--resume", checkpoint_dir, "--run.steps=2"]))
     table("strong, %d discs generated (lattice_square):" % (n * n), strong)
     table("strong, the same discs read from a CSV file:", csv_rows)
+    table("strong, as many discs placed at random (random_tiles):", random_rows)
     stage = [run(args, p, generated, os.path.join(args.work, "stage-%d" % p),
                  ["--scene.type=file", "--scene.file=" + checkpoint_dir]) for p in RANKS]
     table("strong, a restart from the 1-rank run's checkpoint:", restart)

@@ -73,6 +73,48 @@ TEST(SetupBlocks, ALatticeThatWrapsIsBuiltInBlocksAndGivesTheBitsOfOneRank) {
   check_scene("lattice in blocks", ini, 1500, 500, true);
 }
 
+// The same box with a random packing placed tile by tile (scene.type = random_tiles): each rank places the tiles of
+// its cells and their halo.
+std::string random_tiles() {
+  std::string ini = kLattice;
+  ini.replace(ini.find("type = lattice_hex"), std::string::npos,
+              "type = random_tiles\ncount = 700\nregion = 0.001 0.069 0.001 0.05\nradius_min = 0.0007\n"
+              "radius_max = 0.001\nvx = 0.3\nvy = -0.2\nomega = 20\nseed = 5\n");
+  return ini;
+}
+
+TEST(SetupBlocks, ARandomPackingPlacedTileByTileGivesTheBitsOfOneRank) {
+  const std::string ini = random_tiles();
+  const Config c = parse_config_text(ini);
+  ASSERT_GT(scene::by_cells(SceneInputs{c.scene, c.domain, "", nullptr}), 0.0);
+  check_scene("random tiles", ini, 4000, 500, true);
+}
+
+TEST(SetupBlocks, ARandomPackingTooDenseIsRefusedWithTheSameMessageOnAnyRankCount) {
+  const std::vector<std::string> args{"--scene.count=3000"};
+  std::string here, one;
+  bool threw = false;
+  try {
+    const Communicator world;
+    Simulation s(parse_config_text(random_tiles(), args), world, false);
+  } catch (const InputError& e) {
+    threw = true;
+    here = e.what();
+  }
+  EXPECT_TRUE(all_ranks(threw)) << "refused on some ranks only";
+  if (world_rank() == 0) {
+    const Communicator self(MPI_COMM_SELF);
+    try {
+      Simulation s(parse_config_text(random_tiles(), args), self, false);
+    } catch (const InputError& e) {
+      one = e.what();
+    }
+  }
+  one = broadcast(one);
+  EXPECT_EQ(here, one);
+  EXPECT_NE(here.find("scene.count = 3000: the discs do not fit"), std::string::npos) << here;
+}
+
 TEST(SetupBlocks, ARondelFileSceneIsReadInBlocksAndGivesTheBitsOfOneRank) {
   // A stage from the checkpoint of a 1-rank run (300 steps in: the lattice falling, turning, drifting): each rank
   // reads its block of the file's discs (scene::in_blocks), sent to the owners of their cells.
