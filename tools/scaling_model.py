@@ -5,8 +5,9 @@ N discs on P ranks, from a few machine constants (stated below; change them for 
 usage: python3 tools/scaling_model.py [--c-ns 45] [--latency-us 1.5] [--bandwidth-gbs 10] [--fs-gbs 50]
                                      [--memory-gb 4]
 Prints one table row per (N, P) with the terms of the step time, the peak memory of a rank and what stops the run
-first: its memory (a run's peak, or the whole-scene set-up of a random packing or a replicated CSV scene) before its
-time."""
+first: its memory before its time. The memory a set-up takes on every rank when it builds the whole scene
+(scene.type = random) is shown beside it; it stops nothing, since scene.type = random_tiles places the same keys'
+discs each rank its own (docs/scaling.md, "Set-up")."""
 import argparse
 import math
 
@@ -22,8 +23,9 @@ REDUCE_BYTES = {"deposition": 48, "biaxial": 8 * (4 * 208 + 6)}
 STEPS_PER_REDUCTION = {"deposition": 10.0, "biaxial": 1.0}
 NEIGHBOURS = 8  # partners of a rank in 2D (measured 5 to 7 on 8 ranks)
 # Peak bytes per disc of a rank (docs/scaling.md, "Forty million discs": 40,000,000 discs with wang rolling on 2
-# ranks, set-up, steps, checkpoint and final.csv); a random packing's or a replicated CSV scene's set-up holds about
-# 315 B per disc of the whole scene on every rank (a CSV file not replicated is read in blocks of its bytes).
+# ranks, set-up, steps, checkpoint and final.csv); the set-up of scene.type = random holds about 315 B per disc of
+# the whole scene on every rank (every other scene is built or read in blocks, at most 270 B per disc of the rank's
+# own at the set-up's peak: docs/scaling.md, "Set-up").
 PEAK_BYTES = 381
 WHOLE_SCENE_BYTES = 315
 
@@ -53,7 +55,7 @@ def main():
     ap.add_argument("--memory-gb", type=float, default=4.0, help="memory per rank (a core's share of a node), GB")
     a = ap.parse_args()
     print("| N | P | discs per rank | compute | exchange | reduction (deposition / biaxial) | "
-          "efficiency (deposition / biaxial) | checkpoint | peak per rank (random set-up) | stops first |")
+          "efficiency (deposition / biaxial) | checkpoint | peak per rank (whole-scene set-up: random) | stops first |")
     print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     for N in (1e6, 1e7, 1e8, 1e9, 1e10):
         for P in (64, 1024, 16384):
@@ -67,8 +69,6 @@ def main():
                 first = "memory of the run"
             elif eff_bx < 0.9:
                 first = "reduction (biaxial)" if r_bx > e else "ghost exchange"
-            elif whole > a.memory_gb:
-                first = "set-up of a random packing"
             else:
                 first = "nothing (efficiency >= 0.9)"
             print("| %.0e | %d | %.0f | %.1f us | %.1f us | %.2f / %.1f us | %.2f / %.2f | %.2f s | %.3g GB (%.3g GB) | %s |"

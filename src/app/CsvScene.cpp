@@ -85,6 +85,15 @@ void check_distinct(const SceneConfig& s, const scene_csv::Rows& rows, const Com
 }  // namespace
 
 std::vector<SceneDisc> FileScene::csv(const SceneConfig& s, const std::string& path) const {
+  if (s.replicate_x != 1 || s.replicate_y != 1) {
+    // Every rank reads the file (the tile that is copied), and builds its block of the copies.
+    std::vector<SceneDisc> block;
+    agree(comm_, [&] {
+      block =
+          scene_csv::replicated_block(s, config_.domain, scene_csv::whole_file(s, path), comm_.rank(), comm_.size());
+    });
+    return block;
+  }
   agree(comm_, [&] {
     // A rank holds its block: a file larger than the memory of all the ranks cannot become a scene.
     const std::uint64_t bound = memory_bound().bytes, P = static_cast<std::uint64_t>(comm_.size());

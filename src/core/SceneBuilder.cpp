@@ -125,9 +125,8 @@ std::string resolve(const std::string& file, const std::string& config_dir) {
 
 namespace scene {
 bool in_blocks(const SceneConfig& s) {
-  const bool replicated = s.replicate_x != 1 || s.replicate_y != 1;
   return s.type->block != nullptr || s.type->source == SceneType::Source::state_file ||
-         (s.type->source == SceneType::Source::csv_file && !replicated);
+         s.type->source == SceneType::Source::csv_file;
 }
 double by_cells(const SceneInputs& in) {
   const SceneType& t = *in.scene.type;

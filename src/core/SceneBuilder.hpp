@@ -65,7 +65,8 @@ std::size_t material_slot_of(const SceneConfig& s, const std::vector<std::size_t
 // The material of a slot (0 without scene.materials).
 int slot_material(const SceneConfig& s, std::size_t slot);
 // Whether each rank holds a block of the scene, not the whole: a type with a block builder (a lattice), a Rondel
-// file (each rank reads its block of the rows) or a CSV file not replicated (each rank its block of the bytes).
+// file (each rank reads its block of the rows) or a CSV file (each rank its block of the bytes; replicated, its
+// block of the copies' ids, scene_csv::replicated_block).
 bool in_blocks(const SceneConfig& s);
 // The radius of the discs of a scene built cell by cell (SceneType::by_cells), 0 when it is not.
 double by_cells(const SceneInputs& in);

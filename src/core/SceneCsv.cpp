@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <sstream>
 
 #include "core/ConfigRead.hpp"
@@ -235,7 +236,7 @@ std::vector<SceneDisc> replicate(const SceneConfig& s, const Domain& domain, con
                "scene.replicate_x x scene.replicate_y copies of the " + std::to_string(base.size()) + " discs of '" +
                    s.file + "'");
   const double px = domain.length_x() / s.replicate_x, py = domain.length_y() / s.replicate_y;
-  std::vector<SceneDisc> out;
+  std::vector<SceneDisc> out;  // scene_csv::replicated_block builds a rank's block of the same discs
   out.reserve(base.size() * static_cast<std::size_t>(s.replicate_x) * static_cast<std::size_t>(s.replicate_y));
   for (int cy = 0; cy < s.replicate_y; ++cy)
     for (int cx = 0; cx < s.replicate_x; ++cx)
@@ -259,6 +260,69 @@ std::vector<SceneDisc> csv(const SceneInputs& in) {
 }  // namespace
 
 namespace scene_csv {
+
+std::vector<SceneDisc> whole_file(const SceneConfig& s, const std::string& path) { return read_rows(s, path); }
+
+std::vector<SceneDisc> replicated_block(const SceneConfig& s, const Domain& domain, const std::vector<SceneDisc>& base,
+                                        int rank, int ranks) {
+  if (base.empty()) return {};
+  const std::int64_t copies_x = s.replicate_x, copies_y = s.replicate_y;
+  const std::int64_t n = static_cast<std::int64_t>(base.size()) * copies_x * copies_y;
+  const std::int64_t q = n / ranks, rem = n % ranks;
+  const auto first_of = [&](int r) { return q * r + rem * r / ranks; };
+  const std::int64_t lo = first_of(rank), hi = first_of(rank + 1);
+  check_memory(static_cast<double>(hi - lo), 0.0, 0.0,
+               "scene.replicate_x x scene.replicate_y copies of the " + std::to_string(base.size()) + " discs of '" +
+                   s.file + "'");
+  // As replicate and number_in_rows compute them: the shifts, the rows' height and each copy's row.
+  const double px = domain.length_x() / s.replicate_x, py = domain.length_y() / s.replicate_y;
+  double R_max = 0.0;
+  for (const auto& d : base) R_max = std::max(R_max, d.radius);
+  const double row_height = 2.0 * R_max, ylo = domain.ylo;
+  const auto row_of = [&](double y) { return std::floor((y - ylo) / row_height); };
+  const auto y_of = [&](const SceneDisc& d, std::int64_t cy) { return d.x.y + static_cast<int>(cy) * py; };
+  // The discs of each row of the whole box (each copy of a file row lies in the same row whatever its column), and
+  // the first id of each: the rows that hold ids of [lo, hi) are this rank's.
+  std::map<double, std::int64_t> in_row;
+  for (std::int64_t cy = 0; cy < copies_y; ++cy)
+    for (const auto& d : base) in_row[row_of(y_of(d, cy))] += copies_x;
+  std::map<double, std::int64_t> first;  // of the rows this rank builds
+  std::int64_t id = 0;
+  for (const auto& [row, count] : in_row) {
+    if (id < hi && id + count > lo) first[row] = id;
+    id += count;
+  }
+  // Their discs in the order replicate gives them (copy row, copy column, file order), then numbered as
+  // number_in_rows numbers them: by row, by x within a row, ties in that order (a stable sort).
+  std::vector<SceneDisc> out;
+  for (std::int64_t cy = 0; cy < copies_y; ++cy) {
+    std::vector<std::size_t> mine;
+    for (std::size_t k = 0; k < base.size(); ++k)
+      if (first.count(row_of(y_of(base[k], cy)))) mine.push_back(k);
+    for (int cx = 0; cx < s.replicate_x; ++cx)
+      for (std::size_t k : mine) {
+        SceneDisc d = base[k];
+        d.x += Vec2{cx * px, static_cast<int>(cy) * py};
+        out.push_back(d);
+      }
+  }
+  std::stable_sort(out.begin(), out.end(), [&](const SceneDisc& a, const SceneDisc& b) {
+    const double ra = row_of(a.x.y), rb = row_of(b.x.y);
+    return ra != rb ? ra < rb : a.x.x < b.x.x;
+  });
+  std::vector<SceneDisc> block;
+  block.reserve(static_cast<std::size_t>(hi - lo));
+  for (std::size_t k = 0; k < out.size();) {
+    const double row = row_of(out[k].x.y);
+    const std::int64_t row_first = first.at(row);
+    for (std::int64_t j = 0; k < out.size() && row_of(out[k].x.y) == row; ++k, ++j)
+      if (row_first + j >= lo && row_first + j < hi) {
+        out[k].gid = row_first + j;
+        block.push_back(out[k]);
+      }
+  }
+  return block;
+}
 
 std::int64_t count_lines(std::string_view text, bool file_start) {
   return for_each_line(text, file_start, 0, [](std::string_view, std::int64_t) { return true; });

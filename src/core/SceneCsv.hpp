@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/Config.hpp"
+#include "core/Domain.hpp"
 #include "core/SceneBuilder.hpp"
 
 namespace rondel::scene_csv {
@@ -27,6 +28,15 @@ struct Rows {
 // naming scene.file and the line of the first bad row of the block.
 Rows rows(const SceneConfig& s, const std::string& head, std::int64_t head_at, std::string_view text, bool file_start,
           std::int64_t first_line);
+// The discs of the whole file `path` of scene `s` on this process (a replicated scene's file: its tile), the ids
+// checked distinct.
+std::vector<SceneDisc> whole_file(const SceneConfig& s, const std::string& path);
+// Rank `rank` of `ranks`'s block of a replicated scene (scene.replicate_x x scene.replicate_y copies of the discs
+// `base` over `domain`): the ids [N rank / ranks, N (rank + 1) / ranks) of the copies numbered in rows across the
+// whole box, the same discs as the whole replication's (scene::number_in_rows). It builds only the rows of the box
+// that hold those ids (rows 2 R_max high, a disc's copies in one row whatever their column).
+std::vector<SceneDisc> replicated_block(const SceneConfig& s, const Domain& domain, const std::vector<SceneDisc>& base,
+                                        int rank, int ranks);
 // The message for two discs of one id on lines `a` < `b` of scene.file.
 std::string duplicate_message(const SceneConfig& s, std::int64_t gid, std::int64_t a, std::int64_t b);
 

@@ -96,7 +96,8 @@ class Bins {
  public:
   void reset(double x0, double y0, double x1, double y1, double side) {
     x0_ = x0, y0_ = y0, side_ = side;
-    nx_ = std::max(1, static_cast<int>(std::ceil((x1 - x0) / side))), ny_ = std::max(1, static_cast<int>(std::ceil((y1 - y0) / side)));
+    nx_ = std::max(1, static_cast<int>(std::ceil((x1 - x0) / side))),
+    ny_ = std::max(1, static_cast<int>(std::ceil((y1 - y0) / side)));
     if (bins_.size() < static_cast<std::size_t>(nx_) * ny_) bins_.resize(static_cast<std::size_t>(nx_) * ny_);
     for (auto& b : bins_) b.clear();
   }
@@ -193,8 +194,8 @@ TileSet place(const SceneConfig& s, const Tiles& tiles, const std::vector<std::i
       const std::int64_t t = set[k];
       if (tiles.colour(t) != phase) continue;
       const std::int64_t ix = t % tiles.nx(), iy = t / tiles.nx();
-      near.reset(tiles.x_at(ix) - reach, tiles.y_at(iy) - reach, tiles.x_at(ix + 1) + reach,
-                 tiles.y_at(iy + 1) + reach, reach);
+      near.reset(tiles.x_at(ix) - reach, tiles.y_at(iy) - reach, tiles.x_at(ix + 1) + reach, tiles.y_at(iy + 1) + reach,
+                 reach);
       tiles.around(t, [&](std::int64_t u) {
         if (tiles.colour(u) < phase)
           for (const Placed& d : *out.find(u)) near.add(d.x, d.radius);
@@ -217,8 +218,10 @@ TileSet place(const SceneConfig& s, const Tiles& tiles, const std::vector<std::i
         // The sides across which the tiles of later phases lie: a tile of an even column has them left and right, of
         // an even row above and below.
         const double ex = (ix & 1) == 0 ? kReach * R : 0.0, ey = (iy & 1) == 0 ? kReach * R : 0.0;
-        const double x0 = std::max(tiles.x_at(ix) + ex, s.region[0] + R), x1 = std::min(tiles.x_at(ix + 1) - ex, s.region[1] - R);
-        const double y0 = std::max(tiles.y_at(iy) + ey, s.region[2] + R), y1 = std::min(tiles.y_at(iy + 1) - ey, s.region[3] - R);
+        const double x0 = std::max(tiles.x_at(ix) + ex, s.region[0] + R),
+                     x1 = std::min(tiles.x_at(ix + 1) - ex, s.region[1] - R);
+        const double y0 = std::max(tiles.y_at(iy) + ey, s.region[2] + R),
+                     y1 = std::min(tiles.y_at(iy + 1) - ey, s.region[3] - R);
         bool placed = false;
         for (std::int64_t attempt = 0; attempt < s.max_attempts && !placed; ++attempt) {
           const Vec2 x{x0 + rng.uniform() * (x1 - x0), y0 + rng.uniform() * (y1 - y0)};
@@ -263,9 +266,7 @@ std::vector<SceneDisc> tiles_build(const SceneInputs& in) {
 }
 
 // Cell by cell in an untilted domain; the largest radius the keys allow (the grid's range).
-double tiles_by_cells(const SceneInputs& in) {
-  return in.domain.tilt == 0.0 ? packing::largest_radius(in.scene) : 0.0;
-}
+double tiles_by_cells(const SceneInputs& in) { return in.domain.tilt == 0.0 ? packing::largest_radius(in.scene) : 0.0; }
 
 // The expected count: scene.count by the share of scene.region that the rectangle of cells covers (the first
 // partition's weights; a tile's count differs from its share of scene.count by less than one disc).
@@ -316,8 +317,8 @@ std::vector<std::int64_t> tiles_of_cells(const Tiles& tiles, const CellGrid& gri
 void tiles_cells(const SceneInputs& in, const CellGrid& grid, const std::vector<std::size_t>& given, SceneSink& out) {
   const SceneConfig& s = in.scene;
   check_inside(in);
-  check_memory(static_cast<double>(s.count) * static_cast<double>(given.size()) / static_cast<double>(grid.size()),
-               0.0, 0.0, "scene.count = " + std::to_string(s.count));
+  check_memory(static_cast<double>(s.count) * static_cast<double>(given.size()) / static_cast<double>(grid.size()), 0.0,
+               0.0, "scene.count = " + std::to_string(s.count));
   std::vector<std::size_t> cells = given;
   if (!std::is_sorted(cells.begin(), cells.end())) std::sort(cells.begin(), cells.end());
   const Tiles tiles(s);

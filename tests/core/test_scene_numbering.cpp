@@ -16,6 +16,7 @@
 #include "core/Config.hpp"
 #include "core/Errors.hpp"
 #include "core/SceneBuilder.hpp"
+#include "core/SceneCsv.hpp"
 #include "core/SceneTypes.hpp"
 #include "physics/LawRegistry.hpp"
 
@@ -117,6 +118,42 @@ TEST(SceneNumbering, ReplicatedCopiesAreNumberedInRowsAcrossTheBox) {
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find("id 3 appears twice"), std::string::npos) << e.what();
     }
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(SceneNumbering, EachRanksBlockOfTheCopiesIsTheWholeReplicationsDiscsOfItsIds) {
+  // 60 discs of a cell 0.3 x 0.2 (some of one x, rows of the box cut through the file's rows), copied 5 x 3 times:
+  // each rank builds only the box rows that hold its ids (scene_csv::replicated_block).
+  const auto dir = std::filesystem::temp_directory_path() / "rondel_replicated_blocks";
+  std::filesystem::create_directories(dir);
+  const std::string file = (dir / "tile.csv").string();
+  {
+    std::ofstream out(file);
+    out << "id,x,y,radius\n";
+    SceneRandom rng(3);
+    for (int k = 0; k < 60; ++k)
+      out << 100 + 7 * k << "," << (k % 4 == 0 ? 0.15 : 0.3 * rng.uniform()) << "," << 0.2 * rng.uniform() << ","
+          << 0.004 + 0.003 * rng.uniform() << "\n";
+  }
+  const std::string ini =
+      "[domain]\nxlo = 0\nxhi = 1.5\nylo = 0\nyhi = 0.6\nperiodic_x = true\nperiodic_y = true\n[linear]\nk_n = 1e5\n"
+      "[coulomb]\nk_s = 7.5e4\nmu = 0.5\n[scene]\ntype = csv\nfile = " +
+      file + "\nreplicate_x = 5\nreplicate_y = 3\n";
+  const Config c = parse_config_text(ini);
+  const auto whole = build_scene(SceneInputs{c.scene, c.domain, ""});
+  ASSERT_EQ(whole.size(), 900u);
+  const auto tile = scene_csv::whole_file(c.scene, file);
+  for (int ranks : {1, 2, 3, 7, 64, 1000}) {
+    std::size_t k = 0;
+    for (int r = 0; r < ranks; ++r)
+      for (const auto& d : scene_csv::replicated_block(c.scene, c.domain, tile, r, ranks)) {
+        ASSERT_LT(k, whole.size()) << ranks << " ranks";
+        const auto& w = whole[k++];
+        ASSERT_TRUE(d.gid == w.gid && d.x.x == w.x.x && d.x.y == w.x.y && d.radius == w.radius)
+            << "id " << d.gid << " (the whole replication's " << w.gid << "), rank " << r << " of " << ranks;
+      }
+    EXPECT_EQ(k, whole.size()) << ranks << " ranks";
   }
   std::filesystem::remove_all(dir);
 }

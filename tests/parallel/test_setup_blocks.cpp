@@ -5,6 +5,7 @@
 // Rondel file and a CSV file are read in blocks too.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <string>
 #include <utility>
 
@@ -149,6 +150,31 @@ TEST(SetupBlocks, ACsvSceneIsReadInBlocksOfItsBytesAndGivesTheBitsOfOneRank) {
   const Config c = parse_config_text(ini);
   ASSERT_TRUE(scene::in_blocks(c.scene));
   check_scene("csv scene in blocks", ini, 1500, 500, true);
+}
+
+TEST(SetupBlocks, AReplicatedCsvSceneIsBuiltInBlocksOfItsIdsAndGivesTheBitsOfOneRank) {
+  // A tile of 300 discs (a random packing of a cell 0.035 m wide, written by rank 0) copied 4 times across a
+  // periodic box: each rank reads the tile and builds the rows of the box that hold its block of the copies' ids.
+  SharedTempDir tmp("replicated");
+  const std::string tile = (tmp.path() / "tile.csv").string();
+  if (world_rank() == 0) {
+    const Config cell = parse_config_text(
+        random_tiles(), {"--domain.xhi=0.035", "--scene.region=0.001 0.034 0.001 0.05", "--scene.count=300"});
+    std::ofstream out(tile);
+    out << "id,x,y,radius,vx,vy,omega\n" << std::hexfloat;
+    for (const auto& d : build_scene(SceneInputs{cell.scene, cell.domain, "", nullptr}))
+      out << d.gid << "," << d.x.x << "," << d.x.y << "," << d.radius << "," << d.v.x << "," << d.v.y << "," << d.omega
+          << "\n";
+  }
+  world_barrier();
+  std::string ini = kLattice;
+  ini.replace(ini.find("xhi = 0.07"), 10, "xhi = 0.14");
+  ini.replace(ini.find("yhi = 0.06\n"), 11, "yhi = 0.06\nperiodic_x = true\n");
+  ini.replace(ini.find("box = bottom left right"), 23, "box = bottom");
+  ini.replace(ini.find("[scene]"), std::string::npos, "[scene]\ntype = csv\nfile = " + tile + "\nreplicate_x = 4\n");
+  const Config c = parse_config_text(ini);
+  ASSERT_TRUE(scene::in_blocks(c.scene));
+  check_scene("replicated csv in blocks", ini, 4000, 500, true);
 }
 
 TEST(SetupBlocks, EachRankBuildsOnlyItsBlockAndTheBlocksMakeTheScene) {
