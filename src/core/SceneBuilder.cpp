@@ -109,8 +109,8 @@ void number_in_rows(std::vector<SceneDisc>& discs, double ylo) {
 
 void check_numbering_placement(const SceneConfig& s) {
   config::check(s.numbering == Numbering::placement, "scene.numbering",
-                "only with scene.type = random (lattices and replicated copies are numbered in rows, a csv file keeps "
-                "its ids)",
+                "only with scene.type = random (lattices and replicated copies are numbered in rows, random_tiles "
+                "tile by tile in rows, a csv file keeps its ids)",
                 std::string("rows with scene.type = ") + s.type->name);
 }
 

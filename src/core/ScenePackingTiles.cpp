@@ -2,14 +2,14 @@
 // places only the discs near its own cells and the scene is the same disc for disc on any rank count
 // (docs/scaling.md, "Set-up"; the keys are the random packing's, core/ScenePacking.hpp).
 //
-// scene.region is cut into tiles at least a largest diameter across (about kDiscsPerTile discs each, from the keys
-// alone). Tile t holds an exact share of scene.count (the remainder spread evenly) and the ids [first(t), first(t)
-// + n(t)), numbered tile by tile in rows; its radii and positions come from a generator keyed by (scene.seed, t).
-// The tiles are placed in four phases by their colour (column and row parity): a tile places its discs largest
-// first, by random sequential addition, against its own and those of its neighbours of earlier phases, a disc
-// reaching at most half its radius into a tile of a later phase. Two tiles of
-// one colour are a tile apart, so no disc of one can touch a disc of the other: a tile's discs depend only on the
-// tiles of earlier phases round it, at most three tiles away, and a rank places its cells' tiles and that halo.
+// scene.region is cut into tiles at least a largest diameter across, about kDiscsPerTile discs each, from the keys
+// alone. Tile t holds an equal share of scene.count (the remainder spread evenly) and the ids [first(t), first(t) +
+// n(t)), numbered tile by tile in rows; its radii and positions come from a generator keyed by (scene.seed, t). The
+// tiles are placed in four phases by their colour (column and row parity): a tile places its discs largest first,
+// by random sequential addition, against its own and those of its neighbours of earlier phases, a disc reaching at
+// most kReach of its radius into a tile of a later phase. Two tiles of one colour are a tile apart, so no disc of
+// one can touch a disc of the other: a tile's discs depend only on the tiles of earlier phases round it, at most
+// three tiles away, and a rank places the tiles of its cells and that halo.
 #include <algorithm>
 #include <cmath>
 #include <sstream>

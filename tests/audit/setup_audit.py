@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """The set-up audit (docs/scaling.md, "Set-up"): what the set-up of a run takes on its largest rank, on 1, 2, 4 and
-8 ranks (oversubscribed), for a generated scene, the same discs read from a CSV file, as many placed at random (random_tiles), a
-restart from a checkpoint and a new stage from it (scene.type = file) (strong: 160,000 discs), and for a generated scene of 20,000 discs per rank (weak). Bytes are the growth of the
-largest rank's resident set during the set-up (its peak less what it held before), seconds the slowest rank's.
+8 ranks (oversubscribed), for a generated scene, the same discs read from a CSV file and from a quarter of it
+replicated 2 x 2, as many placed at random (random_tiles), a restart from a checkpoint and a new stage from it
+(scene.type = file) (strong: 160,000 discs), and for a generated scene of 20,000 discs per rank (weak). Bytes are the
+growth of the largest rank's resident set during the set-up (its peak less what it held before), seconds the slowest rank's.
 
     /usr/bin/python3 tests/audit/setup_audit.py --exe build/tests/rondel_scaling_audit --work /tmp/setup-audit
 
@@ -61,6 +62,12 @@ radius_max = 0.00035
 """
 CSV = """type = csv
 file = {file}
+"""
+# A quarter of the lattice (SIDE/2 x SIDE/2) copied 2 x 2 times: the same discs.
+REPLICATED = """type = csv
+file = {file}
+replicate_x = 2
+replicate_y = 2
 """
 
 
@@ -149,18 +156,22 @@ def main():
     csv_file = lattice_csv(os.path.join(args.work, "lattice.csv"), n, n)
     from_csv = scene(args, "csv", n, n, CSV.format(file=csv_file))
     tiles = scene(args, "tiles", n, n, TILES.format(count=n * n))
-    strong, csv_rows, restart, random_rows = [], [], [], []
+    quarter = lattice_csv(os.path.join(args.work, "quarter.csv"), n // 2, n // 2)
+    replicated = scene(args, "replicated", n, n, REPLICATED.format(file=quarter))
+    strong, csv_rows, restart, random_rows, replicated_rows = [], [], [], [], []
     for p in RANKS:
         out = os.path.join(args.work, "generated-%d" % p)
         strong.append(run(args, p, generated, out))
         csv_rows.append(run(args, p, from_csv, os.path.join(args.work, "csv-%d" % p)))
         random_rows.append(run(args, p, tiles, os.path.join(args.work, "tiles-%d" % p)))
+        replicated_rows.append(run(args, p, replicated, os.path.join(args.work, "replicated-%d" % p)))
     checkpoint_dir = os.path.join(args.work, "generated-1")  # its checkpoint at step 1
     for p in RANKS:
         restart.append(run(args, p, generated, os.path.join(args.work, "restart-%d" % p),
                            ["--resume", checkpoint_dir, "--run.steps=2"]))
     table("strong, %d discs generated (lattice_square):" % (n * n), strong)
     table("strong, the same discs read from a CSV file:", csv_rows)
+    table("strong, the same discs from a quarter of them copied 2 x 2 times (replicated CSV):", replicated_rows)
     table("strong, as many discs placed at random (random_tiles):", random_rows)
     stage = [run(args, p, generated, os.path.join(args.work, "stage-%d" % p),
                  ["--scene.type=file", "--scene.file=" + checkpoint_dir]) for p in RANKS]
