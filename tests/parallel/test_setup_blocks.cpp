@@ -91,13 +91,14 @@ TEST(SetupBlocks, ARandomPackingPlacedTileByTileGivesTheBitsOfOneRank) {
   check_scene("random tiles", ini, 4000, 500, true);
 }
 
-TEST(SetupBlocks, ARandomPackingTooDenseIsRefusedWithTheSameMessageOnAnyRankCount) {
-  const std::vector<std::string> args{"--scene.count=3000"};
+// The InputError that the set-up of `ini` with `args` throws on all the ranks, checked to be the one it throws on
+// one rank alone ("" when it did not throw).
+std::string refused_alike(const std::string& ini, const std::vector<std::string>& args) {
   std::string here, one;
   bool threw = false;
   try {
     const Communicator world;
-    Simulation s(parse_config_text(random_tiles(), args), world, false);
+    Simulation s(parse_config_text(ini, args), world, false);
   } catch (const InputError& e) {
     threw = true;
     here = e.what();
@@ -106,13 +107,19 @@ TEST(SetupBlocks, ARandomPackingTooDenseIsRefusedWithTheSameMessageOnAnyRankCoun
   if (world_rank() == 0) {
     const Communicator self(MPI_COMM_SELF);
     try {
-      Simulation s(parse_config_text(random_tiles(), args), self, false);
+      Simulation s(parse_config_text(ini, args), self, false);
     } catch (const InputError& e) {
       one = e.what();
     }
   }
   one = broadcast(one);
+  EXPECT_FALSE(one.empty());
   EXPECT_EQ(here, one);
+  return here;
+}
+
+TEST(SetupBlocks, ARandomPackingTooDenseIsRefusedWithTheSameMessageOnAnyRankCount) {
+  const std::string here = refused_alike(random_tiles(), {"--scene.count=3000"});
   EXPECT_NE(here.find("scene.count = 3000: the discs do not fit"), std::string::npos) << here;
 }
 
@@ -211,28 +218,7 @@ TEST(SetupBlocks, EachRankBuildsOnlyItsBlockAndTheBlocksMakeTheScene) {
 
 TEST(SetupBlocks, InitialOverlapsAreRefusedWithTheSameMessageOnAnyRankCount) {
   // Spacing 1.8 R: every neighbour pair overlaps 0.2 R. The count and the worst pair do not depend on the blocks.
-  const std::vector<std::string> args{"--scene.spacing=0.00171", "--scene.ny=6"};
-  std::string here, one;
-  bool threw = false;
-  try {
-    const Communicator world;
-    Simulation s(parse_config_text(kLattice, args), world, false);
-  } catch (const InputError& e) {
-    threw = true;
-    here = e.what();
-  }
-  EXPECT_TRUE(all_ranks(threw)) << "refused on some ranks only";
-  if (world_rank() == 0) {
-    const Communicator self(MPI_COMM_SELF);
-    try {
-      Simulation s(parse_config_text(kLattice, args), self, false);
-    } catch (const InputError& e) {
-      one = e.what();
-    }
-  }
-  one = broadcast(one);
-  EXPECT_FALSE(one.empty());
-  EXPECT_EQ(here, one);
+  const std::string here = refused_alike(kLattice, {"--scene.spacing=0.00171", "--scene.ny=6"});
   EXPECT_NE(here.find("initial overlaps exceed scene.max_initial_overlap"), std::string::npos) << here;
 }
 
