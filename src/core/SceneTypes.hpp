@@ -55,9 +55,11 @@ struct SceneType {
   std::vector<SceneDisc> (*block)(const SceneInputs& in, std::int64_t first, std::int64_t count) = nullptr;
   // A scene whose discs can be found cell by cell (a lattice inside an untilted domain, a random packing placed
   // tile by tile) gives its largest radius (0: it cannot here, nullptr: never), the number of its discs in a rectangle
-  // of cells [x0, x1) x [y0, y1) of the decomposition's grid (the first map is weighted by them) and the discs of a
-  // rank's cells in ascending gid, given to `out` one at a time after their exact count, so that no disc moves to its
-  // owner and no list of them is made (Simulation::add_scene_discs; the same discs as block's).
+  // of cells [x0, x1) x [y0, y1) of the decomposition's grid (the first map is weighted by them: exact for a lattice,
+  // expected for a random packing) and the discs of a rank's cells in ascending gid, given to `out` one at a time
+  // after their exact count, so that no disc moves to its owner and no list of them is made beside the store (a
+  // random packing keeps the tiles it placed, 32 B a disc, until they are given) (Simulation::add_scene_discs; the
+  // same discs as build's).
   double (*by_cells)(const SceneInputs& in) = nullptr;
   std::uint64_t (*rect_count)(const SceneInputs& in, const CellGrid& grid, int x0, int y0, int x1, int y1) = nullptr;
   void (*cells)(const SceneInputs& in, const CellGrid& grid, const std::vector<std::size_t>& cells,
