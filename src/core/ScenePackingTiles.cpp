@@ -28,8 +28,8 @@ namespace {
 constexpr double kDiscsPerTile = 64.0;
 // A disc reaches at most this much of its radius across a tile's side into a tile of a later phase. With 0, the
 // last phase's tiles are crowded by their neighbours' discs and refuse first (a monodisperse packing fraction of
-// 0.41 at most with 32 discs a tile, against random's 0.47); with 1, the first phase's; 0.5 places 0.45 to 0.46
-// with 64 discs a tile (docs/scaling.md).
+// 0.41 at most with 32 discs a tile, against random's 0.47); with 1, the first phase's; 0.5 places 0.45
+// (docs/scaling.md).
 constexpr double kReach = 0.5;
 
 // The tiles of scene.region and what each holds.
