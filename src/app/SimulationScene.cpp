@@ -44,6 +44,8 @@ namespace {
 
 // A scene built whole on every rank of a run on several ranks draws a warning above this many discs.
 constexpr std::size_t kWholeSceneWarning = 1'000'000;
+// What such a set-up holds a disc of the whole scene on every rank (docs/scaling.md; tools/scaling_model.py).
+constexpr double kWholeSceneBytes = 315.0;
 
 // Puts a new scene's discs into the rank's store, each wrapped into the domain (refused outside it) and, in a moving
 // cell, given the mean flow's velocity (cell.flow_start); room for the ghosts is reserved with them.
@@ -94,7 +96,7 @@ void Simulation::add_scene_discs() {
         config_.scene.type->block ? build_scene_block(in, comm_.rank(), comm_.size()) : build_scene(in);
     if (!scene::in_blocks(config_.scene) && comm_.size() > 1 && scene.size() > kWholeSceneWarning && comm_.root())
       std::cerr << "rondel: warning: scene.type = " << config_.scene.type->name << " builds all its " << scene.size()
-                << " discs on every rank (" << fmt(static_cast<double>(scene.size()) * 315e-9)
+                << " discs on every rank (" << fmt(static_cast<double>(scene.size()) * kWholeSceneBytes * 1e-9)
                 << " GB each during the set-up)"
                 << (config_.scene.type->draws_radii && !config_.scene.type->by_cells
                         ? "; scene.type = random_tiles places each rank's own"

@@ -205,8 +205,10 @@ bool has_content(std::string_view line) {
   return first != std::string_view::npos && line[first] != '#';
 }
 
-// The whole file on this process (a replicated scene, or no parallel reader).
-std::vector<SceneDisc> read_rows(const SceneConfig& s, const std::string& path) {
+}  // namespace
+
+// The whole file on this process (a replicated scene's tile, or no parallel reader).
+std::vector<SceneDisc> scene_csv::whole_file(const SceneConfig& s, const std::string& path) {
   // A file larger than the memory this process may use cannot become a scene (0: no bound known).
   const std::uint64_t bound = memory_bound().bytes;
   if (const std::string why = input_file_problem(path, "scene.file", bound > 0 ? bound : UINT64_MAX); !why.empty())
@@ -227,6 +229,8 @@ std::vector<SceneDisc> read_rows(const SceneConfig& s, const std::string& path) 
       throw InputError(scene_csv::duplicate_message(s, ids[k].first, ids[k - 1].second, ids[k].second));
   return std::move(rows.discs);
 }
+
+namespace {
 
 // The copies, numbered anew in rows across the whole box: numbered one after the other, every row of the file
 // would have a seam whose partners lay a whole copy of ids away.
@@ -252,7 +256,7 @@ std::vector<SceneDisc> csv(const SceneInputs& in) {
   const SceneConfig& s = in.scene;
   const std::string path = scene::resolve(s.file, in.config_dir);
   if (in.files && scene::in_blocks(s)) return in.files->csv(s, path);  // each rank its block
-  std::vector<SceneDisc> base = read_rows(s, path);
+  std::vector<SceneDisc> base = scene_csv::whole_file(s, path);
   if (s.replicate_x == 1 && s.replicate_y == 1) return base;
   return replicate(s, in.domain, base);
 }
@@ -260,8 +264,6 @@ std::vector<SceneDisc> csv(const SceneInputs& in) {
 }  // namespace
 
 namespace scene_csv {
-
-std::vector<SceneDisc> whole_file(const SceneConfig& s, const std::string& path) { return read_rows(s, path); }
 
 std::vector<SceneDisc> replicated_block(const SceneConfig& s, const Domain& domain, const std::vector<SceneDisc>& base,
                                         int rank, int ranks) {
