@@ -137,21 +137,28 @@ void NeighbourList::build(const DiscStore& discs, const Domain& domain, WallSet&
 
 void NeighbourList::build_wall_rows(const DiscStore& discs, const WallSet& walls, const ContactParamTable& params,
                                     ContactTable& wall_rows) const {
-  // Every owned disc against every wall, in (gid, wall id) order.
-  const std::size_t n_owned = discs.n_owned();
-  std::vector<std::size_t> order(n_owned);
-  for (std::size_t i = 0; i < n_owned; ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return discs.gid[a] < discs.gid[b]; });
+  // Every owned disc against every wall, in (gid, wall id) order (the owned discs are in gid order after a
+  // migration; an order of indices only when they are not). No wall: no row, and no pass over the discs.
   const ContactTable old_walls = std::move(wall_rows);
   wall_rows = old_walls.empty_like();
-  for (std::size_t i : order) {
-    if (is_attached(discs.flags[i])) continue;  // a glued disc is part of a wall: walls do not meet walls
+  if (walls.empty()) return;
+  const std::size_t n_owned = discs.n_owned();
+  const auto visit = [&](std::size_t i) {
+    if (is_attached(discs.flags[i])) return;  // a glued disc is part of a wall: walls do not meet walls
     for (std::size_t w = 0; w < walls.size(); ++w) {
       if (walls[w].proximity(discs.position[i]).dist < discs.radius[i] + skin_)
         wall_rows.push({discs.gid[i], static_cast<std::int64_t>(w)}, static_cast<std::int32_t>(i),
                        static_cast<std::int32_t>(w),
                        static_cast<std::int32_t>(params.wall_index(discs.material[i], walls[w].material)));
     }
+  };
+  if (std::is_sorted(discs.gid.begin(), discs.gid.begin() + static_cast<std::ptrdiff_t>(n_owned))) {
+    for (std::size_t i = 0; i < n_owned; ++i) visit(i);
+  } else {
+    std::vector<std::size_t> order(n_owned);
+    for (std::size_t i = 0; i < n_owned; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return discs.gid[a] < discs.gid[b]; });
+    for (std::size_t i : order) visit(i);
   }
   wall_rows.inherit_history(old_walls);
 }

@@ -18,6 +18,21 @@ std::vector<int> without(std::vector<int> ranks, int me) {
 }
 }  // namespace
 
+Partition::Extent Partition::extent(int rank) const {
+  Extent out;
+  const auto nx = static_cast<std::size_t>(grid_.nx());
+  for_each_cell(rank, [&](std::size_t c) {
+    const int x = static_cast<int>(c % nx), y = static_cast<int>(c / nx);
+    out.add(x, y, x + 1, y + 1);
+  });
+  return out;
+}
+
+void Partition::owners_in(int x0, int y0, int x1, int y1, int* out) const {
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) *out++ = owner(grid_.index(x, y));
+}
+
 std::unique_ptr<Partition> make_partition(const std::string& name, const PartitionContext& context) {
   std::unique_ptr<Partition> out;
   Partitioners::with(name, [&]<class Tag>() { out = make_partition(Tag{}, context); });
@@ -60,34 +75,21 @@ std::vector<std::size_t> Decomposition::own_cells() const {
   return out;
 }
 
-void Decomposition::frame(const std::vector<std::size_t>& cells) {
+void Decomposition::frame(const Partition::Extent& mine) {
   // This rank's cells: their bounding box plus one cell holds every cell whose owner the exchanges ask for
   // (periodic images of the far side excepted: those take the map's own lookup).
   box_nx_ = box_ny_ = 0;
-  if (cells.empty()) return;
-  const int nx = grid_.nx(), ny = grid_.ny();
-  int x0 = nx, y0 = ny, x1 = -1, y1 = -1;
-  for (std::size_t c : cells) {
-    const int cx = static_cast<int>(c % static_cast<std::size_t>(nx)), cy = static_cast<int>(c / nx);
-    x0 = std::min(x0, cx), x1 = std::max(x1, cx), y0 = std::min(y0, cy), y1 = std::max(y1, cy);
-  }
-  box_x0_ = std::max(x0 - 1, 0), box_y0_ = std::max(y0 - 1, 0);
-  box_nx_ = std::min(x1 + 1, nx - 1) - box_x0_ + 1;
-  box_ny_ = std::min(y1 + 1, ny - 1) - box_y0_ + 1;
-  if (static_cast<std::int64_t>(box_nx_) * box_ny_ > 16 * static_cast<std::int64_t>(cells.size()) + 4096)
+  if (mine.count == 0) return;
+  box_x0_ = std::max(mine.x0 - 1, 0), box_y0_ = std::max(mine.y0 - 1, 0);
+  box_nx_ = std::min(mine.x1, grid_.nx() - 1) - box_x0_ + 1;
+  box_ny_ = std::min(mine.y1, grid_.ny() - 1) - box_y0_ + 1;
+  if (static_cast<std::int64_t>(box_nx_) * box_ny_ > 16 * mine.count + 4096)
     box_nx_ = box_ny_ = 0;  // a scattered map (metis): the map's lookup serves
 }
 
-std::vector<int> Decomposition::owners_in_box(const Partition& map, const std::vector<std::size_t>& mine) const {
-  // This rank's cells are known; the map is asked only for the others' (a compact range's box holds few).
-  std::vector<int> box(static_cast<std::size_t>(box_nx_) * static_cast<std::size_t>(box_ny_), -1);
-  for (std::size_t c : mine) {
-    if (const std::size_t at = box_at(c); at != kOutside) box[at] = comm_.rank();
-  }
-  for (int y = 0; y < box_ny_; ++y)
-    for (int x = 0; x < box_nx_; ++x)
-      if (int& o = box[static_cast<std::size_t>(y) * box_nx_ + x]; o < 0)
-        o = map.owner(grid_.index(box_x0_ + x, box_y0_ + y));
+std::vector<int> Decomposition::owners_in_box(const Partition& map) const {
+  std::vector<int> box(static_cast<std::size_t>(box_nx_) * static_cast<std::size_t>(box_ny_));
+  map.owners_in(box_x0_, box_y0_, box_x0_ + box_nx_, box_y0_ + box_ny_, box.data());
   return box;
 }
 
@@ -114,6 +116,29 @@ void Decomposition::ranks_around(std::size_t cell, std::vector<int>& out) const 
   std::sort(out.begin(), out.end());
 }
 
+template <class F>
+void Decomposition::for_each_own(const std::vector<std::size_t>& cells, bool skip_inner, F visit) const {
+  if (box_nx_ == 0) {
+    for (std::size_t c : cells) visit(c, kOutside);
+    return;
+  }
+  const int me = comm_.rank();
+  const auto nx = static_cast<std::size_t>(box_nx_);
+  const int* o = box_owner_.data();
+  const auto all_mine = [&](std::size_t at) {  // an inner cell of the table with its eight neighbours here
+    for (const std::size_t row : {at - nx, at, at + nx})
+      if (o[row - 1] != me || o[row] != me || o[row + 1] != me) return false;
+    return true;
+  };
+  for (int y = 0; y < box_ny_; ++y)  // this rank's cells in the table's rows
+    for (int x = 0; x < box_nx_; ++x) {
+      const std::size_t at = static_cast<std::size_t>(y) * nx + x;
+      if (o[at] != me) continue;
+      if (skip_inner && y > 0 && y + 1 < box_ny_ && x > 0 && x + 1 < box_nx_ && all_mine(at)) continue;
+      visit(grid_.index(box_x0_ + x, box_y0_ + y), at);
+    }
+}
+
 void Decomposition::install(const Partition* old) {
   const int me = comm_.rank();
   box_owner_.clear();
@@ -124,16 +149,18 @@ void Decomposition::install(const Partition* old) {
     neighbours_.clear(), send_to_.clear(), receive_from_.clear();
     return;
   }
-  std::vector<std::size_t> cells, old_cells;
-  map_->for_each_cell(me, [&](std::size_t c) { cells.push_back(c); });
+  const Partition::Extent mine = map_->extent(me);
+  own_cells_ = mine.count;
+  frame(mine);
+  std::vector<std::size_t> cells, old_cells;  // this rank's cells when there is no table; its old cells
   if (old) old->for_each_cell(me, [&](std::size_t c) { old_cells.push_back(c); });
-  own_cells_ = static_cast<std::int64_t>(cells.size());
-  frame(cells);
   std::vector<int> box_old;  // the old map's owners over the same box
   if (box_nx_ > 0) {
-    box_owner_ = owners_in_box(*map_, cells);
-    if (old) box_old = owners_in_box(*old, old_cells);
+    box_owner_ = owners_in_box(*map_);
+    if (old) box_old = owners_in_box(*old);
     box_border_.assign(box_owner_.size(), 0);
+  } else {
+    map_->for_each_cell(me, [&](std::size_t c) { cells.push_back(c); });
   }
   // The ranks around this rank's cells, its border cells (a ghost's source) and, after a change of map, the
   // cells' old owners; runs of one owner are common.
@@ -151,14 +178,7 @@ void Decomposition::install(const Partition* old) {
         if (o != last_old) add_rank(from, last_old = o);
       });
   };
-  if (box_nx_ > 0) {  // this rank's cells in the table's rows
-    for (int y = 0; y < box_ny_; ++y)
-      for (int x = 0; x < box_nx_; ++x)
-        if (const std::size_t at = static_cast<std::size_t>(y) * box_nx_ + x; box_owner_[at] == me)
-          visit(grid_.index(box_x0_ + x, box_y0_ + y), at);
-  } else {
-    for (std::size_t c : cells) visit(c, kOutside);
-  }
+  for_each_own(cells, !old, visit);
   neighbours_ = without(neighbours, me);
   if (!old) {
     send_to_ = receive_from_ = neighbours_;

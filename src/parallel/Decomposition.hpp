@@ -87,14 +87,17 @@ class Decomposition {
  private:
   // The neighbourhood table, the neighbours and (`old`: the map before) the migration partners of the map.
   void install(const Partition* old);
-  // The neighbourhood table's extent for this rank's cells (none for a scattered map), and its owners by `map`
-  // (`mine`: this rank's cells by that map).
-  void frame(const std::vector<std::size_t>& cells);
-  std::vector<int> owners_in_box(const Partition& map, const std::vector<std::size_t>& mine) const;
+  // The neighbourhood table's extent for this rank's cells (none for a scattered map), and its owners by `map`.
+  void frame(const Partition::Extent& mine);
+  std::vector<int> owners_in_box(const Partition& map) const;
   // f(owner) for each cell of the stencil around `cell` (`at`: its entry in the table, or kOutside) by `map`, its
   // table over the box `box`.
   template <class F>
   void owners_around(std::size_t cell, std::size_t at, const std::vector<int>& box, const Partition& map, F f) const;
+  // visit(cell, at) for this rank's cells (`cells` when there is no table) but, when `skip_inner`, the table's
+  // inner cells with only this rank's cells around them.
+  template <class F>
+  void for_each_own(const std::vector<std::size_t>& cells, bool skip_inner, F visit) const;
   // The ranks but this one around `cell` (ghost_ranks beyond the inner cells).
   void ranks_around(std::size_t cell, std::vector<int>& out) const;
   // The owner of cell (cx, cy): the table's, else the map's (one rank: this one).

@@ -84,15 +84,6 @@ std::uint64_t HilbertGrid::key_of_cell_number(std::uint64_t m) const {
   return b;
 }
 
-void HilbertGrid::for_each_in(std::uint64_t lo, std::uint64_t hi, const std::function<void(int, int)>& f) const {
-  for_each_key_in(lo, hi, [&f](std::uint64_t, int cx, int cy) { f(cx, cy); });
-}
-
-void HilbertGrid::for_each_key_in(std::uint64_t lo, std::uint64_t hi,
-                                  const std::function<void(std::uint64_t, int, int)>& f) const {
-  if (lo < hi) visit(root(), lo, hi, f);
-}
-
 HilbertGrid::Node HilbertGrid::child(const Node& n, int q) {
   // The curve of side s is four curves of side h = s / 2, in the quadrants (0, 0), (0, 1), (1, 1), (1, 0) (in
   // units of h), the first transposed and the last reflected about the other diagonal (point()'s rotate, read
@@ -119,19 +110,6 @@ void HilbertGrid::square(const Node& n, std::int64_t& x0, std::int64_t& y0, std:
   const std::int64_t fx = n.ox + (n.a + n.bx) * s, fy = n.oy + (n.c + n.d) * s;
   x0 = std::min(n.ox, fx), x1 = std::max(n.ox, fx) + 1;
   y0 = std::min(n.oy, fy), y1 = std::max(n.oy, fy) + 1;
-}
-
-void HilbertGrid::visit(const Node& n, std::uint64_t lo, std::uint64_t hi,
-                        const std::function<void(std::uint64_t, int, int)>& f) const {
-  if (n.b + n.s * n.s <= lo || n.b >= hi) return;
-  if (n.s == 1) {
-    if (n.ox < nx_ && n.oy < ny_) f(n.b, static_cast<int>(n.ox), static_cast<int>(n.oy));
-    return;
-  }
-  std::int64_t x0, y0, x1, y1;
-  square(n, x0, y0, x1, y1);
-  if (x0 >= nx_ || y0 >= ny_) return;  // the node lies beyond the grid
-  for (int q = 0; q < 4; ++q) visit(child(n, q), lo, hi, f);
 }
 
 std::uint64_t HilbertGrid::key_at_work(std::uint64_t t, const RectWeight& weight) const {

@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 
@@ -25,10 +26,19 @@ class HilbertGrid {
   std::uint64_t count_below(std::uint64_t k) const;
   // The key of the m-th in-grid cell along the curve (m < cells()).
   std::uint64_t key_of_cell_number(std::uint64_t m) const;
-  // f(cx, cy) for every in-grid cell with key in [lo, hi), in key order.
-  void for_each_in(std::uint64_t lo, std::uint64_t hi, const std::function<void(int, int)>& f) const;
-  // The same with each cell's key: f(key, cx, cy).
-  void for_each_key_in(std::uint64_t lo, std::uint64_t hi, const std::function<void(std::uint64_t, int, int)>& f) const;
+  // f(key, cx, cy) for every in-grid cell with key in [lo, hi), in key order.
+  template <class F>
+  void for_each_key_in(std::uint64_t lo, std::uint64_t hi, F f) const {
+    if (lo < hi) visit(root(), lo, hi, f);
+  }
+  // The in-grid cells of the rectangle [x0, x1) x [y0, y1) split into nodes of the curve, each taken whole when
+  // `whole(b, e)` allows it for its keys [b, e) (a single cell always is): f(b, e, rx0, ry0, rx1, ry1) for each,
+  // with the node's cells in the rectangle [rx0, rx1) x [ry0, ry1) (never empty). The nodes visited are those
+  // that meet the rectangle and hold a key where `whole` changes its mind: O(log side) per such key, not O(cells).
+  template <class Whole, class F>
+  void cover(int x0, int y0, int x1, int y1, Whole whole, F f) const {
+    if (x0 < x1 && y0 < y1) cover(root(), x0, y0, std::min(x1, nx_), std::min(y1, ny_), whole, f);
+  }
   // The work of the in-grid cells of a rectangle [x0, x1) x [y0, y1) (within the grid, not empty).
   using RectWeight = std::function<std::uint64_t(int x0, int y0, int x1, int y1)>;
   // The key of the in-grid cell that holds the point t of the work along the curve (cell c holds [before(c),
@@ -50,8 +60,31 @@ class HilbertGrid {
   Node root() const { return {0, side_, 0, 0, 1, 0, 0, 1}; }
   // In-grid cells of the aligned node of side s whose first key is b.
   std::uint64_t node_cells(std::uint64_t b, std::uint64_t s) const;
-  void visit(const Node& n, std::uint64_t lo, std::uint64_t hi,
-             const std::function<void(std::uint64_t, int, int)>& f) const;
+  template <class F>
+  void visit(const Node& n, std::uint64_t lo, std::uint64_t hi, F& f) const {
+    if (n.b + n.s * n.s <= lo || n.b >= hi) return;
+    if (n.s == 1) {
+      if (n.ox < nx_ && n.oy < ny_) f(n.b, static_cast<int>(n.ox), static_cast<int>(n.oy));
+      return;
+    }
+    std::int64_t x0, y0, x1, y1;
+    square(n, x0, y0, x1, y1);
+    if (x0 >= nx_ || y0 >= ny_) return;  // the node lies beyond the grid
+    for (int q = 0; q < 4; ++q) visit(child(n, q), lo, hi, f);
+  }
+  template <class Whole, class F>
+  void cover(const Node& n, int x0, int y0, int x1, int y1, Whole& whole, F& f) const {
+    std::int64_t a0, b0, a1, b1;
+    square(n, a0, b0, a1, b1);
+    a0 = std::max<std::int64_t>(a0, x0), b0 = std::max<std::int64_t>(b0, y0);
+    a1 = std::min<std::int64_t>(a1, x1), b1 = std::min<std::int64_t>(b1, y1);
+    if (a0 >= a1 || b0 >= b1) return;  // beyond the rectangle (which lies in the grid)
+    if (n.s == 1 || whole(n.b, n.b + n.s * n.s)) {
+      f(n.b, n.b + n.s * n.s, static_cast<int>(a0), static_cast<int>(b0), static_cast<int>(a1), static_cast<int>(b1));
+      return;
+    }
+    for (int q = 0; q < 4; ++q) cover(child(n, q), x0, y0, x1, y1, whole, f);
+  }
 
   int nx_ = 1, ny_ = 1;
   std::uint64_t side_ = 1;

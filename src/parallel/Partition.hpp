@@ -3,7 +3,10 @@
 // (core/Partitioners.hpp), each in its own file (PartitionSfc.cpp, PartitionGrid.cpp, PartitionMetis.cpp) with its
 // make_partition overload declared here. make_partition(name, ...) instantiates the overload of every tag of the
 // registry, so a tag without one does not compile. Decomposition holds one and asks it for owners and cells.
+#include <algorithm>
+#include <climits>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -32,6 +35,18 @@ class Partition {
   // The owner of cell c (any cell), and f(c) for every cell of `rank`.
   virtual int owner(std::size_t c) const = 0;
   virtual void for_each_cell(int rank, const std::function<void(std::size_t)>& f) const = 0;
+  // The cells of `rank`: how many, and their bounding rectangle [x0, x1) x [y0, y1) (empty when none).
+  struct Extent {
+    std::int64_t count = 0;
+    int x0 = INT_MAX, y0 = INT_MAX, x1 = INT_MIN, y1 = INT_MIN;
+    void add(int a0, int b0, int a1, int b1) {
+      count += static_cast<std::int64_t>(a1 - a0) * (b1 - b0);
+      x0 = std::min(x0, a0), y0 = std::min(y0, b0), x1 = std::max(x1, a1), y1 = std::max(y1, b1);
+    }
+  };
+  virtual Extent extent(int rank) const;
+  // The owners of the cells [x0, x1) x [y0, y1) (within the grid) row by row into `out`.
+  virtual void owners_in(int x0, int y0, int x1, int y1, int* out) const;
   // The first map. `replicated`: every rank holds every disc (a new scene), so the weighted map is computed on
   // every rank alike without communication; otherwise (discs spread by file block) a map that the caller
   // migrates the discs with before repartition() weighs them.
@@ -47,6 +62,11 @@ class Partition {
   // The number of ranks that own no cell.
   virtual int empty_ranks() const = 0;
   virtual std::size_t memory_bytes() const = 0;
+
+ protected:
+  explicit Partition(const CellGrid& grid) : grid_(grid) {}
+  Partition(const Partition&) = default;
+  const CellGrid& grid_;
 };
 
 // The work measure of the load balance, one definition: each owned disc and each row it books (the row of its

@@ -45,7 +45,7 @@ namespace {
 
 class GridPartition final : public Partition {
  public:
-  explicit GridPartition(const PartitionContext& c) : grid_(c.grid), blocks_(grid_blocks(c.grid, c.comm.size())) {}
+  explicit GridPartition(const PartitionContext& c) : Partition(c.grid), blocks_(grid_blocks(c.grid, c.comm.size())) {}
   std::unique_ptr<Partition> copy() const override { return std::make_unique<GridPartition>(*this); }
   int owner(std::size_t c) const override {
     const auto nx = static_cast<std::size_t>(grid_.nx());
@@ -66,7 +66,6 @@ class GridPartition final : public Partition {
   std::size_t memory_bytes() const override { return 0; }
 
  private:
-  const CellGrid& grid_;
   std::pair<int, int> blocks_;
 };
 

@@ -67,7 +67,7 @@ namespace {
 
 class MetisPartition final : public Partition {
  public:
-  explicit MetisPartition(const PartitionContext& c) : grid_(c.grid), comm_(c.comm) {}
+  explicit MetisPartition(const PartitionContext& c) : Partition(c.grid), comm_(c.comm) {}
   std::unique_ptr<Partition> copy() const override { return std::make_unique<MetisPartition>(*this); }
   int owner(std::size_t c) const override { return table_[c]; }
   void for_each_cell(int rank, const std::function<void(std::size_t)>& f) const override {
@@ -115,7 +115,6 @@ class MetisPartition final : public Partition {
     return table;
   }
 
-  const CellGrid& grid_;
   const Communicator& comm_;
   std::vector<int> table_;  // the owner of every cell
 };

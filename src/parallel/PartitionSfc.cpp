@@ -27,14 +27,34 @@ std::uint64_t cut_target(std::uint64_t j, std::uint64_t total, std::uint64_t P) 
 
 class SfcPartition final : public Partition {
  public:
-  explicit SfcPartition(const PartitionContext& c) : grid_(c.grid), curve_(c.curve), comm_(c.comm) {}
+  explicit SfcPartition(const PartitionContext& c) : Partition(c.grid), curve_(c.curve), comm_(c.comm) {}
   std::unique_ptr<Partition> copy() const override { return std::make_unique<SfcPartition>(*this); }
-  int owner(std::size_t c) const override {
-    const std::uint64_t key = curve_.key(column(c), row(c));
-    return static_cast<int>(std::upper_bound(cuts_.begin(), cuts_.end(), key) - cuts_.begin()) - 1;
-  }
+  int owner(std::size_t c) const override { return owner_of_key(curve_.key(column(c), row(c))); }
   void for_each_cell(int rank, const std::function<void(std::size_t)>& f) const override {
-    curve_.for_each_in(cuts_[rank], cuts_[rank + 1], [&](int cx, int cy) { f(grid_.index(cx, cy)); });
+    curve_.for_each_key_in(cuts_[rank], cuts_[rank + 1],
+                           [&](std::uint64_t, int cx, int cy) { f(grid_.index(cx, cy)); });
+  }
+  // Whole nodes of the curve: a node inside one rank's key range is one rectangle of owners.
+  Extent extent(int rank) const override {
+    const std::uint64_t lo = cuts_[rank], hi = cuts_[rank + 1];
+    Extent out;
+    curve_.cover(
+        0, 0, grid_.nx(), grid_.ny(),
+        [&](std::uint64_t b, std::uint64_t e) { return e <= lo || b >= hi || (lo <= b && e <= hi); },
+        [&](std::uint64_t b, std::uint64_t, int x0, int y0, int x1, int y1) {
+          if (b >= lo && b < hi) out.add(x0, y0, x1, y1);
+        });
+    return out;
+  }
+  void owners_in(int x0, int y0, int x1, int y1, int* out) const override {
+    const std::size_t width = static_cast<std::size_t>(x1 - x0);
+    curve_.cover(
+        x0, y0, x1, y1, [&](std::uint64_t b, std::uint64_t e) { return owner_of_key(b) == owner_of_key(e - 1); },
+        [&](std::uint64_t b, std::uint64_t, int a0, int b0, int a1, int b1) {
+          const int r = owner_of_key(b);
+          for (int y = b0; y < b1; ++y)
+            std::fill_n(out + static_cast<std::size_t>(y - y0) * width + static_cast<std::size_t>(a0 - x0), a1 - a0, r);
+        });
   }
   void initial(const DiscStore& discs, bool replicated) override;
   bool repartition(const DiscStore& discs, const ContactTable& pairs) override;
@@ -48,6 +68,9 @@ class SfcPartition final : public Partition {
   std::size_t memory_bytes() const override { return cuts_.capacity() * sizeof(std::uint64_t); }
 
  private:
+  int owner_of_key(std::uint64_t key) const {
+    return static_cast<int>(std::upper_bound(cuts_.begin(), cuts_.end(), key) - cuts_.begin()) - 1;
+  }
   int column(std::size_t c) const { return static_cast<int>(c % static_cast<std::size_t>(grid_.nx())); }
   int row(std::size_t c) const { return static_cast<int>(c / static_cast<std::size_t>(grid_.nx())); }
   // This rank's work units as weighted cells.
@@ -58,7 +81,6 @@ class SfcPartition final : public Partition {
   std::vector<std::uint64_t> weighted_cuts(const Cells& cells, std::uint64_t lo, std::uint64_t hi, std::uint64_t offset,
                                            std::uint64_t total) const;
 
-  const CellGrid& grid_;
   const HilbertGrid& curve_;
   const Communicator& comm_;
   std::vector<std::uint64_t> cuts_;  // rank r owns keys [cuts_[r], cuts_[r + 1])

@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -102,6 +104,50 @@ TEST(Hilbert, KeysOrderEveryCellAndTheRangeQueriesAgreeWithBruteForce) {
       before += here;
     }
     EXPECT_EQ(before, rect(0, 0, nx, ny));
+  }
+}
+
+TEST(Hilbert, ACoverSplitsARectangleIntoWholeNodesWhereverTheOwnerDoesNotChange) {
+  // Owners by key ranges (cuts), as the sfc map: the cover's nodes fill every cell of the rectangle once, each
+  // with the owner of its cells' keys, and it visits a number of nodes that grows with the cuts, not the cells.
+  for (const auto& [nx, ny] : std::vector<std::pair<int, int>>{{1, 1}, {5, 3}, {13, 40}, {100, 7}, {300, 200}}) {
+    const HilbertGrid h(nx, ny);
+    for (int parts : {1, 2, 5}) {
+      std::vector<std::uint64_t> cuts;
+      for (int j = 0; j <= parts; ++j) cuts.push_back(h.key_end() * static_cast<std::uint64_t>(j) / parts + (j % 2));
+      cuts.back() = h.key_end();
+      const auto owner = [&](std::uint64_t k) {
+        return static_cast<int>(std::upper_bound(cuts.begin(), cuts.end(), k) - cuts.begin()) - 1;
+      };
+      for (const auto& [x0, y0, x1, y1] :
+           std::vector<std::array<int, 4>>{{0, 0, nx, ny}, {nx / 3, ny / 4, nx, ny / 2 + 1}, {nx - 1, 0, nx, ny}}) {
+        const int w = x1 - x0;
+        std::vector<int> seen(static_cast<std::size_t>(w) * static_cast<std::size_t>(y1 - y0), -1);
+        std::size_t nodes = 0;
+        h.cover(
+            x0, y0, x1, y1, [&](std::uint64_t b, std::uint64_t e) { return owner(b) == owner(e - 1); },
+            [&](std::uint64_t b, std::uint64_t e, int a0, int b0, int a1, int b1) {
+              ++nodes;
+              ASSERT_LT(b, e);
+              ASSERT_TRUE(x0 <= a0 && a0 < a1 && a1 <= x1 && y0 <= b0 && b0 < b1 && b1 <= y1);
+              for (int y = b0; y < b1; ++y)
+                for (int x = a0; x < a1; ++x) {
+                  ASSERT_TRUE(h.key(x, y) >= b && h.key(x, y) < e) << x << ", " << y;
+                  int& at = seen[static_cast<std::size_t>(y - y0) * w + (x - x0)];
+                  ASSERT_EQ(at, -1) << "cell " << x << ", " << y << " twice";
+                  at = owner(b);
+                }
+            });
+        for (int y = y0; y < y1; ++y)
+          for (int x = x0; x < x1; ++x)
+            ASSERT_EQ(seen[static_cast<std::size_t>(y - y0) * w + (x - x0)], owner(h.key(x, y))) << x << ", " << y;
+        if (nx * ny >= 60000) {  // a cut splits one node a level, four children each; the rectangle's edges too
+          const std::size_t levels = 10, edge = 2 * static_cast<std::size_t>(w + y1 - y0);
+          EXPECT_LE(nodes, 4 * levels * (static_cast<std::size_t>(parts) + edge)) << nx << " x " << ny;
+          EXPECT_LT(nodes, seen.size() / 4);
+        }
+      }
+    }
   }
 }
 
@@ -305,6 +351,36 @@ TEST(Decomposition, SfcRepartitionKeepsMostCellsInPlace) {
   std::size_t kept = 0;
   for (std::size_t c = 0; c < before.size(); ++c) kept += d.owner_of_cell(c) == before[c] ? 1 : 0;
   EXPECT_GE(static_cast<double>(kept), 0.5 * static_cast<double>(before.size()));
+}
+
+TEST(Partition, ExtentsAndRectangleOwnersAgreeWithTheCellByCellMap) {
+  // Every partitioner's extent(rank) and owners_in() (sfc's from whole curve nodes, the others' by default)
+  // against owner() and for_each_cell() cell by cell.
+  static const Communicator world(MPI_COMM_WORLD);
+  const CellGrid grid = grid_of(37, 23);
+  const HilbertGrid curve(grid.nx(), grid.ny());
+  const DiscStore discs = discs_on_left_third(Domain{0.0, 37.0, 0.0, 23.0, false, false});
+  for (const auto& partitioner : Partitioners::choices()) {
+    const std::unique_ptr<Partition> map = make_partition(partitioner.word, PartitionContext{grid, curve, world});
+    map->initial(discs, true);
+    for (int r = 0; r < world.size(); ++r) {
+      Partition::Extent brute;
+      map->for_each_cell(r, [&](std::size_t c) {
+        const int x = static_cast<int>(c % 37), y = static_cast<int>(c / 37);
+        brute.add(x, y, x + 1, y + 1);
+      });
+      const Partition::Extent e = map->extent(r);
+      EXPECT_EQ(std::vector<int>({e.x0, e.y0, e.x1, e.y1}), std::vector<int>({brute.x0, brute.y0, brute.x1, brute.y1}))
+          << partitioner.word << ", rank " << r;
+      EXPECT_EQ(e.count, brute.count) << partitioner.word << ", rank " << r;
+    }
+    std::vector<int> owners(static_cast<std::size_t>(20 * 9));
+    map->owners_in(11, 7, 31, 16, owners.data());
+    for (int y = 7; y < 16; ++y)
+      for (int x = 11; x < 31; ++x)
+        ASSERT_EQ(owners[static_cast<std::size_t>(y - 7) * 20 + (x - 11)], map->owner(grid.index(x, y)))
+            << partitioner.word << ", cell " << x << ", " << y;
+  }
 }
 
 }  // namespace
