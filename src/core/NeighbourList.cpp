@@ -80,38 +80,60 @@ std::vector<RowCandidate> NeighbourList::candidates_by(const DiscStore& discs, c
                                                        std::size_t expected) const {
   // About as many as the rows held now: reserved so that the list does not double past its size (the rebuild's
   // peak memory is the kept columns of the old rows, this list and the new keys: ContactTable::replace_rows).
+  // The rows come out in ascending key with no sort of the list: the discs are visited in gid order (the owned
+  // ones are in it after every migration, the few ghosts are sorted here) and each one's partners of higher gid
+  // in gid order.
   std::vector<RowCandidate> found;
   found.reserve(expected + expected / 16 + 64);
-  const std::size_t n_owned = discs.n_owned();
+  const std::size_t n = discs.size(), n_owned = discs.n_owned();
+  const auto by_gid = [&discs](std::uint32_t a, std::uint32_t b) {
+    return discs.gid[a] < discs.gid[b] || (discs.gid[a] == discs.gid[b] && a < b);
+  };
+  const auto indices = [](std::size_t from, std::size_t to) {
+    std::vector<std::uint32_t> out(to - from);
+    for (std::size_t k = 0; k < out.size(); ++k) out[k] = static_cast<std::uint32_t>(from + k);
+    return out;
+  };
+  std::vector<std::uint32_t> ghosts = indices(n_owned, n), owned;  // `owned` empty: 0, 1, ... are in gid order
+  std::sort(ghosts.begin(), ghosts.end(), by_gid);
+  if (!std::is_sorted(discs.gid.begin(), discs.gid.begin() + static_cast<std::ptrdiff_t>(n_owned))) {
+    owned = indices(0, n_owned);
+    std::sort(owned.begin(), owned.end(), by_gid);
+  }
   std::vector<std::size_t> around;
-  for (std::size_t c = 0; c + 1 < cell_start_.size(); ++c) {
-    if (cell_start_[c] == cell_start_[c + 1]) continue;
+  std::vector<std::uint32_t> partners;
+  const auto rows_of = [&](std::size_t i) {
     around.clear();
-    const int column = columns_[c % columns_.size()], row = rows_[c / columns_.size()];
-    grid_.for_each_in_stencil(grid_.index(column, row), [&](int x, int y) {
+    grid_.for_each_in_stencil(grid_.cell_of(discs.position[i]), [&](int x, int y) {
       const long b = bin_of(x, y);
       if (b >= 0) around.push_back(static_cast<std::size_t>(b));
     });
     std::sort(around.begin(), around.end());  // each bin once (a periodic grid of one or two cells across)
     around.erase(std::unique(around.begin(), around.end()), around.end());
-    for (std::size_t a = cell_start_[c]; a < cell_start_[c + 1]; ++a) {
-      const std::size_t i = cell_items_[a];
-      for (std::size_t c2 : around) {
-        for (std::size_t b = cell_start_[c2]; b < cell_start_[c2 + 1]; ++b) {
-          const std::size_t j = cell_items_[b];
-          if (discs.gid[j] <= discs.gid[i]) continue;  // each pair once, from its lower gid
-          if (i >= n_owned && j >= n_owned) continue;
-          if (same_rigid_body(discs.flags[i], discs.flags[j])) continue;
-          const Vec2 d = image.separation(discs.position[i], discs.position[j]);
-          const double reach = discs.radius[i] + discs.radius[j] + skin_;
-          if (dot(d, d) < reach * reach)
-            found.push_back(
-                {ContactKey{discs.gid[i], discs.gid[j]}, static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)});
-        }
+    partners.clear();
+    for (std::size_t c2 : around) {
+      for (std::size_t b = cell_start_[c2]; b < cell_start_[c2 + 1]; ++b) {
+        const std::size_t j = cell_items_[b];
+        if (discs.gid[j] <= discs.gid[i]) continue;  // each pair once, from its lower gid
+        if (i >= n_owned && j >= n_owned) continue;
+        if (same_rigid_body(discs.flags[i], discs.flags[j])) continue;
+        const Vec2 d = image.separation(discs.position[i], discs.position[j]);
+        const double reach = discs.radius[i] + discs.radius[j] + skin_;
+        if (dot(d, d) < reach * reach) partners.push_back(static_cast<std::uint32_t>(j));
       }
     }
+    std::sort(partners.begin(), partners.end(), by_gid);
+    for (std::uint32_t j : partners)
+      found.push_back(
+          {ContactKey{discs.gid[i], discs.gid[j]}, static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)});
+  };
+  std::size_t g = 0;  // the owned discs and the ghosts merged by gid
+  for (std::size_t k = 0; k < n_owned; ++k) {
+    const std::uint32_t i = owned.empty() ? static_cast<std::uint32_t>(k) : owned[k];
+    for (; g < ghosts.size() && by_gid(ghosts[g], i); ++g) rows_of(ghosts[g]);
+    rows_of(i);
   }
-  std::sort(found.begin(), found.end(), [](const RowCandidate& x, const RowCandidate& y) { return x.key < y.key; });
+  for (; g < ghosts.size(); ++g) rows_of(ghosts[g]);
   return found;
 }
 

@@ -270,6 +270,37 @@ TEST(NeighbourList, GhostPairsAreLeftOutAndOwnedGhostPairsKept) {
   EXPECT_GT(b.walls.size(), 5u);
 }
 
+TEST(NeighbourList, RowsAscendWhenOwnedDiscsAreOutOfGidOrderAndGhostGidsLieBetweenThem) {
+  // The rows come out in key order without a sort of the list (owned discs visited in gid order, ghosts merged
+  // in): here the owned discs are stored in a shuffled gid order and the ghosts' gids interleave with theirs.
+  const Domain d = box(0.0, 0.2, 0.0, 0.1, true, false);
+  SceneRandom rng(5);
+  std::vector<std::int64_t> gids(500);
+  for (std::size_t k = 0; k < gids.size(); ++k) gids[k] = static_cast<std::int64_t>(7 * k + 1);
+  for (std::size_t k = gids.size() - 1; k > 0; --k)  // Fisher-Yates with the scene generator
+    std::swap(gids[k], gids[static_cast<std::size_t>(uniform(rng, 0.0, static_cast<double>(k + 1))) % (k + 1)]);
+  DiscStore s;
+  for (int k = 0; k < 250; ++k)
+    s.add(gids[static_cast<std::size_t>(k)], 0, uniform(rng, 0.002, 0.004), kDensity, 1,
+          {uniform(rng, 0.0, 0.1), uniform(rng, 0.0, 0.1)});
+  for (int k = 250; k < 500; ++k)
+    add_ghost(s, gids[static_cast<std::size_t>(k)], uniform(rng, 0.002, 0.004),
+              {uniform(rng, 0.1, std::nextafter(0.2, 0.0)), uniform(rng, 0.0, 0.1)});
+  ASSERT_FALSE(std::is_sorted(s.gid.begin(), s.gid.begin() + 250));
+  const double skin = 0.001;
+  NeighbourList nl(skin);
+  WallSet no_walls;
+  const Built b = build_once(nl, s, d, no_walls);
+  const auto expected = brute_pairs(s, d, skin);
+  ASSERT_GT(expected.size(), 200u);
+  EXPECT_EQ(difference(expected, keys_of(b.pairs)), "");
+  expect_pair_rows_consistent(b.pairs, s);  // strictly ascending keys
+  std::size_t ghost_lower = 0;              // rows whose lower gid is a ghost's: merged between the owned discs' rows
+  for (std::size_t r = 0; r < b.pairs.size(); ++r)
+    ghost_lower += static_cast<std::size_t>(b.pairs.i1[r]) >= s.n_owned();
+  EXPECT_GT(ghost_lower, 10u);
+}
+
 // Independent distances: signed for a line (along its unit normal), Euclidean to the closest point of a
 // segment.
 double wall_distance(const Wall& w, Vec2 x) {
