@@ -61,6 +61,22 @@ long place(const std::vector<int>& values, const std::vector<int>& slot, int c) 
   const auto at = std::lower_bound(values.begin(), values.end(), c);
   return at == values.end() || *at != c ? -1 : static_cast<long>(at - values.begin());
 }
+
+// Disc a before disc b: by gid, then by index (a ghost's periodic images share its gid).
+bool gid_less(const DiscStore& discs, std::uint32_t a, std::uint32_t b) {
+  return discs.gid[a] < discs.gid[b] || (discs.gid[a] == discs.gid[b] && a < b);
+}
+
+// The discs [from, to) in gid order (ties by index), or none when they are in it already (`sorted_ok`): the owned
+// discs are after every migration.
+std::vector<std::uint32_t> by_gid_order(const DiscStore& discs, std::size_t from, std::size_t to, bool sorted_ok) {
+  const auto first = discs.gid.begin() + static_cast<std::ptrdiff_t>(from);
+  if (sorted_ok && std::is_sorted(first, discs.gid.begin() + static_cast<std::ptrdiff_t>(to))) return {};
+  std::vector<std::uint32_t> out(to - from);
+  for (std::size_t k = 0; k < out.size(); ++k) out[k] = static_cast<std::uint32_t>(from + k);
+  std::sort(out.begin(), out.end(), [&discs](std::uint32_t a, std::uint32_t b) { return gid_less(discs, a, b); });
+  return out;
+}
 }  // namespace
 
 long NeighbourList::bin_of(int cx, int cy) const {
@@ -86,20 +102,9 @@ std::vector<RowCandidate> NeighbourList::candidates_by(const DiscStore& discs, c
   std::vector<RowCandidate> found;
   found.reserve(expected + expected / 16 + 64);
   const std::size_t n = discs.size(), n_owned = discs.n_owned();
-  const auto by_gid = [&discs](std::uint32_t a, std::uint32_t b) {
-    return discs.gid[a] < discs.gid[b] || (discs.gid[a] == discs.gid[b] && a < b);
-  };
-  const auto indices = [](std::size_t from, std::size_t to) {
-    std::vector<std::uint32_t> out(to - from);
-    for (std::size_t k = 0; k < out.size(); ++k) out[k] = static_cast<std::uint32_t>(from + k);
-    return out;
-  };
-  std::vector<std::uint32_t> ghosts = indices(n_owned, n), owned;  // `owned` empty: 0, 1, ... are in gid order
-  std::sort(ghosts.begin(), ghosts.end(), by_gid);
-  if (!std::is_sorted(discs.gid.begin(), discs.gid.begin() + static_cast<std::ptrdiff_t>(n_owned))) {
-    owned = indices(0, n_owned);
-    std::sort(owned.begin(), owned.end(), by_gid);
-  }
+  const auto by_gid = [&discs](std::uint32_t a, std::uint32_t b) { return gid_less(discs, a, b); };
+  const std::vector<std::uint32_t> ghosts = by_gid_order(discs, n_owned, n, false);
+  const std::vector<std::uint32_t> owned = by_gid_order(discs, 0, n_owned, true);  // empty: 0, 1, ... in gid order
   std::vector<std::size_t> around;
   std::vector<std::uint32_t> partners;
   const auto rows_of = [&](std::size_t i) {
@@ -165,22 +170,16 @@ void NeighbourList::build_wall_rows(const DiscStore& discs, const WallSet& walls
   wall_rows = old_walls.empty_like();
   if (walls.empty()) return;
   const std::size_t n_owned = discs.n_owned();
-  const auto visit = [&](std::size_t i) {
-    if (is_attached(discs.flags[i])) return;  // a glued disc is part of a wall: walls do not meet walls
+  const std::vector<std::uint32_t> order = by_gid_order(discs, 0, n_owned, true);
+  for (std::size_t k = 0; k < n_owned; ++k) {
+    const std::size_t i = order.empty() ? k : order[k];
+    if (is_attached(discs.flags[i])) continue;  // a glued disc is part of a wall: walls do not meet walls
     for (std::size_t w = 0; w < walls.size(); ++w) {
       if (walls[w].proximity(discs.position[i]).dist < discs.radius[i] + skin_)
         wall_rows.push({discs.gid[i], static_cast<std::int64_t>(w)}, static_cast<std::int32_t>(i),
                        static_cast<std::int32_t>(w),
                        static_cast<std::int32_t>(params.wall_index(discs.material[i], walls[w].material)));
     }
-  };
-  if (std::is_sorted(discs.gid.begin(), discs.gid.begin() + static_cast<std::ptrdiff_t>(n_owned))) {
-    for (std::size_t i = 0; i < n_owned; ++i) visit(i);
-  } else {
-    std::vector<std::size_t> order(n_owned);
-    for (std::size_t i = 0; i < n_owned; ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return discs.gid[a] < discs.gid[b]; });
-    for (std::size_t i : order) visit(i);
   }
   wall_rows.inherit_history(old_walls);
 }
