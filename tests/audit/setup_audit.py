@@ -16,7 +16,10 @@ strong rows fall as 1/P and the weak ones stay flat). Exit 0 when every run comp
 times the set-up of a SIDE x SIDE lattice (3163: ten million discs, 0 steps) on 1 and on 2 ranks as interleaved
 pairs (1 2 1 2 ...) and prints each pair's ratio, the medians and the largest rank's set-up bytes; with
 --random, of as many discs placed at random (scene.type = random_tiles) in the same box. The byte tables are
-counted in 4 KiB pages (RONDEL_HUGE_PAGES=0); --speedup runs as rondel does, with huge pages.
+counted in 4 KiB pages (RONDEL_HUGE_PAGES=0); --speedup runs as rondel does, with huge pages. On a virtual
+machine whose balloon hands freed memory back to the host, a run's time depends on how long ago its memory was
+freed: --memory cold or reused makes every run start alike (see prepare_memory; docs/scaling.md, "What bounds the
+ratio here").
 """
 import argparse
 import json
@@ -25,6 +28,7 @@ import shutil
 import statistics
 import subprocess
 import sys
+import time
 
 RANKS = [1, 2, 4, 8]
 LATTICE = """[run]
@@ -71,12 +75,31 @@ replicate_y = 2
 """
 
 
+def prepare_memory(args, env, extra):
+    """--memory: on a virtual machine whose balloon reports free pages to the host (virtio-balloon free page
+    reporting, as here), memory freed more than about 2 s ago is handed back, and the next process to touch it pays
+    a host fault a page: touching 2.4 GB took 0.25 s right after another process had freed as much and 3.7 to
+    5.2 s otherwise. Whichever of a pair runs right after the other finds warm memory, so the pairs are only
+    comparable when every run starts alike: 'cold' waits 6 s before each run, so that every run pays the host for
+    all it touches; 'reused' sets the scene up twice in one process, malloc keeping what the first set-up freed
+    (no mmap, no trim), and times the second, as on a machine where fresh memory costs what used memory does."""
+    if args.memory == "cold":
+        time.sleep(6)
+    elif args.memory == "reused":
+        env.update(MALLOC_MMAP_MAX_="0", MALLOC_TRIM_THRESHOLD_=str(1 << 40))
+        extra.append("--setup-twice")
+
+
 def run(args, ranks, ini, out, extra=(), steps="1"):
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     if not args.speedup:  # the byte tables in 4 KiB pages (a huge page rounds a small rank's growth up by 2 MiB)
         env["RONDEL_HUGE_PAGES"] = "0"
     shutil.rmtree(out, ignore_errors=True)
-    cmd = [args.mpiexec, "-n", str(ranks), "--oversubscribe", args.exe, ini, steps, out] + list(extra)
+    extra = list(extra)
+    prepare_memory(args, env, extra)
+    exported = [a for k in env if k.startswith("MALLOC_") for a in ("-x", k)]
+    bind = ["--bind-to", args.bind_to] if args.bind_to else []
+    cmd = [args.mpiexec, "-n", str(ranks), "--oversubscribe"] + bind + exported + [args.exe, ini, steps, out] + extra
     p = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=900)
     if p.returncode != 0:
         sys.exit("setup_audit.py: %s exited %d\n%s\n%s" % (" ".join(cmd), p.returncode, p.stdout, p.stderr))
@@ -120,16 +143,20 @@ def speedup(args):
     body = TILES.format(count=n * n) if args.random else GENERATED.format(nx=n, ny=n)
     ini = scene(args, "speedup", n, n, body)
     one, two = [], []
-    print("uptime: %s" % open("/proc/loadavg").read().split()[:3])
+    print("uptime: %s; memory before each run: %s; binding: %s" % (
+        open("/proc/loadavg").read().split()[:3], args.memory, args.bind_to or "mpirun's default"))
     print("%d discs (%s), 0 steps; set-up seconds (slowest rank), pair by pair:" %
           (n * n, "random_tiles" if args.random else "lattice_square %d x %d" % (n, n)))
     for k in range(args.pairs):
-        a = run(args, 1, ini, os.path.join(args.work, "speedup-1"), steps="0")
-        b = run(args, 2, ini, os.path.join(args.work, "speedup-2"), steps="0")
+        no_checkpoint = ["--output.checkpoint_at_end=false"]
+        a = run(args, 1, ini, os.path.join(args.work, "speedup-1"), no_checkpoint, steps="0")
+        b = run(args, 2, ini, os.path.join(args.work, "speedup-2"), no_checkpoint, steps="0")
         one.append(a)
         two.append(b)
-        print("  pair %d: 1 rank %.3f s, 2 ranks %.3f s, ratio %.2f" %
-              (k + 1, a["setup_seconds"], b["setup_seconds"], a["setup_seconds"] / b["setup_seconds"]))
+        first = "" if args.memory != "reused" else " (first set-ups %.3f s and %.3f s)" % (
+            a["first_setup_seconds"], b["first_setup_seconds"])
+        print("  pair %d: 1 rank %.3f s, 2 ranks %.3f s, ratio %.2f%s" %
+              (k + 1, a["setup_seconds"], b["setup_seconds"], a["setup_seconds"] / b["setup_seconds"], first))
     ratios = [a["setup_seconds"] / b["setup_seconds"] for a, b in zip(one, two)]
     print("median: 1 rank %.3f s (%.0f MB), 2 ranks %.3f s (%.0f MB on the largest rank), ratio %.2f" %
           (statistics.median(r["setup_seconds"] for r in one), one[0]["setup_bytes"] / 1e6,
@@ -147,6 +174,13 @@ def main():
                     help="instead: 1- and 2-rank set-up of a SIDE x SIDE lattice as interleaved pairs")
     ap.add_argument("--pairs", type=int, default=5, help="pairs of --speedup (default 5)")
     ap.add_argument("--random", action="store_true", help="--speedup of a random packing (random_tiles), not a lattice")
+    ap.add_argument("--bind-to", default="", metavar="WHAT",
+                    help="mpirun --bind-to WHAT (default: mpirun's own, a rank per core: on this VM rank 0 then runs on "
+                         "the vCPU that takes three times the other's timer interrupts and the kernel's DAMON thread; "
+                         "'none' lets the scheduler move it)")
+    ap.add_argument("--memory", choices=["as-is", "cold", "reused"], default="as-is",
+                    help="--speedup: each run as it comes (as-is, the default), after a 6 s wait (cold), or the second "
+                         "of two set-ups in one process (reused); see prepare_memory")
     args = ap.parse_args()
     os.makedirs(args.work, exist_ok=True)
     if args.speedup:
