@@ -65,6 +65,7 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
       start_checks::check_initial_motion(config_, discs_);
     });
     distribute_discs();
+    on_owners_ = true;
   }
   setup_boundaries();
   phases_.restart();

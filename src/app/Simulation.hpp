@@ -232,7 +232,8 @@ class Simulation final : public RunTarget {
   double R_min_ = 0.0, R_max_ = 0.0, R_total_ = 0.0;  // over every disc (measure_radii): extremes, sum
   std::int64_t n_discs_ = 0;                          // every disc (measure_radii)
   std::unique_ptr<Decomposition> decomposition_;
-  bool weighed_ = false;  // the first map was weighted by the discs the scene will place (no repartition due)
+  bool weighed_ = false;    // the first map was weighted by the discs the scene will place (no repartition due)
+  bool on_owners_ = false;  // every disc is on the owner of its cell (distribute_discs): the next rebuild moves none
   DiscExchange exchange_;
   PhaseTimes phases_;
   std::size_t migrated_ = 0;

@@ -15,12 +15,6 @@ int column_count(const Domain& d, double range) {
   if (d.tilt == 0.0) return cell_count(d.length_x(), range);
   return cell_count(d.length_x() * d.length_y() / std::hypot(d.length_y(), d.tilt), range);
 }
-int clamp_index(double coord, double lo, double side, int n) {
-  const double c = std::floor((coord - lo) / side);
-  if (!(c >= 0.0)) return 0;  // also catches NaN
-  if (c >= n - 1) return n - 1;
-  return static_cast<int>(c);
-}
 }  // namespace
 
 CellGrid::CellGrid(const Domain& domain, double range, const Domain& sizing)
@@ -37,9 +31,6 @@ void CellGrid::follow(const Domain& domain) {
 double CellGrid::column_width(const Domain& d) const {
   return d.length_x() / nx_ * (d.tilt == 0.0 ? 1.0 : d.length_y() / std::hypot(d.length_y(), d.tilt));
 }
-
-int CellGrid::column_of(Vec2 x) const { return clamp_index(x.x - domain_.shear_shift(x.y), domain_.xlo, side_x_, nx_); }
-int CellGrid::row_of(double y) const { return clamp_index(y, domain_.ylo, side_y_, ny_); }
 
 std::vector<std::size_t> CellGrid::stencil(std::size_t cell) const {
   const int cx = static_cast<int>(cell % nx_), cy = static_cast<int>(cell / nx_);
