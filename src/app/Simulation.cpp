@@ -65,11 +65,10 @@ Simulation::Simulation(Config config, const Communicator& comm, bool write_files
       start_checks::check_initial_motion(config_, discs_);
     });
     distribute_discs();
-    on_owners_ = true;
   }
   setup_boundaries();
   phases_.restart();
-  rebuild();
+  rebuild(!restart);                       // a new scene's discs are on their owners (distribute_discs)
   if (!restart) check_initial_overlaps();  // on the rows just built: every pair within reach
   if (!restart && config_.bonds) create_bonds();
   if (write_files_) {

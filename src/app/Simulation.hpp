@@ -183,7 +183,8 @@ class Simulation final : public RunTarget {
   // cells on a new decomposition; settle_owners: to the cut weighted by their work.
   void route_to_owners();
   void settle_owners();
-  void rebuild();
+  // `on_owners`: every disc is on the owner of its cell (right after distribute_discs), so no migration is due.
+  void rebuild(bool on_owners = false);
   // A deforming cell: its step h += dt L h and its flip (SimulationStep.cpp); its shape into the decomposition's
   // grid at a rebuild (a new grid when the cell has halved or doubled a side's cells), refused when a length has
   // fallen below twice the interaction range.
@@ -232,8 +233,7 @@ class Simulation final : public RunTarget {
   double R_min_ = 0.0, R_max_ = 0.0, R_total_ = 0.0;  // over every disc (measure_radii): extremes, sum
   std::int64_t n_discs_ = 0;                          // every disc (measure_radii)
   std::unique_ptr<Decomposition> decomposition_;
-  bool weighed_ = false;    // the first map was weighted by the discs the scene will place (no repartition due)
-  bool on_owners_ = false;  // every disc is on the owner of its cell (distribute_discs): the next rebuild moves none
+  bool weighed_ = false;  // the first map was weighted by the discs the scene will place (no repartition due)
   DiscExchange exchange_;
   PhaseTimes phases_;
   std::size_t migrated_ = 0;

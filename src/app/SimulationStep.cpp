@@ -31,18 +31,17 @@ StepInputs Simulation::step_inputs(bool bounds) {
                     step_ + 1};
 }
 
-void Simulation::rebuild() {
+void Simulation::rebuild(bool on_owners) {
   // Discs go to their cell owners with their contact rows; the rows (local and received) then serve as
   // the history source of the new neighbour list. A deforming cell's decomposition grid takes its shape now.
   if (!config_.domain.standing()) follow_cell();
   cell_rebuild_ = false;
   neighbours_.set_cell_bound(dt_, neighbours_.range(R_max_));
-  // Right after distribute_discs no disc is elsewhere than on its cell's owner (and no rank holds a row yet): the
-  // pass of the migration over every disc and its round of messages are skipped, on every rank alike.
+  // Discs already on their owners (and no rank holding a row yet): the migration's pass over every disc and its
+  // round of messages are skipped, on every rank alike.
   const DiscExchange::Counts moved =
-      on_owners_ ? DiscExchange::Counts{}
-                 : exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_, false, bond_rows());
-  on_owners_ = false;
+      on_owners ? DiscExchange::Counts{}
+                : exchange_.migrate(discs_, pairs_, wall_rows_, *decomposition_, comm_, false, bond_rows());
   decomposition_->migrated();
   // Received discs come last: back into gid order, the kernel's order (the arithmetic does not depend on it).
   discs_.sort_owned_by_gid();

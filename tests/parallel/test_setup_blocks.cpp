@@ -62,13 +62,18 @@ TEST(SetupBlocks, ALatticeBuiltCellByCellGivesTheBitsOfOneRank) {
   check_scene("lattice by cells", kLattice, 4000, 500, true);
 }
 
-TEST(SetupBlocks, ALatticeThatWrapsIsBuiltInBlocksAndGivesTheBitsOfOneRank) {
-  // Periodic in x, the lattice from x = 0.05 on: its right part wraps to the left side.
+// Periodic in x, the lattice from x = 0.05 on: its right part wraps to the left side.
+std::string wrapping_lattice() {
   std::string ini = kLattice;
   for (const auto& [from, to] : {std::pair<std::string, std::string>{"yhi = 0.06\n", "yhi = 0.06\nperiodic_x = true\n"},
                                  {"box = bottom left right", "box = bottom"},
                                  {"x0 = 0.003", "x0 = 0.05"}})
     ini.replace(ini.find(from), from.size(), to);
+  return ini;
+}
+
+TEST(SetupBlocks, ALatticeThatWrapsIsBuiltInBlocksAndGivesTheBitsOfOneRank) {
+  const std::string ini = wrapping_lattice();
   const Config c = parse_config_text(ini);
   ASSERT_EQ(scene::by_cells(SceneInputs{c.scene, c.domain, "", nullptr}), 0.0);
   check_scene("lattice in blocks", ini, 1500, 500, true);
@@ -217,18 +222,13 @@ TEST(SetupBlocks, EachRankBuildsOnlyItsBlockAndTheBlocksMakeTheScene) {
 }
 
 TEST(SetupBlocks, EveryDiscIsOnTheOwnerOfItsCellWhenTheSetUpEnds) {
-  // The first rebuild moves no disc (Simulation::rebuild skips its migration right after distribute_discs): each
+  // The first rebuild moves no disc (Simulation::rebuild(true) skips its migration after distribute_discs): each
   // way of making a scene, with each partitioner, leaves every disc on the rank that owns its cell.
-  std::string wraps = kLattice;
-  for (const auto& [from, to] : {std::pair<std::string, std::string>{"yhi = 0.06\n", "yhi = 0.06\nperiodic_x = true\n"},
-                                 {"box = bottom left right", "box = bottom"},
-                                 {"x0 = 0.003", "x0 = 0.05"}})
-    wraps.replace(wraps.find(from), from.size(), to);
   std::string whole = random_tiles();
   whole.replace(whole.find("type = random_tiles"), 19, "type = random");
   const Communicator world(MPI_COMM_WORLD);
   for (const auto& [name, ini] : {std::pair<std::string, std::string>{"lattice by cells", kLattice},
-                                  {"lattice in blocks", wraps},
+                                  {"lattice in blocks", wrapping_lattice()},
                                   {"random tiles", random_tiles()},
                                   {"random, whole on every rank", whole}}) {
     for (const Variant& var : variants()) {
