@@ -6,13 +6,18 @@
 // undone and done again and both are timed ("first_setup_seconds", "setup_seconds"): the second touches memory the
 // first has just freed, as a set-up does on a machine where fresh memory costs no more than used memory (on a
 // virtual machine whose balloon hands freed pages back to the host it costs a host fault a page; docs/scaling.md).
-//   mpirun -n P rondel_scaling_audit SCENE.ini STEPS OUTPUT_DIR [--setup-twice] [--resume DIR] [--key=value ...]
+// With --paired-setups=K (on 2 ranks or more) it only times set-ups: K pairs, each a set-up on rank 0 alone and one
+// on all the ranks, seconds apart in one job (see paired_setups).
+//   mpirun -n P rondel_scaling_audit SCENE.ini STEPS OUTPUT_DIR [--setup-twice | --paired-setups=K] [--key=value ...]
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "BenchSupport.hpp"
@@ -22,6 +27,91 @@
 #include "parallel/Communicator.hpp"
 #include "parallel/StateFile.hpp"
 #include "physics/LawRegistry.hpp"
+
+namespace {
+
+// A barrier of all the ranks in which each waits asleep (a rank spinning in MPI_Barrier would take a vCPU).
+void sleeping_barrier() {
+  MPI_Request request;
+  MPI_Ibarrier(MPI_COMM_WORLD, &request);
+  for (int done = 0; !done;) {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (!done) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+}
+
+// The set-up as the executable does it (app/Launch.hpp, then the Simulation) on `comm`, and its slowest rank's
+// seconds.
+std::unique_ptr<rondel::Simulation> set_up(const rondel::Communicator& comm, const std::vector<std::string>& args,
+                                           double& seconds) {
+  comm.barrier();
+  const double t0 = MPI_Wtime();
+  rondel::Launch launch = rondel::prepare_launch({args}, comm);
+  auto made = std::make_unique<rondel::Simulation>(std::move(launch.config), comm, true, launch.checkpoint);
+  seconds = comm.max(MPI_Wtime() - t0);
+  return made;
+}
+
+// The seconds of a set-up; the Simulation is then destroyed, untimed.
+double timed_setup(const rondel::Communicator& comm, const std::vector<std::string>& args) {
+  double seconds = 0.0;
+  set_up(comm, args, seconds).reset();
+  return seconds;
+}
+
+// --paired-setups=K: one untimed set-up on rank 0 alone (a communicator of one, the other ranks asleep) and one on
+// all the ranks, then K timed pairs of the two, alternately first. Run with malloc keeping what it frees
+// (MALLOC_MMAP_MAX_=0, no trim), every timed set-up touches memory its process has used, and the two of a pair
+// run seconds apart: in the same minute of a host whose speed varies from minute to minute (docs/scaling.md).
+void paired_setups(const rondel::Communicator& world, std::vector<std::string> args, const std::string& out,
+                   int pairs) {
+  MPI_Comm alone_comm;
+  MPI_Comm_split(MPI_COMM_WORLD, world.root() ? 0 : MPI_UNDEFINED, 0, &alone_comm);
+  auto alone = [&] {
+    double seconds = 0.0;
+    args[1] = "--run.output=" + out + "/alone";
+    if (world.root()) seconds = timed_setup(rondel::Communicator(alone_comm), args);
+    sleeping_barrier();
+    return seconds;
+  };
+  auto all = [&] {
+    args[1] = "--run.output=" + out + "/all";
+    return timed_setup(world, args);
+  };
+  alone(), all();
+  std::vector<double> one, two;
+  for (int k = 0; k < pairs; ++k) {
+    if (k % 2 == 0)
+      one.push_back(alone()), two.push_back(all());
+    else
+      two.push_back(all()), one.push_back(alone());
+  }
+  if (world.root()) {
+    std::printf("{\"ranks\": %d, \"one\": [", world.size());
+    for (std::size_t k = 0; k < one.size(); ++k) std::printf("%s%.6g", k ? ", " : "", one[k]);
+    std::printf("], \"all\": [");
+    for (std::size_t k = 0; k < two.size(); ++k) std::printf("%s%.6g", k ? ", " : "", two[k]);
+    std::printf("]}\n");
+  }
+  if (alone_comm != MPI_COMM_NULL) MPI_Comm_free(&alone_comm);
+}
+
+// The K of --paired-setups=K: a whole number from 1 to 1000.
+int paired_count(const std::string& text) {
+  std::size_t used = 0;
+  int k = 0;
+  try {
+    k = std::stoi(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || text.empty() || k < 1 || k > 1000)
+    throw std::invalid_argument("--paired-setups=" + text +
+                                ": the number of pairs must be a whole number from 1 to 1000");
+  return k;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   const char* why = nullptr;
@@ -39,31 +129,30 @@ int main(int argc, char** argv) {
     std::vector<std::string> args{argv[1], "--run.output=" + std::string(argv[3]), "--run.progress=false",
                                   "--run.overwrite=true"};
     bool twice = false;
+    int pairs = 0;
     for (int i = 4; i < argc; ++i)
       if (std::string(argv[i]) == "--setup-twice")
         twice = true;
+      else if (std::string(argv[i]).rfind("--paired-setups=", 0) == 0)
+        pairs = paired_count(std::string(argv[i]).substr(16));
       else
         args.emplace_back(argv[i]);
+    if (pairs > 0) {
+      if (comm.size() < 2) throw std::invalid_argument("--paired-setups needs 2 ranks or more");
+      paired_setups(comm, args, argv[3], pairs);
+      return 0;
+    }
     const std::int64_t steps = std::stoll(argv[2]);
-    // The set-up as the executable does it (app/Launch.hpp, then the Simulation), from a reset peak; the bytes are
-    // those of the first set-up.
-    auto set_up = [&](double& seconds) {
-      comm.barrier();
-      const double t0 = MPI_Wtime();
-      rondel::Launch launch = rondel::prepare_launch({args}, comm);
-      auto made = std::make_unique<rondel::Simulation>(std::move(launch.config), comm, true, launch.checkpoint);
-      seconds = comm.max(MPI_Wtime() - t0);
-      return made;
-    };
+    // The set-up from a reset peak; the bytes are those of the first set-up.
     const bool peak_reset = rondel::reset_peak_rss();
     const long rss0 = rondel::resident_kib();
     double first_seconds = 0, setup_seconds = 0;
-    auto made = set_up(first_seconds);
+    auto made = set_up(comm, args, first_seconds);
     const std::int64_t setup_bytes =
         peak_reset ? comm.max(static_cast<std::int64_t>(rondel::peak_rss_kib() - rss0) * 1024) : -1;
     if (twice) {
       made.reset();
-      made = set_up(setup_seconds);
+      made = set_up(comm, args, setup_seconds);
     } else {
       setup_seconds = first_seconds;
     }

@@ -19,7 +19,7 @@ pairs (1 2 1 2 ...) and prints each pair's ratio, the medians and the largest ra
 counted in 4 KiB pages (RONDEL_HUGE_PAGES=0); --speedup runs as rondel does, with huge pages. On a virtual
 machine whose balloon hands freed memory back to the host, a run's time depends on how long ago its memory was
 freed: --memory cold or reused makes every run start alike (see prepare_memory; docs/scaling.md, "What bounds the
-ratio here").
+ratio here"), and --memory in-job times the pairs in one 2-rank job, seconds apart, on reused memory.
 """
 import argparse
 import json
@@ -82,12 +82,13 @@ def prepare_memory(args, env, extra):
     5.2 s otherwise. Whichever of a pair runs right after the other finds warm memory, so the pairs are only
     comparable when every run starts alike: 'cold' waits 6 s before each run, so that every run pays the host for
     all it touches; 'reused' sets the scene up twice in one process, malloc keeping what the first set-up freed
-    (no mmap, no trim), and times the second, as on a machine where fresh memory costs what used memory does."""
+    (no mmap, no trim), and times the second, as on a machine where fresh memory costs what used memory does;
+    'in-job' keeps memory so too, for the pairs of one job (in_job)."""
     if args.memory == "cold":
         time.sleep(6)
-    elif args.memory == "reused":
+    elif args.memory in ("reused", "in-job"):
         env.update(MALLOC_MMAP_MAX_="0", MALLOC_TRIM_THRESHOLD_=str(1 << 40))
-        extra.append("--setup-twice")
+        extra.append("--setup-twice" if args.memory == "reused" else "--paired-setups=%d" % args.pairs)
 
 
 def run(args, ranks, ini, out, extra=(), steps="1"):
@@ -137,6 +138,19 @@ def table(title, rows):
                                                       r["setup_bytes"] / r["discs"], r["setup_seconds"]))
 
 
+def in_job(args, ini):
+    """--memory in-job: the pairs from one 2-rank job (rondel_scaling_audit --paired-setups), each a set-up on rank 0
+    alone (the other rank asleep) and one on both, seconds apart, alternately first, after an untimed one of each; the
+    host's slow and fast minutes then fall on both of a pair."""
+    r = run(args, 2, ini, os.path.join(args.work, "speedup-in-job"), ["--output.checkpoint_at_end=false"], steps="0")
+    for k, (a, b) in enumerate(zip(r["one"], r["all"])):
+        print("  pair %d: 1 rank %.3f s, 2 ranks %.3f s, ratio %.2f" % (k + 1, a, b, a / b))
+    ratios = [a / b for a, b in zip(r["one"], r["all"])]
+    print("median: 1 rank %.3f s, 2 ranks %.3f s, ratio %.2f (%.2f to %.2f)" % (
+        statistics.median(r["one"]), statistics.median(r["all"]), statistics.median(ratios), min(ratios), max(ratios)))
+    return 0
+
+
 def speedup(args):
     """Interleaved 1-rank and 2-rank set-ups of one large lattice: pair ratios and medians."""
     n = args.speedup
@@ -147,6 +161,8 @@ def speedup(args):
         open("/proc/loadavg").read().split()[:3], args.memory, args.bind_to or "mpirun's default"))
     print("%d discs (%s), 0 steps; set-up seconds (slowest rank), pair by pair:" %
           (n * n, "random_tiles" if args.random else "lattice_square %d x %d" % (n, n)))
+    if args.memory == "in-job":
+        return in_job(args, ini)
     for k in range(args.pairs):
         no_checkpoint = ["--output.checkpoint_at_end=false"]
         a = run(args, 1, ini, os.path.join(args.work, "speedup-1"), no_checkpoint, steps="0")
@@ -178,9 +194,10 @@ def main():
                     help="mpirun --bind-to WHAT (default: mpirun's own, a rank per core: on this VM rank 0 then runs on "
                          "the vCPU that takes three times the other's timer interrupts and the kernel's DAMON thread; "
                          "'none' lets the scheduler move it)")
-    ap.add_argument("--memory", choices=["as-is", "cold", "reused"], default="as-is",
-                    help="--speedup: each run as it comes (as-is, the default), after a 6 s wait (cold), or the second "
-                         "of two set-ups in one process (reused); see prepare_memory")
+    ap.add_argument("--memory", choices=["as-is", "cold", "reused", "in-job"], default="as-is",
+                    help="--speedup: each run as it comes (as-is, the default), after a 6 s wait (cold), the second "
+                         "of two set-ups in one process (reused; see prepare_memory), or every pair in one 2-rank job "
+                         "on reused memory (in-job; see in_job)")
     args = ap.parse_args()
     os.makedirs(args.work, exist_ok=True)
     if args.speedup:
