@@ -9,6 +9,7 @@
 // With --paired-setups=K (on 2 ranks or more) it only times set-ups: K pairs, each a set-up on rank 0 alone and one
 // on all the ranks, seconds apart in one job (see paired_setups).
 //   mpirun -n P rondel_scaling_audit SCENE.ini STEPS OUTPUT_DIR [--setup-twice | --paired-setups=K] [--key=value ...]
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -67,15 +68,25 @@ void paired_setups(const rondel::Communicator& world, std::vector<std::string> a
                    int pairs) {
   MPI_Comm alone_comm;
   MPI_Comm_split(MPI_COMM_WORLD, world.root() ? 0 : MPI_UNDEFINED, 0, &alone_comm);
+  std::string& output = *std::find_if(args.begin(), args.end(), [](const std::string& a) {
+    return a.rfind("--run.output=", 0) == 0;  // main's, first of the keys
+  });
   auto alone = [&] {
     double seconds = 0.0;
-    args[1] = "--run.output=" + out + "/alone";
-    if (world.root()) seconds = timed_setup(rondel::Communicator(alone_comm), args);
+    output = "--run.output=" + out + "/alone";
+    if (world.root()) {
+      try {
+        seconds = timed_setup(rondel::Communicator(alone_comm), args);
+      } catch (const std::exception& e) {  // the other ranks wait in a barrier that rank 0 would not reach
+        std::cerr << "rondel_scaling_audit: " << e.what() << '\n';
+        MPI_Abort(MPI_COMM_WORLD, 1);
+      }
+    }
     sleeping_barrier();
     return seconds;
   };
   auto all = [&] {
-    args[1] = "--run.output=" + out + "/all";
+    output = "--run.output=" + out + "/all";
     return timed_setup(world, args);
   };
   alone(), all();
