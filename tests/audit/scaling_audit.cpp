@@ -97,13 +97,13 @@ void paired_setups(const rondel::Communicator& world, std::vector<std::string> a
     else
       two.push_back(all()), one.push_back(alone());
   }
-  if (world.root()) {
-    std::printf("{\"ranks\": %d, \"one\": [", world.size());
-    for (std::size_t k = 0; k < one.size(); ++k) std::printf("%s%.6g", k ? ", " : "", one[k]);
-    std::printf("], \"all\": [");
-    for (std::size_t k = 0; k < two.size(); ++k) std::printf("%s%.6g", k ? ", " : "", two[k]);
-    std::printf("]}\n");
-  }
+  const auto list = [](const std::vector<double>& v) {
+    std::string text;
+    for (double x : v) text += (text.empty() ? "" : ", ") + std::to_string(x);
+    return text;
+  };
+  if (world.root())
+    std::printf("{\"ranks\": %d, \"one\": [%s], \"all\": [%s]}\n", world.size(), list(one).c_str(), list(two).c_str());
   if (alone_comm != MPI_COMM_NULL) MPI_Comm_free(&alone_comm);
 }
 
@@ -133,7 +133,9 @@ int main(int argc, char** argv) {
   rondel::MpiEnvironment mpi(&argc, &argv);
   rondel::Communicator comm;
   if (argc < 4) {
-    if (comm.root()) std::cerr << "usage: rondel_scaling_audit SCENE.ini STEPS OUTPUT_DIR [--key=value ...]\n";
+    if (comm.root())
+      std::cerr << "usage: rondel_scaling_audit SCENE.ini STEPS OUTPUT_DIR [--setup-twice | --paired-setups=K] "
+                   "[--key=value ...]\n";
     return 2;
   }
   try {
@@ -150,6 +152,7 @@ int main(int argc, char** argv) {
         args.emplace_back(argv[i]);
     if (pairs > 0) {
       if (comm.size() < 2) throw std::invalid_argument("--paired-setups needs 2 ranks or more");
+      if (twice) throw std::invalid_argument("--paired-setups and --setup-twice are two protocols: give one");
       paired_setups(comm, args, argv[3], pairs);
       return 0;
     }
